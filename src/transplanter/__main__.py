@@ -1,0 +1,5 @@
+import sys
+
+from transplanter.cli import main
+
+sys.exit(main())

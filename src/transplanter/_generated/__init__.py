@@ -1,0 +1,1 @@
+"""Generated modules: written by derivations/build.py, never edited by hand."""

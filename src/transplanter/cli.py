@@ -1,0 +1,74 @@
+"""``transplanter <command>``: parses arguments and calls the library; no logic of its own."""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import warnings
+from pathlib import Path
+
+from transplanter.errors import TransplanterError
+
+
+def _burmester(args) -> int:
+    from transplanter.plots import plot_synthesis
+    from transplanter.problem import load_problem
+    from transplanter.report import to_json, to_markdown, to_text
+    from transplanter.synthesis import synthesize
+
+    result = synthesize(load_problem(args.file))
+    if args.plot:
+        plot_synthesis(result, args.plot)
+    if args.out:
+        out = Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
+        plot_synthesis(result, str(out / "burmester.png"))
+        (out / "report.json").write_text(json.dumps(to_json(result), indent=2) + "\n")
+        (out / "report.md").write_text(to_markdown(result, "burmester.png"))
+    if args.json:
+        json.dump(to_json(result), sys.stdout)
+        sys.stdout.write("\n")
+    else:
+        sys.stdout.write(to_text(result))
+        if args.out:
+            sys.stdout.write(f"\nwrote {args.out}/report.md, report.json, burmester.png\n")
+    return 0
+
+
+def _derive(args) -> int:
+    from transplanter.derive import run_build
+
+    return run_build(["--check"] if args.check else [])
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="transplanter", description="Synthesis of seedling transplanting mechanisms.")
+    commands = parser.add_subparsers(dest="command", required=True)
+    burmester = commands.add_parser("burmester", help="RR dyads that guide a body through 3 or more poses")
+    burmester.add_argument("file", help="problem file (TOML, mm and degrees)")
+    burmester.add_argument("--json", action="store_true", help="print one JSON object instead of a table")
+    burmester.add_argument("--plot", metavar="PNG", help="write the figure to this file")
+    burmester.add_argument("--out", metavar="DIR", help="write report.md, report.json and the figure here")
+    burmester.set_defaults(run=_burmester)
+    derive = commands.add_parser("derive", help="regenerate src/transplanter/_generated from derivations/")
+    derive.add_argument("--check", action="store_true", help="exit 1 if the generated code is out of step")
+    derive.set_defaults(run=_derive)
+    return parser
+
+
+def _one_line_warning(message, category, filename, lineno, file=None, line=None):
+    return f"transplanter: warning: {message}\n"
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    warnings.formatwarning = _one_line_warning
+    try:
+        return args.run(args)
+    except TransplanterError as error:
+        print(f"transplanter: error: {error}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,22 @@
+"""``transplanter derive``: run derivations/build.py of the source checkout this package comes from."""
+from __future__ import annotations
+
+import importlib
+import sys
+from pathlib import Path
+
+from transplanter.errors import TransplanterError
+
+CHECKOUT = Path(__file__).resolve().parents[2]
+
+
+def run_build(argv: list[str]) -> int:
+    if not (CHECKOUT / "derivations" / "build.py").exists():
+        raise TransplanterError(f"derive: no derivations/ beside {CHECKOUT / 'src'}: it needs a source checkout "
+                                "installed with `pip install -e .[dev]`")
+    sys.path.insert(0, str(CHECKOUT))
+    try:
+        build = importlib.import_module("derivations.build")
+    except ModuleNotFoundError as error:
+        raise TransplanterError(f"derive: {error.name} is not installed: it needs `pip install -e .[dev]`") from None
+    return build.main(argv)

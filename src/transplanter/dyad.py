@@ -1,0 +1,55 @@
+"""An RR dyad and its independent check against the poses it must guide."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from transplanter.poses import carry, pose_scale, rotate_about
+
+
+@dataclass(frozen=True)
+class Link:
+    """The dyad's ground when it is not the frame: a link turning about ``pivot`` by ``phases`` (rad, ccw)."""
+
+    pivot: np.ndarray
+    phases: np.ndarray
+
+
+@dataclass(frozen=True)
+class Dyad:
+    """Fixed pivot ``center`` and moving pivot ``circle``, both where they are in pose 1 (mm).
+
+    ``residuals_mm[i]`` is |M_i - G_i| - length at pose i, from forward kinematics.
+    """
+
+    center: np.ndarray
+    circle: np.ndarray
+    length: float
+    residuals_mm: np.ndarray
+    scale: float
+
+    @property
+    def max_residual_mm(self) -> float:
+        return float(np.abs(self.residuals_mm).max())
+
+    @property
+    def max_residual(self) -> float:
+        """Largest length error relative to the pose scale (dimensionless)."""
+        return self.max_residual_mm / self.scale
+
+
+def verify_dyad(poses: np.ndarray, center, circle, link: Link | None = None) -> Dyad:
+    """Carry both pivots through every pose by plain rigid motions and measure the link length.
+
+    This evaluation shares nothing with the synthesis algebra: it is the check of eq (1).
+    """
+    center = np.asarray(center, float)
+    circle = np.asarray(circle, float)
+    moving = carry(poses, circle)
+    if link is None:
+        fixed = np.broadcast_to(center, moving.shape)
+    else:
+        fixed = rotate_about(np.broadcast_to(center, moving.shape), link.pivot, link.phases - link.phases[0])
+    distances = np.linalg.norm(moving - fixed, axis=1)
+    return Dyad(center, circle, float(distances[0]), distances - distances[0], pose_scale(poses))
