@@ -31,13 +31,12 @@ def center_cubic(poses: np.ndarray) -> np.ndarray:
     return np.asarray(_center_cubic(poses[:, 0], poses[:, 1], poses[:, 2])).ravel()
 
 
-def _eq1_residual(poses, centers, circles):
-    """Largest |f_i| of eq (1) for each candidate, in local units squared."""
+def _length_error(poses, centers, circles):
+    """Largest change of the link length over the poses, per candidate (local units = pose scale)."""
     out = []
     for g, m in zip(centers, circles):
-        moving = carry(poses, m)
-        d2 = np.sum((moving - g) ** 2, axis=1)
-        out.append(np.abs(d2 - d2[0]).max() / 2)
+        distances = np.linalg.norm(carry(poses, m) - g, axis=1)
+        out.append(np.abs(distances - distances[0]).max())
     return np.array(out)
 
 
@@ -64,9 +63,9 @@ def burmester_points(poses: np.ndarray, tolerance: float = 1e-10):
         return np.empty((0, 2)), np.empty((0, 2))
     centers = np.array(candidates)
     circles = circles_for_centers(poses, centers)
-    keep = _eq1_residual(poses, centers, circles) < 1e-5
+    keep = _length_error(poses, centers, circles) < 1e-5
     centers, circles = polish(poses, centers[keep], circles[keep], iterations=4)
-    good = _eq1_residual(poses, centers, circles) < tolerance
+    good = _length_error(poses, centers, circles) < tolerance
     return _distinct(centers[good], circles[good])
 
 

@@ -1,0 +1,62 @@
+"""The command line on the bundled examples: JSON fields, figures, reports."""
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from transplanter.dyad import verify_dyad
+from transplanter.problem import load_problem
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _json(example):
+    run = subprocess.run([sys.executable, "-m", "transplanter", "burmester", f"examples/{example}", "--json"],
+                         capture_output=True, text=True, cwd=ROOT, check=True)
+    return json.loads(run.stdout)
+
+
+def test_json_of_five_poses_checks_out_independently():
+    report = _json("burmester_5poses.toml")
+    problem = load_problem(ROOT / "examples/burmester_5poses.toml")
+    assert len(report["dyads"]) == 4
+    for dyad in report["dyads"]:
+        assert set(dyad) >= {"center", "circle", "length", "max_residual"}
+        check = verify_dyad(problem.poses, dyad["center"], dyad["circle"])
+        assert check.max_residual < 1e-10
+        assert check.length == dyad["length"]
+    centers = np.array([d["center"] for d in report["dyads"]])
+    # the two dyads of the crank-rocker the example was made from (poses rounded to 1e-4)
+    assert np.linalg.norm(centers - [0, 0], axis=1).min() < 1e-2
+    assert np.linalg.norm(centers - [100, 0], axis=1).min() < 1e-2
+
+
+def test_relative_center_is_the_link_fixed_pivot_in_pose_1():
+    report = _json("burmester_relative.toml")
+    problem = load_problem(ROOT / "examples/burmester_relative.toml")
+    assert report["relative"]["phases_deg"] == [0.0, -18.0, -50.0, -90.0]
+    assert report["max_residual"] < 1e-9
+    for dyad in report["dyads"][::40]:
+        assert verify_dyad(problem.poses, dyad["center"], dyad["circle"], problem.link).max_residual < 1e-9
+
+
+def test_plot_and_report_files(tmp_path):
+    run = subprocess.run([sys.executable, "-m", "transplanter", "burmester", "examples/burmester_4poses.toml",
+                          "--out", str(tmp_path / "out"), "--plot", str(tmp_path / "fig.png")],
+                         capture_output=True, text=True, cwd=ROOT)
+    assert run.returncode == 0, run.stderr
+    for name in ("out/report.md", "out/report.json", "out/burmester.png", "fig.png"):
+        assert (tmp_path / name).stat().st_size > 1000
+    assert (tmp_path / "fig.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    report = json.loads((tmp_path / "out/report.json").read_text())
+    assert len(report["dyads"]) > 500 and len(report["circle_curve_dyads"]) > 500
+    assert "center-point" in (tmp_path / "out/report.md").read_text()
+    assert "dyads:" in run.stdout
+
+
+def test_many_poses_table():
+    run = subprocess.run([sys.executable, "-m", "transplanter", "burmester", "examples/burmester_7poses.toml"],
+                         capture_output=True, text=True, cwd=ROOT, check=True)
+    assert "least-squares" in run.stdout and "RMS length error" in run.stdout
