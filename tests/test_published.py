@@ -44,4 +44,4 @@ def test_exact_dyad_with_the_published_length(family):
     b_shift = np.linalg.norm(center - PUBLISHED_B)
     ep = np.linalg.norm(circle - problem.poses[0, :2])
     assert 0.5 < b_shift < 3.0           # measured: 1.6 mm
-    assert abs(ep - PUBLISHED_EP) < 3.0  # measured: 56.1 mm against 55.01
+    assert abs(ep - PUBLISHED_EP) < 3.0  # measured: 56.5 mm against 55.01

@@ -39,17 +39,24 @@ class Dyad:
         return self.max_residual_mm / self.scale
 
 
-def verify_dyad(poses: np.ndarray, center, circle, link: Link | None = None) -> Dyad:
-    """Carry both pivots through every pose by plain rigid motions and measure the link length.
+def verify_dyads(poses: np.ndarray, centers, circles, link: Link | None = None) -> list[Dyad]:
+    """Carry both pivots of each dyad through every pose by plain rigid motions and measure the link.
 
     This evaluation shares nothing with the synthesis algebra: it is the check of eq (1).
+    ``centers`` and ``circles`` are (N, 2), where the pivots are in pose 1.
     """
-    center = np.asarray(center, float)
-    circle = np.asarray(circle, float)
-    moving = carry(poses, circle)
-    if link is None:
-        fixed = np.broadcast_to(center, moving.shape)
-    else:
-        fixed = rotate_about(np.broadcast_to(center, moving.shape), link.pivot, link.phases - link.phases[0])
-    distances = np.linalg.norm(moving - fixed, axis=1)
-    return Dyad(center, circle, float(distances[0]), distances - distances[0], pose_scale(poses))
+    centers = np.asarray(centers, float).reshape(-1, 2)
+    circles = np.asarray(circles, float).reshape(-1, 2)
+    moving = carry(poses, circles)
+    fixed = centers[:, None, :]
+    if link is not None:
+        fixed = rotate_about(fixed, link.pivot, link.phases - link.phases[0])
+    distances = np.linalg.norm(moving - fixed, axis=-1)
+    errors = distances - distances[:, :1]
+    scale = pose_scale(poses)
+    return [Dyad(c, m, float(d[0]), e, scale) for c, m, d, e in zip(centers, circles, distances, errors)]
+
+
+def verify_dyad(poses: np.ndarray, center, circle, link: Link | None = None) -> Dyad:
+    """``verify_dyads`` for one dyad."""
+    return verify_dyads(poses, center, circle, link)[0]

@@ -33,11 +33,8 @@ def center_cubic(poses: np.ndarray) -> np.ndarray:
 
 def _length_error(poses, centers, circles):
     """Largest change of the link length over the poses, per candidate (local units = pose scale)."""
-    out = []
-    for g, m in zip(centers, circles):
-        distances = np.linalg.norm(carry(poses, m) - g, axis=1)
-        out.append(np.abs(distances - distances[0]).max())
-    return np.array(out)
+    distances = np.linalg.norm(carry(poses, circles) - centers[:, None, :], axis=-1)
+    return np.abs(distances - distances[:, :1]).max(axis=1)
 
 
 def burmester_points(poses: np.ndarray, tolerance: float = 1e-10):

@@ -18,9 +18,10 @@ def rotation(angle):
 
 
 def carry(poses: np.ndarray, point_in_first) -> np.ndarray:
-    """Where a body point, at ``point_in_first`` in pose 1, is in every pose: shape (n, 2)."""
+    """Where body points, at ``point_in_first`` (..., 2) in pose 1, are in every pose: (..., n, 2)."""
     offset = np.asarray(point_in_first, float) - poses[0, :2]
-    return poses[:, :2] + np.einsum("nij,j->ni", rotation(poses[:, 2] - poses[0, 2]), offset)
+    turned = np.einsum("nij,...j->...ni", rotation(poses[:, 2] - poses[0, 2]), offset)
+    return poses[:, :2] + turned
 
 
 def pole(first, second) -> np.ndarray:

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from transplanter.curve_trace import CurveTrace
-from transplanter.dyad import Dyad, Link, verify_dyad
+from transplanter.dyad import Dyad, Link, verify_dyads
 from transplanter.errors import ProblemError
 from transplanter.five_poses import burmester_points
 from transplanter.four_poses import dyads_of_circle_curve, trace_center_curve, trace_circle_curve, trace_dyads
@@ -80,8 +80,7 @@ def synthesize(problem: DyadProblem) -> Synthesis:
     count = len(poses)
 
     def to_dyads(centers, circles):
-        return [verify_dyad(problem.poses, c, m, problem.link)
-                for c, m in zip(frame.to_world(centers).reshape(-1, 2), frame.to_world(circles).reshape(-1, 2))]
+        return verify_dyads(problem.poses, frame.to_world(centers), frame.to_world(circles), problem.link)
 
     def world_curve(curve: CurveTrace) -> CurveTrace:
         return CurveTrace(frame.to_world(curve.points).reshape(-1, 2), curve.runs)
