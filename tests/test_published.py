@@ -9,6 +9,7 @@ the curve but not on it, and the exact dyad with the published length |BE| has i
 import numpy as np
 import pytest
 
+from transplanter.dyad import verify_dyad
 from transplanter.problem import load_problem
 from transplanter.synthesis import synthesize
 from pathlib import Path
@@ -45,3 +46,19 @@ def test_exact_dyad_with_the_published_length(family):
     ep = np.linalg.norm(circle - problem.poses[0, :2])
     assert 0.5 < b_shift < 3.0           # measured: 1.6 mm
     assert abs(ep - PUBLISHED_EP) < 3.0  # measured: 56.5 mm against 55.01
+
+
+def test_published_carrier_chain_meets_the_relative_poses():
+    """Table 4: carrier OA = 47.47 mm at -28.59 deg, rod I AF = 275.88 mm at -100.88 deg (pose 1).
+
+    Seen from the carrier (phases 0, -18, -50, -90 deg), A-F is a dyad through the four key
+    poses. Its length changes by at most 0.088 mm over them (forward kinematics), and A lies
+    0.18 mm from the exact center-point curve: close, not exact.
+    """
+    problem = load_problem(ROOT / "examples/burmester_relative.toml")
+    a = 47.47 * np.array([np.cos(np.radians(-28.59)), np.sin(np.radians(-28.59))])
+    f = a + 275.88 * np.array([np.cos(np.radians(-100.88)), np.sin(np.radians(-100.88))])
+    published = verify_dyad(problem.poses, a, f, problem.link)
+    assert 0.01 < published.max_residual_mm < 0.2
+    centers = np.array([d.center for d in synthesize(problem).dyads])
+    assert 0.05 < np.linalg.norm(centers - a, axis=1).min() < 0.5

@@ -22,11 +22,14 @@ def _curve(ax, curve: CurveTrace | None, color: str, label: str):
 
 
 def _poses(ax, poses: np.ndarray, labels, size: float):
+    """Each pose as a bar along the body's direction from its reference point (dot)."""
     for k, (x, y, angle) in enumerate(poses):
         tip = np.array([x, y]) + size * np.array([np.cos(angle), np.sin(angle)])
-        ax.annotate("", xy=tip, xytext=(x, y), arrowprops={"arrowstyle": "-|>", "color": "k", "lw": 1.5})
-        ax.plot(x, y, "ko", ms=4)
+        ax.annotate("", xy=tip, xytext=(x, y),
+                    arrowprops={"arrowstyle": "-|>", "color": "k", "lw": 1.2, "mutation_scale": 9})
+        ax.plot(x, y, "ko", ms=3)
         ax.annotate(labels[k] if labels else f"P{k + 1}", (x, y), textcoords="offset points", xytext=(4, -10), fontsize=8)
+    ax.plot([], [], "k-", lw=1.2, label="poses (reference point, direction)")
 
 
 def plot_synthesis(result: Synthesis, path: str):
@@ -49,7 +52,7 @@ def plot_synthesis(result: Synthesis, path: str):
     if problem.link is not None:
         ax.plot(*problem.link.pivot, "ks", ms=8, label="link pivot")
     scale = result.dyads[0].scale if result.dyads else 1.0
-    _poses(ax, problem.poses, problem.labels, 0.25 * scale)
+    _poses(ax, problem.poses, problem.labels, 0.6 * scale)
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x / mm")
     ax.set_ylabel("y / mm")
