@@ -27,14 +27,11 @@ class LibPrinter(StrPrinter):
 
     def _print_Pow(self, expr, rational=False):
         base, exponent = expr.args
-        if exponent == sp.S.Half:
-            return f"lib.sqrt({self._print(base)})"
-        if exponent == -sp.S.Half:
-            return f"1/lib.sqrt({self._print(base)})"
-        if exponent == -1:
-            return f"1/{self.parenthesize(base, 1000)}"
-        if exponent.is_Integer and exponent > 0:
-            return f"{self.parenthesize(base, 1000)}**{int(exponent)}"
+        if exponent.is_Rational and exponent.q in (1, 2) and exponent != 0:
+            root = f"lib.sqrt({self._print(base)})" if exponent.q == 2 else self.parenthesize(base, 1000)
+            power = abs(exponent.p)
+            text = root if power == 1 else f"{root}**{power}"
+            return text if exponent > 0 else f"1/{text if power == 1 else '(' + text + ')'}"
         raise NotImplementedError(f"no lib mapping for power {expr}")
 
     def _print_Min(self, expr):

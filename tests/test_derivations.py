@@ -61,18 +61,22 @@ def test_pencil_resultant_has_the_circular_factor():
     assert quotient.degree() == 6
 
 
-@pytest.mark.parametrize("name", ["dyad_constraint", "dyad_rows_in_center", "dyad_rows_in_circle",
-                                  "dyad_pivot_distance", "burmester_center_cubic", "burmester_circle_cubic",
-                                  "circular_cubic_pencil", "circular_cubic_pencil_resultant"])
-def test_generated_matches_lambdify(derived, name, rng):
+GENERATED_FUNCTIONS = [(module, name) for module in MODULES
+                       for name in __import__(f"transplanter._generated.{module}", fromlist=["SIGNATURES"]).SIGNATURES]
+
+
+@pytest.mark.parametrize("module,name", GENERATED_FUNCTIONS)
+def test_generated_matches_lambdify(derived, module, name, rng):
     """casadi Function and numpy twin agree with sympy.lambdify of the derivation."""
-    d = derived[name]
+    d = derived[(module, name)]
     reference = sp.lambdify(d.input_symbols(), [e for _, g in d.outputs for e in g], "numpy")
-    function, twin = casadi_function("burmester", name), numpy_twin("burmester", name)
+    function, twin = casadi_function(module, name), numpy_twin(module, name)
     assert function.name_in() == [n for n, _ in d.inputs]
     assert function.name_out() == [n for n, _ in d.outputs]
     for _ in range(4):
-        groups = [rng.normal(size=len(g)) for _, g in d.inputs]
+        # positive values keep square roots and ratios real (radii, distances, eccentricities < 1 below)
+        groups = [rng.uniform(0.1, 1.0, size=len(g)) if module == "gears" else rng.normal(size=len(g))
+                  for _, g in d.inputs]
         expected = np.array(reference(*np.concatenate(groups)), float)
         via_casadi = np.concatenate([np.asarray(v).ravel() for v in function(*groups)]) \
             if function.n_out() > 1 else np.asarray(function(*groups)).ravel()

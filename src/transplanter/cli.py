@@ -35,6 +35,31 @@ def _burmester(args) -> int:
     return 0
 
 
+def _gear(args) -> int:
+    from transplanter.drawings import write_drawings
+    from transplanter.gear_plots import plot_gear_figures
+    from transplanter.gear_problem import load_gear_problem
+    from transplanter.gear_report import to_json, to_markdown
+    from transplanter.gear_synthesis import synthesize_gear
+
+    result = synthesize_gear(load_gear_problem(args.file))
+    report = to_json(result)
+    if args.out:
+        out = Path(args.out)
+        drawings = [p.name for p in write_drawings(result, out)]
+        figures = plot_gear_figures(result, out)
+        (out / "report.json").write_text(json.dumps(report, indent=2) + "\n")
+        (out / "report.md").write_text(to_markdown(report, figures, drawings))
+    if args.json:
+        json.dump(report, sys.stdout)
+        sys.stdout.write("\n")
+    else:
+        sys.stdout.write(to_markdown(report, [], []).replace("# ", "", 1))
+        if args.out:
+            sys.stdout.write(f"wrote {args.out}/report.md, report.json, drawings and figures\n")
+    return 0
+
+
 def _derive(args) -> int:
     from transplanter.derive import run_build
 
@@ -50,6 +75,11 @@ def _parser() -> argparse.ArgumentParser:
     burmester.add_argument("--plot", metavar="PNG", help="write the figure to this file")
     burmester.add_argument("--out", metavar="DIR", help="write report.md, report.json and the figure here")
     burmester.set_defaults(run=_burmester)
+    gear = commands.add_parser("gear", help="a pair of non-circular gears: pitch curves, closure, teeth, drawings")
+    gear.add_argument("file", help="gear problem file (TOML, mm and degrees)")
+    gear.add_argument("--json", action="store_true", help="print one JSON object")
+    gear.add_argument("--out", metavar="DIR", help="write report, CSV/SVG/DXF drawings and figures here")
+    gear.set_defaults(run=_gear)
     derive = commands.add_parser("derive", help="regenerate src/transplanter/_generated from derivations/")
     derive.add_argument("--check", action="store_true", help="exit 1 if the generated code is out of step")
     derive.set_defaults(run=_derive)

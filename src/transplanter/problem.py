@@ -22,8 +22,6 @@ Every error names the file, the field, the value and what was expected.
 """
 from __future__ import annotations
 
-import math
-import tomllib
 import warnings
 from pathlib import Path
 
@@ -31,6 +29,7 @@ import numpy as np
 
 from transplanter.dyad import Link
 from transplanter.errors import ProblemError, TransplanterWarning
+from transplanter.toml_fields import FieldReader, read_toml
 from transplanter.synthesis import DyadProblem
 
 _TOP_KEYS = {"title", "description", "poses", "relative", "three_poses", "search"}
@@ -40,59 +39,13 @@ _THREE_KEYS = {"circle_points", "center_points"}
 _SEARCH_KEYS = {"samples", "radius_mm"}
 
 
-class _Reader:
-    """Field checks that all report through one message format."""
-
-    def __init__(self, source: str):
-        self.source = source
-
-    def fail(self, field: str, value, expected: str):
-        raise ProblemError(f"{self.source}: {field} = {value!r}: expected {expected}")
-
-    def keys(self, table, allowed: set[str], where: str):
-        if not isinstance(table, dict):
-            self.fail(where, table, "a table")
-        for key in table:
-            if key not in allowed:
-                name = f"{where}.{key}" if where else key
-                self.fail(name, table[key], f"no such field here (known: {', '.join(sorted(allowed))})")
-
-    def number(self, table, key: str, where: str) -> float:
-        field = f"{where}.{key}"
-        if key not in table:
-            raise ProblemError(f"{self.source}: {field} is missing: expected a number")
-        value = table[key]
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-            self.fail(field, value, "a finite number")
-        return float(value)
-
-    def point(self, value, field: str) -> np.ndarray:
-        if (not isinstance(value, list) or len(value) != 2
-                or any(isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) for v in value)):
-            self.fail(field, value, "a point [x, y] of two finite numbers (mm)")
-        return np.array(value, float)
-
-    def points(self, table, key: str, where: str) -> np.ndarray:
-        value = table.get(key, [])
-        if not isinstance(value, list):
-            self.fail(f"{where}.{key}", value, "a list of points [[x, y], ...]")
-        return np.array([self.point(p, f"{where}.{key}[{k}]") for k, p in enumerate(value)]).reshape(-1, 2)
-
-
 def load_problem(path: str | Path) -> DyadProblem:
     """Read and validate a problem file; raises ``ProblemError`` naming what is wrong."""
-    path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text())
-    except FileNotFoundError:
-        raise ProblemError(f"{path}: no such file") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
-        raise ProblemError(f"{path}: not valid TOML ({error})") from None
-    return parse_problem(data, str(path))
+    return parse_problem(read_toml(path), str(path))
 
 
 def parse_problem(data: dict, source: str = "<problem>") -> DyadProblem:
-    read = _Reader(source)
+    read = FieldReader(source)
     read.keys(data, _TOP_KEYS, "")
     poses_table = data.get("poses")
     if not isinstance(poses_table, list) or not all(isinstance(p, dict) for p in poses_table):
@@ -152,7 +105,7 @@ def parse_problem(data: dict, source: str = "<problem>") -> DyadProblem:
                        title=str(data.get("title", "")), labels=tuple(labels))
 
 
-def _check_distinct(read: _Reader, degrees: np.ndarray):
+def _check_distinct(read: FieldReader, degrees: np.ndarray):
     """Two poses with the same position and orientation carry no information: reject them."""
     spread = max(np.ptp(degrees[:, :2], axis=0).max(), 1.0)
     for i in range(len(degrees)):

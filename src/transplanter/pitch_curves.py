@@ -1,0 +1,162 @@
+"""Driver pitch curves r(phi) of the gear families, with exact derivatives.
+
+Analytic families are built as casadi expressions of phi; their slope dr/dphi and bend
+d2r/dphi2 come from casadi's automatic differentiation. A sampled curve is a periodic
+cubic spline with its own exact derivatives. All curves are 2 pi periodic in phi
+(radians, in the gear's own frame) and list the angles where a piecewise definition
+joins (``joints``), so integrals and continuity checks can respect them.
+
+Families (seed 001 eq 1-3; higher-order ellipse: r = a (1 - e^2) / (1 - e cos(n phi))):
+- ``ellipse``, ``higher_order_ellipse``: semi-major axis a, eccentricity e, order n;
+- ``denatured_ellipse``: the ellipse with its two half-turns stretched by m11 and m12;
+- ``limacon``: base + amplitude cos(n phi);
+- ``denatured_limacon``: seed 001 eq (3), halves stretched by m11 and m12 with
+  pi/m11 + pi/m12 = 2 pi (eq 2);
+- ``spline``: a periodic cubic spline through sampled (phi, r).
+"""
+from __future__ import annotations
+
+import dataclasses
+import functools
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import casadi as ca
+import numpy as np
+
+TWO_PI = 2 * np.pi
+
+
+def denatured_partner(m11: float) -> float:
+    """m12 from seed 001 eq (2): pi/m11 + pi/m12 = 2 pi."""
+    return 1.0 / (2.0 - 1.0 / m11)
+
+
+@dataclass(frozen=True)
+class PitchCurve:
+    """r(phi) with slope and bend; ``lobes`` is the order n1 (how many times r repeats per turn).
+
+    ``breaks`` are angles where the definition changes piece (joints of a piecewise curve,
+    spline knots): integrals are split there.
+    """
+
+    family: str
+    parameters: dict
+    lobes: int
+    evaluator: Callable[[np.ndarray], tuple] = field(repr=False, compare=False)
+    joints: tuple[float, ...] = ()
+    breaks: tuple[float, ...] = ()
+    scale: float = 1.0
+
+    def evaluate(self, phi) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(r, dr/dphi, d2r/dphi2) at the angles ``phi`` (any shape), in mm."""
+        phi = np.asarray(phi, float)
+        values = self.evaluator(np.mod(phi.ravel(), TWO_PI))
+        return tuple(self.scale * np.asarray(v, float).reshape(phi.shape) for v in values)
+
+    def scaled(self, factor: float) -> "PitchCurve":
+        return dataclasses.replace(self, scale=self.scale * factor)
+
+
+@functools.lru_cache(maxsize=64)
+def _mapped(function: ca.Function, count: int) -> ca.Function:
+    return function.map(count)
+
+
+def _from_expression(family, parameters, lobes, expression_of, joints=()) -> PitchCurve:
+    phi = ca.SX.sym("phi")
+    r = expression_of(phi)
+    slope = ca.jacobian(r, phi)
+    bend = ca.jacobian(slope, phi)
+    function = ca.Function(f"{family}_pitch", [phi], [r, slope, bend], ["phi"], ["radius", "slope", "bend"])
+
+    def evaluate(phi):
+        return [np.asarray(v).ravel() for v in _mapped(function, phi.size)(phi[None, :])]
+
+    return PitchCurve(family, parameters, lobes, evaluate, tuple(joints), tuple(joints))
+
+
+def ellipse(semi_major_axis: float, eccentricity: float, order: int = 1) -> PitchCurve:
+    p = semi_major_axis * (1 - eccentricity**2)
+    family = "ellipse" if order == 1 else "higher_order_ellipse"
+    return _from_expression(family, {"semi_major_axis": semi_major_axis, "eccentricity": eccentricity, "order": order},
+                            order, lambda phi: p / (1 - eccentricity * ca.cos(order * phi)))
+
+
+def limacon(base: float, amplitude: float, order: int = 1) -> PitchCurve:
+    return _from_expression("limacon", {"base": base, "amplitude": amplitude, "order": order},
+                            order, lambda phi: base + amplitude * ca.cos(order * phi))
+
+
+def _denatured(family, parameters, shape, m11, m12):
+    """shape(t) on t in [0, pi] for the first half (t = m11 phi) and mirrored for the second
+    (t = m12 (2 pi - phi)); the halves join at phi = pi / m11."""
+    joint = np.pi / m11
+    return _from_expression(family, {**parameters, "m11": m11, "m12": m12}, 1,
+                            lambda phi: ca.if_else(phi <= joint, shape(m11 * phi), shape(m12 * (TWO_PI - phi))),
+                            joints=(joint,))
+
+
+def denatured_ellipse(semi_major_axis: float, eccentricity: float, m11: float, m12: float) -> PitchCurve:
+    p = semi_major_axis * (1 - eccentricity**2)
+    return _denatured("denatured_ellipse", {"semi_major_axis": semi_major_axis, "eccentricity": eccentricity},
+                      lambda t: p / (1 - eccentricity * ca.cos(t)), m11, m12)
+
+
+def denatured_limacon(base: float, amplitude: float, m11: float, m12: float) -> PitchCurve:
+    """Seed 001 eq (3) with b = amplitude and l = base."""
+    return _denatured("denatured_limacon", {"base": base, "amplitude": amplitude},
+                      lambda t: base + amplitude * ca.cos(t), m11, m12)
+
+
+class PeriodicSpline:
+    """Periodic cubic spline through (phi_k, r_k), phi in [0, 2 pi); C2 everywhere."""
+
+    def __init__(self, phi: np.ndarray, radius: np.ndarray):
+        order = np.argsort(phi)
+        self.knots = np.asarray(phi, float)[order]
+        self.values = np.asarray(radius, float)[order]
+        h = np.diff(np.r_[self.knots, self.knots[0] + TWO_PI])
+        n = len(h)
+        # Second derivatives M_k: h_{k-1} M_{k-1} + 2 (h_{k-1} + h_k) M_k + h_k M_{k+1} = 6 (slope_k - slope_{k-1})
+        slopes = (np.roll(self.values, -1) - self.values) / h
+        matrix = np.zeros((n, n))
+        for k in range(n):
+            matrix[k, (k - 1) % n] += h[k - 1]
+            matrix[k, k] += 2 * (h[k - 1] + h[k])
+            matrix[k, (k + 1) % n] += h[k]
+        self.second = np.linalg.solve(matrix, 6 * (slopes - np.roll(slopes, 1)))
+        self.widths = h
+
+    def evaluate(self, phi: np.ndarray):
+        k = np.searchsorted(self.knots, phi, side="right") - 1
+        k = np.where(k < 0, len(self.knots) - 1, k)
+        t = phi - self.knots[k]
+        t = np.where(t < 0, t + TWO_PI, t)
+        h, m0, m1 = self.widths[k], self.second[k], self.second[(k + 1) % len(self.knots)]
+        y0, y1 = self.values[k], self.values[(k + 1) % len(self.knots)]
+        u = h - t
+        r = (m0 * u**3 + m1 * t**3) / (6 * h) + (y0 / h - m0 * h / 6) * u + (y1 / h - m1 * h / 6) * t
+        slope = (-m0 * u**2 + m1 * t**2) / (2 * h) - (y0 / h - m0 * h / 6) + (y1 / h - m1 * h / 6)
+        bend = (m0 * u + m1 * t) / h
+        return r, slope, bend
+
+
+def spline(phi: np.ndarray, radius: np.ndarray) -> PitchCurve:
+    """Pitch curve through sampled radii (one turn)."""
+    curve = PeriodicSpline(np.mod(phi, TWO_PI), radius)
+    return PitchCurve("spline", {"samples": len(curve.knots)}, 1, curve.evaluate, (), tuple(curve.knots))
+
+
+def from_ratio(phi: np.ndarray, ratio: np.ndarray, center_distance: float) -> PitchCurve:
+    """Driver pitch curve r1 = a / (1 + i12) for a sampled ratio i12 = omega1 / omega2 (seed 001 eq 13)."""
+    curve = PeriodicSpline(np.mod(phi, TWO_PI), ratio)
+
+    def evaluate(phi):
+        i, di, ddi = curve.evaluate(phi)
+        one = 1 + i
+        return (center_distance / one, -center_distance * di / one**2,
+                center_distance * (2 * di**2 / one**3 - ddi / one**2))
+
+    return PitchCurve("ratio", {"samples": len(curve.knots), "center_distance": center_distance}, 1,
+                      evaluate, (), tuple(curve.knots))

@@ -1,0 +1,84 @@
+"""The gear command: JSON fields, drawings that CAD can read, bad input."""
+import json
+import subprocess
+import sys
+import xml.etree.ElementTree as ElementTree
+from pathlib import Path
+
+import ezdxf
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = sorted((ROOT / "examples").glob("gear_*.toml"))
+
+
+def _run(*args):
+    return subprocess.run([sys.executable, "-m", "transplanter", "gear", *map(str, args)],
+                          capture_output=True, text=True, cwd=ROOT)
+
+
+def test_one_example_per_family():
+    families = {json.loads(_run(path, "--json").stdout)["driver"]["family"] for path in EXAMPLES}
+    assert families == {"ellipse", "higher_order_ellipse", "denatured_ellipse", "limacon", "denatured_limacon",
+                        "spline", "ratio"}
+
+
+def test_json_fields_and_drawings(tmp_path):
+    run = _run(ROOT / "examples/gear_ellipse.toml", "--json", "--out", tmp_path)
+    assert run.returncode == 0, run.stderr
+    report = json.loads(run.stdout)
+    for key in ("center_distance", "orders", "ratio_range", "perimeters", "convex", "min_curvature_radius",
+                "tooth_counts", "module", "undercut", "closure_error"):
+        assert key in report
+    assert report["orders"] == [1, 1] and report["tooth_counts"]["nearest"] == [30, 30]
+    assert abs(report["closure_error"]) < 1e-10
+    outline = np.loadtxt(tmp_path / "driver_teeth.csv", delimiter=",", skiprows=1)
+    polyline = next(iter(ezdxf.readfile(tmp_path / "driver.dxf").modelspace().query("LWPOLYLINE")))
+    assert polyline.closed and len(polyline) == len(outline)
+    assert np.allclose(np.array(polyline.get_points("xy")), outline, atol=1e-6)
+    svg = ElementTree.parse(tmp_path / "driven.svg").getroot()
+    assert svg.get("width").endswith("mm")
+    pitch = np.loadtxt(tmp_path / "pitch_curves.csv", delimiter=",", skiprows=1)
+    assert pitch.shape[1] == 13
+    for name in ("gear_mesh.png", "gear_kinematics.png", "gear_curvature.png"):
+        assert (tmp_path / name).read_bytes()[:4] == b"\x89PNG"
+    markdown = (tmp_path / "report.md").read_text()
+    assert "center distance 61.40586" in markdown and "![gear_mesh.png](gear_mesh.png)" in markdown
+
+
+BAD = {
+    "unknown family": ('[driver]\nfamily = "cycloid"\n', ["driver.family", "cycloid", "one of"]),
+    "radius reaches zero": ('[driver]\nfamily = "limacon"\nbase = 10.0\namplitude = 12.0\n',
+                            ["driver pitch radius reaches", "positive radius"]),
+    "ratio touches zero": ('[driver]\nfamily = "ratio"\nphi_deg = [0, 90, 180, 270]\nratio = [1.0, 0.0, 1.0, 2.0]\n'
+                           '[pair]\ncenter_distance = 50.0\n', ["driver.ratio", "0.0", "reverses the driven gear"]),
+    "ratio cannot close": ('[driver]\nfamily = "ratio"\nphi_deg = [0, 90, 180, 270]\nratio = [1.0, 1.5, 1.0, 2.0]\n'
+                           '[pair]\ncenter_distance = 50.0\n', ["closes at no center distance", "driver.correct"]),
+    "center distance too small": ('[driver]\nfamily = "ellipse"\nsemi_major_axis = 30.0\neccentricity = 0.3\n'
+                                  '[pair]\ncenter_distance = 35.0\n', ["pair.center_distance = 35", "largest driver radius"]),
+    "center distance does not close": ('[driver]\nfamily = "ellipse"\nsemi_major_axis = 30.0\neccentricity = 0.3\n'
+                                       '[pair]\ncenter_distance = 70.0\n', ["does not close", "60.000000000"]),
+    "eccentricity": ('[driver]\nfamily = "ellipse"\nsemi_major_axis = 30.0\neccentricity = 1.2\n',
+                     ["driver.eccentricity", "1.2", "[0, 1)"]),
+    "m12 breaks eq 2": ('[driver]\nfamily = "denatured_limacon"\nbase = 53.0\namplitude = 13.0\nm11 = 1.5\nm12 = 0.375\n',
+                        ["driver.m12", "0.375", "0.75", "breaks"]),
+    "undercut module": ('[driver]\nfamily = "ellipse"\nsemi_major_axis = 30.0\neccentricity = 0.5\n'
+                        '[pair]\nmodule = 4.0\nteeth = 12\n', ["module 4 undercuts", "below m / sin^2(alpha)"]),
+    "teeth per lobe": ('[driver]\nfamily = "higher_order_ellipse"\nsemi_major_axis = 30.0\neccentricity = 0.2\norder = 2\n'
+                       '[pair]\nmodule = 2.0\nteeth = 31\n', ["pair.teeth = 31", "multiple of the driver order 2"]),
+    "key of another family": ('[driver]\nfamily = "ellipse"\nsemi_major_axis = 30.0\neccentricity = 0.3\nbase = 4.0\n',
+                              ["driver.base", "no such field"]),
+}
+
+
+@pytest.mark.parametrize("name", sorted(BAD))
+def test_bad_gear_input(tmp_path, name):
+    text, fragments = BAD[name]
+    path = tmp_path / "gear.toml"
+    path.write_text(text)
+    run = _run(path)
+    lines = run.stderr.strip().splitlines()
+    assert run.returncode == 2 and len(lines) == 1 and "Traceback" not in run.stderr, run.stderr
+    for fragment in fragments:
+        assert fragment in lines[0], (fragment, lines[0])

@@ -1,0 +1,207 @@
+"""Gear pairs against closed forms derived here, against seed 001, and by independent checks."""
+import numpy as np
+import pytest
+import sympy as sp
+from matplotlib.path import Path as PolygonPath
+
+from derivations import gears as derivation
+from transplanter.errors import InfeasibleError
+from transplanter.gear_pair import design_pair
+from transplanter.gear_teeth import generate_teeth
+from transplanter.generated import casadi_function, numpy_twin
+from transplanter.pitch_curves import denatured_limacon, denatured_partner, ellipse, limacon
+from transplanter.rack_teeth import pitch_table, rack_profile, _flank
+
+ellipse_center = casadi_function("gears", "ellipse_center_distance")
+limacon_center = casadi_function("gears", "limacon_center_distance")
+
+
+@pytest.mark.parametrize("e", [0.1, 0.3, 0.5])
+def test_focal_ellipse_pair(e):
+    """Center distance 2a, ratio from (1-e)/(1+e) to (1+e)/(1-e), phi2 = 2 atan((1+e)/(1-e) tan(phi1/2))."""
+    d = design_pair(ellipse(25.0, e), 1)
+    assert d.center_distance == pytest.approx(50.0, rel=1e-13)
+    assert d.ratio.min() == pytest.approx((1 - e) / (1 + e), rel=1e-12)
+    assert d.ratio.max() == pytest.approx((1 + e) / (1 - e), rel=1e-12)
+    closed = np.unwrap(2 * np.arctan((1 + e) / (1 - e) * np.tan(d.phi1 / 2)))
+    assert np.abs(closed - d.phi2).max() < 1e-12
+    assert abs(d.closure_error) < 1e-10 and d.rolling_mismatch_mm < 1e-9
+
+
+@pytest.mark.parametrize("order,driven", [(2, 2), (2, 3), (3, 2), (3, 4), (1, 2)])
+def test_higher_order_ellipse_center_distance(order, driven):
+    d = design_pair(ellipse(40.0, 0.2, order), driven)
+    assert d.center_distance == pytest.approx(float(ellipse_center(40.0, 0.2, driven / order)), rel=1e-12)
+    assert abs(d.closure_error) < 1e-10
+
+
+@pytest.mark.parametrize("driven", [1, 2, 3])
+def test_limacon_center_distance(driven):
+    d = design_pair(limacon(50.0, 9.0), driven)
+    assert d.center_distance == pytest.approx(float(limacon_center(50.0, 9.0, driven)), rel=1e-12)
+
+
+def test_closed_forms_satisfy_their_closure_equations():
+    """The derived roots solve the quadratics they come from (symbolic), and lie beyond the largest radius."""
+    a_axis, e, q, b, c = sp.symbols("A e q b c", positive=True)
+    root = derivation.ellipse_center_distance_expr(a_axis, e, q)
+    p = a_axis * (1 - e**2)
+    assert sp.simplify((root - p) ** 2 - root**2 * e**2 - (p * q) ** 2) == 0
+    root = derivation.limacon_center_distance_expr(b, c, q)
+    assert sp.simplify((1 + 1 / q) ** 2 * ((root - b) ** 2 - c**2) - root**2) == 0
+
+
+def test_driver_convexity_criterion_of_seed_001_eq9():
+    """Derived driver convexity at cos(m phi) = -1 is exactly eq (9); it is the minimum over the curve for
+    k < 1 and m >= 1, and its sign matches the curvature of the actual curve."""
+    k, m, c = sp.symbols("k m c", real=True)
+    derived = derivation.limacon_driver_convexity(k, m, c)
+    published = (1 - (m**2 + 1) * k) * (1 - k)
+    assert sp.expand(derived.subs(c, -1) - published) == 0
+    convexity = numpy_twin("gears", "limacon_driver_convexity")
+    cosine = np.linspace(-1, 1, 401)
+    for kk, mm in [(0.1, 1.0), (0.3, 1.5), (0.45, 1.2), (0.2, 2.5), (0.05, 3.0)]:
+        values = convexity([kk], [mm], [cosine])[0][0]
+        assert values.argmin() == 0
+        curve = design_pair(denatured_limacon(1.0, kk, mm, denatured_partner(mm)), 1)
+        first_half = curve.phi1 <= np.pi / mm
+        assert (curve.convexity[0][first_half] > 0).all() == (values.min() > 0)
+
+
+def _turns_one_way(points):
+    """Convexity read off a closed point set: every corner turns the same way."""
+    edges = np.diff(np.r_[points, points[1:2]], axis=0)
+    turns = edges[:-1, 0] * edges[1:, 1] - edges[:-1, 1] * edges[1:, 0]
+    return bool((turns > 0).all() or (turns < 0).all())
+
+
+def test_driven_convexity_criterion_of_seed_001_eq10_disagrees():
+    """Eq (10) has no center distance in it, but the driven curve's convexity depends on it.
+
+    For k = 0.5 and m11 = 2.5 (m12 = 0.625 by eq 2), eq (10) for m11 gives
+    (6.25 + 1) 0.25 + (2 - 6.25) 0.5 - 6.25 0.125 + 1 = -0.09375 < 0 (concave), while the derived
+    condition and the driven curve's own points (every corner turning one way) say convex.
+    """
+    k, m11 = 0.5, 2.5
+    m12 = denatured_partner(m11)
+    published = (m11**2 + 1) * k**2 + (2 - m11**2) * k - m11**2 * k**3 + 1
+    assert published == pytest.approx(-0.09375)
+    d = design_pair(denatured_limacon(1.0, k, m11, m12), 1)
+    assert _turns_one_way(d.points[1][:-1])
+    derived = numpy_twin("gears", "limacon_driven_convexity")
+    cosine = np.linspace(-1, 1, 401)
+    assert min(derived([k], [m], [d.center_distance], [cosine])[0][0].min() for m in (m11, m12)) > 0
+
+
+def test_derived_driven_convexity_matches_the_points():
+    """Where the derived driven condition says concave, the driven points do turn both ways."""
+    derived = numpy_twin("gears", "limacon_driven_convexity")
+    cosine = np.linspace(-1, 1, 401)
+    verdicts = []
+    for k in (0.2, 0.4, 0.6):
+        for m11 in (1.0, 1.5, 2.5, 3.0):
+            m12 = denatured_partner(m11)
+            d = design_pair(denatured_limacon(1.0, k, m11, m12), 1)
+            convex = min(derived([k], [m], [d.center_distance], [cosine])[0][0].min() for m in (m11, m12)) > 0
+            assert convex == _turns_one_way(d.points[1][:-1]), (k, m11)
+            verdicts.append(convex)
+    assert True in verdicts and False in verdicts
+
+
+def test_kinematics_match_finite_differences_of_the_driven_angle():
+    d = design_pair(limacon(40.0, 7.0, 2), 3, driver_speed=3.0)
+    speed = np.gradient(d.phi2, d.phi1) * 3.0
+    acceleration = np.gradient(speed, d.phi1) * 3.0
+    inner = slice(5, -5)
+    # central differences on a 720-step grid are accurate to O(h^2) ~ 1e-4 of the signal
+    assert np.abs(speed - d.driven_speed)[inner].max() < 1e-4 * np.abs(d.driven_speed).max()
+    assert np.abs(acceleration - d.driven_acceleration)[inner].max() < 1e-3 * np.abs(d.driven_acceleration).max()
+
+
+def test_seed_001_published_gear():
+    """Eq (19): m11 = 1.5 and 0.375 for the second half; Table 2: module 2, 55 teeth, center distance 110."""
+    m12 = denatured_partner(1.5)
+    assert m12 == pytest.approx(0.75)                    # eq (2): pi/1.5 + pi/m12 = 2 pi
+    assert np.pi / 1.5 + np.pi / 0.375 == pytest.approx(10 * np.pi / 3)   # eq (19)'s value breaks eq (2)
+    printed = denatured_limacon(53.0, 13.0, 1.5, 0.375)
+    jump = printed.evaluate(np.array([2 * np.pi / 3 + 1e-12]))[0] - printed.evaluate(np.array([2 * np.pi / 3 - 1e-12]))[0]
+    assert jump[0] == pytest.approx(13.0)                # r jumps from 40 to 53 mm at 120 deg
+    d = design_pair(denatured_limacon(53.0, 13.0, 1.5, m12), 1)
+    assert d.joints[0]["radius_jump"] == pytest.approx(0, abs=1e-9)
+    assert d.joints[0]["slope_jump"] == pytest.approx(0, abs=1e-9)
+    assert d.joints[0]["bend_jump"] == pytest.approx(13 * (0.75**2 - 1.5**2), rel=1e-6)   # curvature jumps
+    assert d.center_distance == pytest.approx(109.0565, abs=1e-4)     # not 110
+    assert d.perimeters[0] / (2 * np.pi) == pytest.approx(53.8935, abs=1e-4)   # teeth at module 2: not 55
+    with pytest.raises(InfeasibleError, match="109.05648"):
+        design_pair(denatured_limacon(53.0, 13.0, 1.5, m12), 1, center_distance=110.0)
+
+
+def _circle_table(radius, samples=4001):
+    angle = np.linspace(0, 2 * np.pi, samples)
+    return pitch_table(radius * np.c_[np.cos(angle), np.sin(angle)], radius * angle, np.c_[-np.sin(angle), np.cos(angle)])
+
+
+def test_rack_envelope_on_a_circle_is_the_involute():
+    table, alpha = _circle_table(30.0), np.radians(20)
+    flank = _flank(table, 10.0, -1, alpha, 2.0, 400)
+    tangent = np.gradient(flank, axis=0)
+    normal = np.c_[tangent[:, 1], -tangent[:, 0]] / np.linalg.norm(tangent, axis=1)[:, None]
+    # the profile normal of an involute is tangent to the base circle
+    distance = np.abs(flank[:, 0] * normal[:, 1] - flank[:, 1] * normal[:, 0])
+    assert np.abs(distance - 30.0 * np.cos(alpha))[2:-2].max() < 1e-4
+    outline = rack_profile(table, 30, 2.0, alpha, np.full(4001, 30.0), np.ones(4001)).outline
+    radius, angle = np.hypot(*outline.T), np.unwrap(np.arctan2(outline[:, 1], outline[:, 0]))
+    crossings = np.flatnonzero(np.diff(np.sign(radius - 30.0)))
+    at_pitch = [angle[k] + (30 - radius[k]) / (radius[k + 1] - radius[k]) * (angle[k + 1] - angle[k]) for k in crossings]
+    assert np.abs(np.diff(at_pitch) * 30.0 - np.pi).max() < 2e-3     # tooth and space are p/2 = pi m / 2
+    assert radius.min() == pytest.approx(27.5) and radius.max() == pytest.approx(32.0)
+
+
+def _counterclockwise(outline):
+    """matplotlib's contains_points radius shrinks a polygon only when it runs counterclockwise."""
+    area = np.sum(outline[:, 0] * np.roll(outline[:, 1], -1) - np.roll(outline[:, 0], -1) * outline[:, 1])
+    return outline if area > 0 else outline[::-1]
+
+
+def test_teeth_of_an_elliptical_pair_mesh_without_interference():
+    curve = ellipse(1.0, 0.3)
+    scale = 30 * np.pi * 2.0 / design_pair(curve, 1).perimeters[0]
+    d = design_pair(curve.scaled(scale), 1)
+    teeth = generate_teeth(d, 2.0, np.radians(20), "test")
+    assert teeth.self_intersections == (0, 0)
+    assert [p.teeth for p in teeth.profiles] == [30, 30]
+    driver, driven = (_counterclockwise(p.outline) for p in teeth.profiles)
+    for k in range(0, len(d.phi1) - 1, 45):
+        c1, s1 = np.cos(-d.phi1[k]), np.sin(-d.phi1[k])
+        c2, s2 = np.cos(d.phi2[k]), np.sin(d.phi2[k])
+        placed_driver = driver @ np.array([[c1, s1], [-s1, c1]])
+        placed_driven = driven @ np.array([[c2, s2], [-s2, c2]]) + [d.center_distance, 0]
+        # no point of one gear more than 0.01 mm inside the other: flanks touch, teeth do not cut
+        assert not PolygonPath(placed_driven).contains_points(placed_driver, radius=-0.02).any()
+        assert not PolygonPath(placed_driver).contains_points(placed_driven, radius=-0.02).any()
+        # and they do touch: some driver point lies within 0.05 mm of the driven outline
+        gap = np.min(np.linalg.norm(placed_driver[:, None, :] - placed_driven[None, ::3, :], axis=2))
+        assert gap < 0.05
+
+
+def test_undercut_and_concavity_are_refused_with_numbers():
+    curve = ellipse(1.0, 0.5)
+    d = design_pair(curve.scaled(12 * np.pi * 2.0 / design_pair(curve, 1).perimeters[0]), 1)   # 12 teeth of m = 2
+    with pytest.raises(InfeasibleError, match=r"undercuts the driver: curvature radius .* below m / sin\^2"):
+        generate_teeth(d, 2.0, np.radians(20), "test")
+
+
+def test_concave_pitch_curve_is_refused_for_the_rack():
+    curve = denatured_limacon(1.0, 0.45, 1.2, denatured_partner(1.2))   # eq (9) < 0: concave driver
+    d = design_pair(curve.scaled(40 * np.pi * 2.0 / design_pair(curve, 1).perimeters[0]), 1)
+    with pytest.raises(InfeasibleError, match="driver pitch curve is concave at phi1 = .* rack cutter cannot"):
+        generate_teeth(d, 2.0, np.radians(20), "test")
+
+
+def test_self_intersection_count():
+    from transplanter.gear_teeth import self_intersections
+    t = np.linspace(0, 2 * np.pi, 2000, endpoint=False)
+    outline = np.c_[np.cos(t), np.sin(t)] * (1 + 0.1 * np.cos(30 * t))[:, None]
+    assert self_intersections(outline) == 0
+    outline[[500, 501]] = outline[[501, 500]]          # two swapped vertices cross once
+    assert self_intersections(outline) == 1
