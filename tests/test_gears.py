@@ -3,6 +3,7 @@ import numpy as np
 import pytest
 import sympy as sp
 from matplotlib.path import Path as PolygonPath
+from scipy.spatial import cKDTree
 
 from derivations import gears as derivation
 from transplanter.errors import InfeasibleError
@@ -11,6 +12,7 @@ from transplanter.gear_teeth import generate_teeth
 from transplanter.generated import casadi_function, numpy_twin
 from transplanter.pitch_curves import denatured_limacon, denatured_partner, ellipse, limacon
 from transplanter.rack_teeth import pitch_table, rack_profile, _flank
+from transplanter.swept_teeth import shaper_profile
 
 ellipse_center = casadi_function("gears", "ellipse_center_distance")
 limacon_center = casadi_function("gears", "limacon_center_distance")
@@ -149,7 +151,7 @@ def test_rack_envelope_on_a_circle_is_the_involute():
     # the profile normal of an involute is tangent to the base circle
     distance = np.abs(flank[:, 0] * normal[:, 1] - flank[:, 1] * normal[:, 0])
     assert np.abs(distance - 30.0 * np.cos(alpha))[2:-2].max() < 1e-4
-    outline = rack_profile(table, 30, 2.0, alpha, np.full(4001, 30.0), np.ones(4001)).outline
+    outline = rack_profile(table, 30, 2.0, alpha)
     radius, angle = np.hypot(*outline.T), np.unwrap(np.arctan2(outline[:, 1], outline[:, 0]))
     crossings = np.flatnonzero(np.diff(np.sign(radius - 30.0)))
     at_pitch = [angle[k] + (30 - radius[k]) / (radius[k + 1] - radius[k]) * (angle[k + 1] - angle[k]) for k in crossings]
@@ -163,25 +165,55 @@ def _counterclockwise(outline):
     return outline if area > 0 else outline[::-1]
 
 
-def test_teeth_of_an_elliptical_pair_mesh_without_interference():
-    curve = ellipse(1.0, 0.3)
-    scale = 30 * np.pi * 2.0 / design_pair(curve, 1).perimeters[0]
-    d = design_pair(curve.scaled(scale), 1)
-    teeth = generate_teeth(d, 2.0, np.radians(20), "test")
+def _scaled_pair(curve, teeth, module=2.0):
+    return design_pair(curve.scaled(teeth * np.pi * module / design_pair(curve, 1).perimeters[0]), 1)
+
+
+@pytest.mark.parametrize("case", ["ellipse, rack", "concave denatured limacon, shaper"])
+def test_teeth_mesh_without_interference(case):
+    """Placed at many driver angles, neither gear enters the other by more than 0.02 mm, and they touch."""
+    if case == "ellipse, rack":
+        d = _scaled_pair(ellipse(1.0, 0.3), 30)
+        teeth = generate_teeth(d, 2.0, np.radians(20), "test")
+    else:
+        d = _scaled_pair(denatured_limacon(1.0, 0.45, 1.2, denatured_partner(1.2)), 60)
+        assert (d.convexity[0] <= 0).any()      # eq (9) < 0: the driver has a concave stretch
+        teeth = generate_teeth(d, 2.0, np.radians(20), "test", cutter="shaper", cutter_teeth=12)
     assert teeth.self_intersections == (0, 0)
-    assert [p.teeth for p in teeth.profiles] == [30, 30]
-    driver, driven = (_counterclockwise(p.outline) for p in teeth.profiles)
+    driver, driven = (_counterclockwise(o) for o in teeth.outlines)
     for k in range(0, len(d.phi1) - 1, 45):
         c1, s1 = np.cos(-d.phi1[k]), np.sin(-d.phi1[k])
         c2, s2 = np.cos(d.phi2[k]), np.sin(d.phi2[k])
         placed_driver = driver @ np.array([[c1, s1], [-s1, c1]])
         placed_driven = driven @ np.array([[c2, s2], [-s2, c2]]) + [d.center_distance, 0]
-        # no point of one gear more than 0.01 mm inside the other: flanks touch, teeth do not cut
-        assert not PolygonPath(placed_driven).contains_points(placed_driver, radius=-0.02).any()
-        assert not PolygonPath(placed_driver).contains_points(placed_driven, radius=-0.02).any()
-        # and they do touch: some driver point lies within 0.05 mm of the driven outline
-        gap = np.min(np.linalg.norm(placed_driver[:, None, :] - placed_driven[None, ::3, :], axis=2))
+        pitch_point = [d.radius[0][k], 0]
+        near_driver = placed_driver[np.linalg.norm(placed_driver - pitch_point, axis=1) < 10]
+        near_driven = placed_driven[np.linalg.norm(placed_driven - pitch_point, axis=1) < 10]
+        assert not PolygonPath(placed_driven).contains_points(near_driver, radius=-0.02).any()
+        assert not PolygonPath(placed_driver).contains_points(near_driven, radius=-0.02).any()
+        gap = cKDTree(placed_driven).query(near_driver)[0].min()
         assert gap < 0.05
+
+
+def test_shaper_on_a_circle_cuts_the_involute():
+    """A 40-tooth shaper on a circle leaves the involute of base radius R cos(alpha) on the flanks
+    (compared with the exact rack envelope, to the 0.01 deg polar binning)."""
+    table, alpha = _circle_table(30.0), np.radians(20)
+    outline = shaper_profile(table, 2.0, alpha, 40)
+    pitch = np.pi * 2.0
+    exact = np.concatenate([_flank(table, k * pitch + side * pitch / 4 * -1, side, alpha, 2.0, 3000)
+                            for k in range(30) for side in (1, -1)])
+    radius = np.hypot(*outline.T)
+    band = outline[(radius > 28.8) & (radius < 31.9)]
+    gap = cKDTree(exact).query(band)[0]
+    assert gap.max() < 0.005
+    assert radius.min() == pytest.approx(27.5, abs=1e-9) and radius.max() == pytest.approx(32.0, abs=1e-9)
+
+
+def test_shaper_too_large_for_the_concave_stretch():
+    d = _scaled_pair(denatured_limacon(1.0, 0.45, 1.2, denatured_partner(1.2)), 60)
+    with pytest.raises(InfeasibleError, match=r"pair.shaper_teeth = 200: the cutter's pitch radius 200.000 mm does not fit"):
+        generate_teeth(d, 2.0, np.radians(20), "test", cutter="shaper", cutter_teeth=200)
 
 
 def test_undercut_and_concavity_are_refused_with_numbers():
@@ -194,7 +226,7 @@ def test_undercut_and_concavity_are_refused_with_numbers():
 def test_concave_pitch_curve_is_refused_for_the_rack():
     curve = denatured_limacon(1.0, 0.45, 1.2, denatured_partner(1.2))   # eq (9) < 0: concave driver
     d = design_pair(curve.scaled(40 * np.pi * 2.0 / design_pair(curve, 1).perimeters[0]), 1)
-    with pytest.raises(InfeasibleError, match="driver pitch curve is concave at phi1 = .* rack cutter cannot"):
+    with pytest.raises(InfeasibleError, match="driver pitch curve is concave at phi1 = .* rack cutter cannot generate it; set pair.cutter"):
         generate_teeth(d, 2.0, np.radians(20), "test")
 
 

@@ -19,7 +19,7 @@ NAMES = ("driver", "driven")
 def outlines(result: GearResult) -> dict[str, np.ndarray]:
     """Closed outline per gear: the tooth profile when generated, else the pitch curve."""
     if result.teeth is not None:
-        return {name: profile.outline for name, profile in zip(NAMES, result.teeth.profiles)}
+        return dict(zip(NAMES, result.teeth.outlines))
     return {name: points[:-1] for name, points in zip(NAMES, _pitch_curves(result))}
 
 

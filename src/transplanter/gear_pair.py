@@ -178,3 +178,18 @@ def design_pair(driver: PitchCurve, driven_order: int, center_distance: float | 
         perimeters=(driver_perimeter, driver_perimeter * orders[1] / orders[0]),
         rolling_mismatch_mm=float(mismatch), joints=_joint_report(driver),
         points=(driver_points, driven_points), arc=arc, driven_slope=slope2)
+
+
+def driven_angle(design: GearPairDesign, phi1: np.ndarray) -> np.ndarray:
+    """phi2 at any driver angle (unwrapped over turns), cubic Hermite on the design's samples."""
+    turn = 2 * np.pi * design.orders[0] / design.orders[1]
+    laps = np.floor(phi1 / (2 * np.pi))
+    local = phi1 - 2 * np.pi * laps
+    grid, values = design.phi1, design.phi2
+    slope = design.radius[0] / (design.center_distance - design.radius[0])
+    k = np.clip(np.searchsorted(grid, local, side="right") - 1, 0, len(grid) - 2)
+    h = grid[k + 1] - grid[k]
+    t = (local - grid[k]) / h
+    hermite = ((2 * t**3 - 3 * t**2 + 1) * values[k] + (t**3 - 2 * t**2 + t) * h * slope[k]
+               + (-2 * t**3 + 3 * t**2) * values[k + 1] + (t**3 - t**2) * h * slope[k + 1])
+    return hermite + laps * turn

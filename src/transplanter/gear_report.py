@@ -41,7 +41,8 @@ def to_json(result: GearResult) -> dict:
                                "exact_module": counts.exact_module, "scale_for_module": counts.scale_for_module}
         out["undercut"] = [bool(v is not None and v < limit) for v in out["min_curvature_radius"]]
     if result.teeth is not None:
-        out["contact_ratio_range"] = list(result.teeth.contact_ratio)
+        out["cutter"] = result.teeth.cutter
+        out["contact_ratio_range"] = None if result.teeth.contact_ratio is None else list(result.teeth.contact_ratio)
         out["self_intersections"] = list(result.teeth.self_intersections)
     return out
 
@@ -62,8 +63,12 @@ def to_markdown(report: dict, figures: list[str], drawings: list[str]) -> str:
         lines.append(f"- module {report['module']:g}: {counts['fractional'][0]:.4f} and {counts['fractional'][1]:.4f} "
                      f"teeth; nearest {counts['nearest']}, exact with module {counts['exact_module']:.6f} or with the "
                      f"curves scaled by {counts['scale_for_module']:.6f}; undercut {report['undercut']}")
-    if report["contact_ratio_range"]:
-        lines.append(f"- tooth profiles by rack envelope; local contact ratio {report['contact_ratio_range'][0]:.3f} to "
-                     f"{report['contact_ratio_range'][1]:.3f}; self-intersections {report['self_intersections']}")
-    lines += ["", "Drawings: " + ", ".join(drawings), ""] + [f"![{f}]({f})" for f in figures]
+    if report["self_intersections"] is not None:
+        contact = report["contact_ratio_range"]
+        lines.append(f"- tooth profiles by {report['cutter']} envelope; self-intersections {report['self_intersections']}"
+                     + ("" if contact is None else f"; local contact ratio {contact[0]:.3f} to {contact[1]:.3f} "
+                        "(osculating spur pair, convex parts)"))
+    if drawings:
+        lines += ["", "Drawings: " + ", ".join(drawings)]
+    lines += [""] + [f"![{f}]({f})" for f in figures]
     return "\n".join(lines) + "\n"

@@ -82,6 +82,7 @@ def synthesize_gear(problem: GearProblem) -> GearResult:
         counts = tooth_counts(design, problem.module)
         if problem.teeth is not None:
             start = time.perf_counter()
-            teeth = generate_teeth(design, problem.module, problem.pressure_angle, problem.source)
+            teeth = generate_teeth(design, problem.module, problem.pressure_angle, problem.source,
+                                   problem.cutter, problem.shaper_teeth)
             timings["teeth"] = time.perf_counter() - start
     return GearResult(problem, design, counts, teeth, correction, timings)

@@ -7,7 +7,8 @@ import numpy as np
 
 from transplanter.errors import InfeasibleError
 from transplanter.gear_pair import GearPairDesign
-from transplanter.rack_teeth import ADDENDUM, ToothProfile, pitch_table, rack_profile
+from transplanter.rack_teeth import ADDENDUM, pitch_table, rack_profile
+from transplanter.swept_teeth import mate_profile, shaper_profile
 
 
 def _unit(vectors):
@@ -42,8 +43,10 @@ def driven_table(design: GearPairDesign):
 
 @dataclass(frozen=True)
 class PairTeeth:
-    profiles: tuple[ToothProfile, ToothProfile]
-    contact_ratio: tuple[float, float]   # min, max of the local estimate along one driver turn
+    outlines: tuple[np.ndarray, np.ndarray]       # closed outlines in each gear's frame (mm)
+    counts: tuple[int, int]
+    cutter: str
+    contact_ratio: tuple[float, float] | None     # min, max of the local estimate where both curves are convex
     self_intersections: tuple[int, int]
 
 
@@ -81,33 +84,52 @@ def self_intersections(outline: np.ndarray, window: int = 400) -> int:
     return int(crossing.sum())
 
 
-def generate_teeth(design: GearPairDesign, module: float, alpha: float, source: str) -> PairTeeth:
-    n1, n2 = design.orders
-    teeth = [design.perimeters[0] / (np.pi * module), design.perimeters[1] / (np.pi * module)]
-    if max(abs(z - round(z)) for z in teeth) > 1e-6:
-        raise InfeasibleError(f"{source}: tooth profiles need whole tooth counts, got {teeth[0]:.6f} and {teeth[1]:.6f} "
-                              f"for module {module:g}: give pair.teeth to scale the curves to pi m Z")
+def _refuse_what_the_cutter_cannot_cut(design: GearPairDesign, module: float, alpha: float, cutter: str,
+                                       cutter_teeth: int, source: str):
     limit = ADDENDUM * module / np.sin(alpha) ** 2
+    cutter_radius = module * cutter_teeth / 2
     for gear, name in ((0, "driver"), (1, "driven")):
         concave = design.convexity[gear] <= 0
-        if concave.any():
+        if concave.any() and cutter == "rack":
             k = int(np.flatnonzero(concave)[0])
             raise InfeasibleError(
                 f"{source}: the {name} pitch curve is concave at phi1 = {np.degrees(design.phi1[k]):.2f} deg: a rack "
-                f"cutter cannot generate it (a shaper cutter would be needed, not implemented)")
-        rho = design.curvature_radius[gear]
+                f"cutter cannot generate it; set pair.cutter = \"shaper\"")
+        if concave.any() and gear == 0:     # with a shaper only the driver meets the cutter
+            hollow = float(np.abs(design.curvature_radius[gear][concave]).min())
+            if cutter_radius >= hollow:
+                raise InfeasibleError(
+                    f"{source}: pair.shaper_teeth = {cutter_teeth}: the cutter's pitch radius {cutter_radius:.3f} mm "
+                    f"does not fit the {name}'s concave curvature radius {hollow:.3f} mm; use at most "
+                    f"{int(np.ceil(2 * hollow / module)) - 1} cutter teeth")
+        rho = np.where(concave, np.inf, design.curvature_radius[gear])   # the rack criterion, also a guide for the shaper
         if rho.min() < limit:
             k = int(np.argmin(rho))
             raise InfeasibleError(
                 f"{source}: module {module:g} undercuts the {name}: curvature radius {rho[k]:.3f} mm at phi1 = "
                 f"{np.degrees(design.phi1[k]):.2f} deg is below m / sin^2(alpha) = {limit:.3f} mm; "
                 f"use a module up to {rho.min() * np.sin(alpha) ** 2 / ADDENDUM:.4f} mm or a larger curve")
-    tables = (driver_table(design), driven_table(design))
+
+
+def generate_teeth(design: GearPairDesign, module: float, alpha: float, source: str,
+                   cutter: str = "rack", cutter_teeth: int = 16) -> PairTeeth:
+    """Both tooth outlines; the driver's tooth 0 and the driven gear's tooth space 0 meet at phi1 = 0."""
+    teeth = [design.perimeters[0] / (np.pi * module), design.perimeters[1] / (np.pi * module)]
+    if max(abs(z - round(z)) for z in teeth) > 1e-6:
+        raise InfeasibleError(f"{source}: tooth profiles need whole tooth counts, got {teeth[0]:.6f} and {teeth[1]:.6f} "
+                              f"for module {module:g}: give pair.teeth to scale the curves to pi m Z")
+    _refuse_what_the_cutter_cannot_cut(design, module, alpha, cutter, cutter_teeth, source)
     counts = [int(round(z)) for z in teeth]
     pitch = design.perimeters[0] / counts[0]
-    profiles = tuple(rack_profile(table, count, module, alpha, design.curvature_radius[g], design.convexity[g],
-                                  first_tooth_at=0.0 if g == 0 else pitch / 2)
-                     for g, (table, count) in enumerate(zip(tables, counts)))
-    ratio = local_contact_ratio(*design.curvature_radius, module, alpha)
-    return PairTeeth(profiles, (float(ratio.min()), float(ratio.max())),
-                     tuple(self_intersections(p.outline) for p in profiles))
+    tables = (driver_table(design), driven_table(design))
+    if cutter == "rack":    # one rack cuts both: its two sides are complementary, so the pair is conjugate
+        outlines = [rack_profile(table, count, module, alpha, first)
+                    for table, count, first in zip(tables, counts, (0.0, pitch / 2))]
+    else:                   # the shaper cuts the driver; the driver's teeth cut the driven gear (conjugate)
+        driver = shaper_profile(tables[0], module, alpha, cutter_teeth)
+        outlines = [driver, mate_profile(design, driver, tables[1], module)]
+    convex = [c > 0 for c in design.convexity]
+    ratio = local_contact_ratio(*design.curvature_radius, module, alpha)[convex[0] & convex[1]]
+    return PairTeeth(tuple(outlines), tuple(counts), cutter,
+                     (float(ratio.min()), float(ratio.max())) if ratio.size else None,
+                     tuple(self_intersections(o) for o in outlines))
