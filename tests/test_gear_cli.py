@@ -67,6 +67,12 @@ BAD = {
                         '[pair]\nmodule = 4.0\nteeth = 12\n', ["module 4 undercuts", "below m / sin^2(alpha)"]),
     "teeth per lobe": ('[driver]\nfamily = "higher_order_ellipse"\nsemi_major_axis = 30.0\neccentricity = 0.2\norder = 2\n'
                        '[pair]\nmodule = 2.0\nteeth = 31\n', ["pair.teeth = 31", "multiple of the driver order 2"]),
+    "expression calls something else": ('[driver]\nfamily = "ratio"\nexpression = "__import__(\'os\')"\n'
+                                        '[pair]\ncenter_distance = 50.0\n', ["driver.expression", "is not allowed"]),
+    "expression not periodic": ('[driver]\nfamily = "ratio"\nexpression = "1 + phi / 10"\ncorrect = true\n'
+                                '[pair]\ncenter_distance = 50.0\n', ["driver.ratio is not periodic"]),
+    "expression goes negative": ('[driver]\nfamily = "ratio"\nexpression = "0.5 + cos(phi)"\ncorrect = true\n'
+                                 '[pair]\ncenter_distance = 50.0\n', ["driver.ratio reaches", "goes negative"]),
     "key of another family": ('[driver]\nfamily = "ellipse"\nsemi_major_axis = 30.0\neccentricity = 0.3\nbase = 4.0\n',
                               ["driver.base", "no such field"]),
 }

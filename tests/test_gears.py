@@ -237,3 +237,18 @@ def test_self_intersection_count():
     assert self_intersections(outline) == 0
     outline[[500, 501]] = outline[[501, 500]]          # two swapped vertices cross once
     assert self_intersections(outline) == 1
+
+
+def test_analytic_ratio_is_corrected_to_close():
+    """i12 = 1 + 0.35 cos(phi) + 0.1 sin(2 phi) does not close; with the constant factor k of seed 000
+    eq (12) the pair does, and its ratio is k times the formula at every sample."""
+    from transplanter.gear_problem import parse_gear_problem
+    from transplanter.gear_synthesis import synthesize_gear
+    problem = parse_gear_problem({"driver": {"family": "ratio", "expression": "1 + 0.35*cos(phi) + 0.1*sin(2*phi)",
+                                             "correct": True}, "pair": {"center_distance": 80.0}})
+    result = synthesize_gear(problem)
+    d = result.design
+    formula = 1 + 0.35 * np.cos(d.phi1) + 0.1 * np.sin(2 * d.phi1)
+    assert np.allclose(d.ratio, result.ratio_correction * formula, rtol=1e-12)
+    assert result.ratio_correction != pytest.approx(1.0, abs=1e-3)
+    assert abs(d.closure_error) < 1e-10 and d.center_distance == 80.0

@@ -12,7 +12,8 @@
     m11 = 1.5                     # denatured families (seed 001 eq 2-3); m12 defaults to 1 / (2 - 1/m11)
     phi_deg = [...]               # spline: samples of the radius; ratio: samples of i12 = omega1/omega2
     radius = [...]                # spline (mm)
-    ratio = [...]                 # ratio
+    ratio = [...]                 # ratio: samples of i12 (with phi_deg) ...
+    expression = "1 + 0.3*cos(phi)"   # ... or a formula of phi (radians): + - * / **, cos sin tan exp sqrt log, pi
     correct = false               # ratio: scale i12 so that the pair closes (seed 000 eq 12)
     [pair]
     driven_order = 1              # n2: the driven gear turns n1/n2 per driver turn
@@ -29,15 +30,17 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import casadi as ca
 import numpy as np
 
 from transplanter.pitch_curves import (PitchCurve, denatured_ellipse, denatured_limacon, denatured_partner, ellipse,
-                                       limacon, spline)
+                                       limacon, ratio_formula, ratio_samples, spline)
+from transplanter.ratio_expression import ExpressionError, parse_ratio
 from transplanter.toml_fields import FieldReader, read_toml
 
 FAMILIES = ("ellipse", "higher_order_ellipse", "denatured_ellipse", "limacon", "denatured_limacon", "spline", "ratio")
 _DRIVER_KEYS = {"family", "semi_major_axis", "eccentricity", "order", "base", "amplitude", "m11", "m12",
-                "phi_deg", "radius", "ratio", "correct"}
+                "phi_deg", "radius", "ratio", "expression", "correct"}
 _FAMILY_KEYS = {
     "ellipse": {"semi_major_axis", "eccentricity", "order"},
     "higher_order_ellipse": {"semi_major_axis", "eccentricity", "order"},
@@ -45,7 +48,7 @@ _FAMILY_KEYS = {
     "limacon": {"base", "amplitude", "order"},
     "denatured_limacon": {"base", "amplitude", "m11", "m12"},
     "spline": {"phi_deg", "radius"},
-    "ratio": {"phi_deg", "ratio", "correct"},
+    "ratio": {"phi_deg", "ratio", "expression", "correct"},
 }
 _PAIR_KEYS = {"driven_order", "center_distance", "module", "teeth", "pressure_angle_deg", "driver_speed_rpm",
               "cutter", "shaper_teeth"}
@@ -64,7 +67,7 @@ class GearProblem:
     shaper_teeth: int
     source: str
     title: str = ""
-    ratio_samples: tuple[np.ndarray, np.ndarray] | None = None
+    ratio: tuple | None = None          # (evaluator of i12 and its derivatives, breaks) for a ratio input
     correct_ratio: bool = False
     parameters: dict = field(default_factory=dict)
 
@@ -119,6 +122,15 @@ def _driver(read: FieldReader, table: dict):
     if family == "denatured_limacon":
         return denatured_limacon(_positive(read, table, "base", "driver"), read.number(table, "amplitude", "driver"),
                                  *_denatured_pair(read, table))
+    if family == "ratio" and "expression" in table:
+        if "ratio" in table or "phi_deg" in table:
+            read.fail("driver.expression", table["expression"], "either an expression or phi_deg and ratio, not both")
+        text = table["expression"]
+        phi = ca.SX.sym("phi")
+        try:
+            return ratio_formula(parse_ratio(str(text), phi), phi), ()
+        except ExpressionError as error:
+            read.fail("driver.expression", text, f"a formula of phi: {error}")
     phi = np.radians(read.numbers(table, "phi_deg", "driver", minimum_count=4))
     key = "radius" if family == "spline" else "ratio"
     values = read.numbers(table, key, "driver", minimum_count=4)
@@ -132,7 +144,7 @@ def _driver(read: FieldReader, table: dict):
                   + (" (a ratio that touches zero or goes negative reverses the driven gear)" if key == "ratio" else ""))
     if family == "spline":
         return spline(phi, values)
-    return (phi, values)
+    return ratio_samples(phi, values), tuple(np.mod(phi, 2 * np.pi))
 
 
 def parse_gear_problem(data: dict, source: str = "<gear>") -> GearProblem:
@@ -170,6 +182,6 @@ def parse_gear_problem(data: dict, source: str = "<gear>") -> GearProblem:
         center_distance=center, module=module, teeth=teeth, pressure_angle=float(np.radians(pressure)),
         driver_speed=rpm * 2 * np.pi / 60, cutter=cutter,
         shaper_teeth=read.integer(pair, "shaper_teeth", "pair", 8, 200, default=16),
-        source=source, title=str(data.get("title", "")), ratio_samples=driver if is_ratio else None,
+        source=source, title=str(data.get("title", "")), ratio=driver if is_ratio else None,
         correct_ratio=correct, parameters={k: v for k, v in data["driver"].items()
-                                           if k not in ("family", "phi_deg", "radius", "ratio")})
+                                           if k not in ("family", "phi_deg", "radius", "ratio", "expression")})

@@ -10,7 +10,7 @@ from transplanter.errors import InfeasibleError
 from transplanter.gear_pair import GearPairDesign, design_pair, panels
 from transplanter.gear_problem import GearProblem
 from transplanter.gear_teeth import PairTeeth, generate_teeth
-from transplanter.pitch_curves import PeriodicSpline, PitchCurve, from_ratio
+from transplanter.pitch_curves import from_ratio
 
 
 @dataclass(frozen=True)
@@ -43,11 +43,22 @@ def tooth_counts(design: GearPairDesign, module: float) -> ToothCounts:
 
 
 def _ratio_curve(problem: GearProblem, center_distance: float):
-    """Driver from sampled i12: closure does not depend on a (r1 = a / (1 + i)), so a ratio that does
+    """Driver from a ratio i12: closure does not depend on a (r1 = a / (1 + i12)), so a ratio that does
     not close is corrected by a constant factor k when asked (seed 000 eq 12), or refused."""
-    phi, ratio = problem.ratio_samples
-    grid = panels(np.mod(phi, 2 * np.pi))
-    turn = grid.integrate(1 / PeriodicSpline(np.mod(phi, 2 * np.pi), ratio).evaluate(grid.nodes)[0])[-1]
+    ratio, breaks = problem.ratio
+    grid = panels(breaks)
+    dense = np.linspace(0, 2 * np.pi, 20001)
+    values = ratio(dense)
+    if not np.all(np.isfinite(values[0])) or values[0].min() <= 0:
+        k = int(np.nanargmin(np.where(np.isfinite(values[0]), values[0], -np.inf)))
+        raise InfeasibleError(f"{problem.source}: driver.ratio reaches {values[0][k]:.6g} at phi = "
+                              f"{np.degrees(dense[k]):.2f} deg: a ratio that touches zero or goes negative "
+                              f"reverses the driven gear; expected positive all round")
+    ends = [v[0] - v[-1] for v in values[:2]]
+    if max(abs(e) for e in ends) > 1e-9 * (1 + np.abs(values[0]).max()):
+        raise InfeasibleError(f"{problem.source}: driver.ratio is not periodic: i12(360 deg) - i12(0) = {-ends[0]:.3g} "
+                              f"and the slope differs by {-ends[1]:.3g}; expected a function of period 360 deg")
+    turn = grid.integrate(1 / ratio(grid.nodes.ravel())[0].reshape(grid.nodes.shape))[-1]
     target = 2 * np.pi / problem.driven_order
     factor = turn / target
     if abs(factor - 1) > 1e-9 and not problem.correct_ratio:
@@ -55,14 +66,14 @@ def _ratio_curve(problem: GearProblem, center_distance: float):
             f"{problem.source}: driver.ratio closes at no center distance: with r1 = a / (1 + i12) the driven gear "
             f"turns {np.degrees(turn):.6f} deg per driver turn for every a, not {np.degrees(target):.6f}; "
             f"set driver.correct = true to scale i12 by k = {factor:.9f} (seed 000 eq 12)")
-    return from_ratio(phi, ratio * factor, center_distance), (factor if problem.correct_ratio else None)
+    return from_ratio(ratio, factor, center_distance, breaks), (factor if problem.correct_ratio else None)
 
 
 def synthesize_gear(problem: GearProblem) -> GearResult:
     start = time.perf_counter()
     correction = None
     center = problem.center_distance
-    if problem.ratio_samples is not None:
+    if problem.ratio is not None:
         driver, correction = _ratio_curve(problem, center or 1.0)
         center = center or 1.0
     else:
@@ -74,7 +85,7 @@ def synthesize_gear(problem: GearProblem) -> GearResult:
         perimeter = design_pair(driver, problem.driven_order, center, problem.driver_speed, problem.source).perimeters[0]
         factor = np.pi * problem.module * problem.teeth / perimeter
         driver = driver.scaled(factor)
-        center = center * factor if center is not None and problem.ratio_samples is not None else None
+        center = center * factor if center is not None and problem.ratio is not None else None
     design = design_pair(driver, problem.driven_order, center, problem.driver_speed, problem.source)
     timings = {"pitch_curves": time.perf_counter() - start}
     counts = teeth = None

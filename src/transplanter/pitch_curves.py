@@ -148,15 +148,32 @@ def spline(phi: np.ndarray, radius: np.ndarray) -> PitchCurve:
     return PitchCurve("spline", {"samples": len(curve.knots)}, 1, curve.evaluate, (), tuple(curve.knots))
 
 
-def from_ratio(phi: np.ndarray, ratio: np.ndarray, center_distance: float) -> PitchCurve:
-    """Driver pitch curve r1 = a / (1 + i12) for a sampled ratio i12 = omega1 / omega2 (seed 001 eq 13)."""
-    curve = PeriodicSpline(np.mod(phi, TWO_PI), ratio)
+def ratio_samples(phi: np.ndarray, ratio: np.ndarray) -> Callable[[np.ndarray], tuple]:
+    """i12 and its two derivatives from samples (periodic cubic spline)."""
+    return PeriodicSpline(np.mod(phi, TWO_PI), ratio).evaluate
+
+
+def ratio_formula(expression: ca.SX, phi: ca.SX) -> Callable[[np.ndarray], tuple]:
+    """i12 and its two derivatives from a casadi expression of phi (automatic differentiation)."""
+    slope = ca.jacobian(expression, phi)
+    function = ca.Function("ratio", [phi], [expression, slope, ca.jacobian(slope, phi)])
+
+    def evaluate(angles):
+        return [np.asarray(v).ravel() for v in _mapped(function, angles.size)(angles[None, :])]
+
+    return evaluate
+
+
+def from_ratio(ratio: Callable[[np.ndarray], tuple], factor: float, center_distance: float,
+               breaks=()) -> PitchCurve:
+    """Driver pitch curve r1 = a / (1 + k i12) for a ratio i12 = omega1 / omega2 (seed 001 eq 13),
+    scaled by a constant k (seed 000 eq 12)."""
 
     def evaluate(phi):
-        i, di, ddi = curve.evaluate(phi)
+        i, di, ddi = (factor * v for v in ratio(phi))
         one = 1 + i
         return (center_distance / one, -center_distance * di / one**2,
                 center_distance * (2 * di**2 / one**3 - ddi / one**2))
 
-    return PitchCurve("ratio", {"samples": len(curve.knots), "center_distance": center_distance}, 1,
-                      evaluate, (), tuple(curve.knots))
+    return PitchCurve("ratio", {"center_distance": center_distance, "factor": factor}, 1,
+                      evaluate, (), tuple(breaks))

@@ -1,0 +1,44 @@
+"""A transmission ratio written as a formula of phi, read safely into a casadi expression.
+
+Allowed: numbers, ``phi``, ``pi``, + - * / **, parentheses and cos, sin, tan, exp, sqrt, log.
+Anything else is refused with the offending piece named; nothing is evaluated by Python.
+"""
+from __future__ import annotations
+
+import ast
+import math
+
+import casadi as ca
+
+_FUNCTIONS = {"cos": ca.cos, "sin": ca.sin, "tan": ca.tan, "exp": ca.exp, "sqrt": ca.sqrt, "log": ca.log}
+_OPERATORS = {ast.Add: lambda a, b: a + b, ast.Sub: lambda a, b: a - b, ast.Mult: lambda a, b: a * b,
+              ast.Div: lambda a, b: a / b, ast.Pow: lambda a, b: a**b}
+
+
+class ExpressionError(ValueError):
+    """The text is not a formula of the allowed form; the message names the piece."""
+
+
+def parse_ratio(text: str, phi: ca.SX) -> ca.SX:
+    try:
+        tree = ast.parse(text, mode="eval")
+    except SyntaxError as error:
+        raise ExpressionError(f"not a formula ({error.msg})") from None
+    return _build(tree.body, phi)
+
+
+def _build(node, phi):
+    if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) and not isinstance(node.value, bool):
+        return float(node.value)
+    if isinstance(node, ast.Name) and node.id in ("phi", "pi"):
+        return phi if node.id == "phi" else math.pi
+    if isinstance(node, ast.BinOp) and type(node.op) in _OPERATORS:
+        return _OPERATORS[type(node.op)](_build(node.left, phi), _build(node.right, phi))
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
+        value = _build(node.operand, phi)
+        return -value if isinstance(node.op, ast.USub) else value
+    if (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in _FUNCTIONS
+            and len(node.args) == 1 and not node.keywords):
+        return _FUNCTIONS[node.func.id](_build(node.args[0], phi))
+    raise ExpressionError(f"'{ast.unparse(node)}' is not allowed (numbers, phi, pi, + - * / **, "
+                          f"{', '.join(_FUNCTIONS)})")
