@@ -1,0 +1,65 @@
+"""Closure of the five-bar O-A-F-E-B of seed 000 (Figure 8, eq 7-10).
+
+Vectors: OA = L1 e(theta1) (carrier), AF = L2 e(theta2) (connecting rod I), EF = L3 e(theta3),
+BE = L4 e(theta4) (receiving plate), and the frame OB = L5 (-cos theta5, sin theta5), the
+convention under which eq (8) comes out as printed. The loop OA + AF = OB + BE + EF (eq 7)
+gives, after eliminating theta3 by |EF| = L3,
+    P + Q cos(theta4) + R sin(theta4) = 0                                    (eq 8)
+and with t = tan(theta4 / 2) the quadratic (P - Q) t^2 + 2 R t + (P + Q) = 0 (eq 9). It has a
+real root, i.e. the chain closes for the given theta1, theta2, iff
+    B^2 - 4 A C = 4 (Q^2 + R^2 - P^2) >= 0                                     (eq 10).
+"""
+from __future__ import annotations
+
+import sympy as sp
+
+from derivations.spec import Derived, symbol_group
+
+
+def _unit(angle):
+    return sp.Matrix([sp.cos(angle), sp.sin(angle)])
+
+
+def closure(lengths, theta1, theta2, theta4, theta5):
+    """|OA + AF - OB - BE|^2 - L3^2, expanded (zero when the loop closes)."""
+    l1, l2, l3, l4, l5 = lengths
+    frame = l5 * sp.Matrix([-sp.cos(theta5), sp.sin(theta5)])
+    gap = l1 * _unit(theta1) + l2 * _unit(theta2) - frame - l4 * _unit(theta4)
+    return sp.expand(gap.dot(gap) - l3**2)
+
+
+def closure_parts(lengths, theta1, theta2, theta5):
+    """(P, Q, R) of eq (8) written as P + Q cos(theta4) + R sin(theta4)."""
+    theta4, c, s = sp.symbols("theta4 c4 s4", real=True)
+    expr = sp.expand(sp.expand_trig(closure(lengths, theta1, theta2, theta4, theta5)))
+    expr = sp.expand(expr.subs({sp.cos(theta4): c, sp.sin(theta4): s}).subs(s**2, 1 - c**2))
+    q, r = expr.coeff(c), expr.coeff(s)
+    return sp.expand(expr - q * c - r * s), q, r
+
+
+def half_angle_quadratic(lengths, theta1, theta2, theta5):
+    """(A, B, C) of eq (9) for t = tan(theta4 / 2)."""
+    p, q, r = closure_parts(lengths, theta1, theta2, theta5)
+    return p - q, 2 * r, p + q
+
+
+def derive() -> list[Derived]:
+    lengths = symbol_group("lengths", 5)
+    angles = symbol_group("angles", 4)            # theta1, theta2, theta4, theta5
+    crank = symbol_group("crank_angles", 3)       # theta1, theta2, theta5
+    p, q, r = closure_parts(lengths, *crank)
+    a, b, c = half_angle_quadratic(lengths, *crank)
+    return [
+        Derived(name="fivebar_closure",
+                doc="Eq (8): |OA + AF - OB - BE|^2 - L3^2 for lengths L1..L5 and angles theta1, theta2, theta4, theta5.",
+                inputs=(("lengths", lengths), ("angles", angles)),
+                outputs=(("residual", (closure(lengths, angles[0], angles[1], angles[2], angles[3]),)),)),
+        Derived(name="fivebar_half_angle_quadratic",
+                doc="Eq (9): coefficients A, B, C in t = tan(theta4/2), for theta1, theta2, theta5.",
+                inputs=(("lengths", lengths), ("crank_angles", crank)),
+                outputs=(("coefficients", (a, b, c)),)),
+        Derived(name="fivebar_discriminant",
+                doc="Eq (10): B^2 - 4 A C = 4 (Q^2 + R^2 - P^2); the chain closes where it is >= 0.",
+                inputs=(("lengths", lengths), ("crank_angles", crank)),
+                outputs=(("discriminant", (4 * (q**2 + r**2 - p**2),)),)),
+    ]
