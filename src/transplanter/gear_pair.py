@@ -52,6 +52,11 @@ def panels(breaks=(), count: int = PANELS, nodes: int = NODES) -> Panels:
     return Panels(edges, edges[:-1, None] + half * (x + 1), half * w)
 
 
+def arc_length(curve: PitchCurve, grid: Panels) -> np.ndarray:
+    """Arc length of the pitch curve from phi = 0 to every panel edge: int sqrt(r^2 + r'^2) dphi."""
+    return grid.integrate(np.hypot(*curve.evaluate(grid.nodes)[:2]))
+
+
 def driven_turn(curve: PitchCurve, center_distance: float, grid: Panels) -> float:
     """Driven rotation per driver turn: int r1 / (a - r1) dphi1."""
     r = curve.evaluate(grid.nodes)[0]
@@ -166,7 +171,7 @@ def design_pair(driver: PitchCurve, driven_order: int, center_distance: float | 
         rho2, convex2 = (v[0] for v in _curvature([r2], [slope2], [bend2]))
     ratio, speed, acceleration = (v[0] for v in _kinematics([a], [r1], [slope1], [np.full_like(r1, driver_speed)]))
 
-    arc = grid.integrate(np.hypot(*driver.evaluate(grid.nodes)[:2]))
+    arc = arc_length(driver, grid)
     driver_perimeter = float(arc[-1])
     driver_points = r1[:, None] * np.c_[np.cos(phi1), np.sin(phi1)]
     driven_points = r2[:, None] * np.c_[-np.cos(phi2), np.sin(phi2)]

@@ -9,12 +9,8 @@ import numpy as np  # noqa: E402
 
 from transplanter.drawings import outlines  # noqa: E402
 from transplanter.gear_synthesis import GearResult  # noqa: E402
+from transplanter.poses import rotate_about  # noqa: E402
 from transplanter.rack_teeth import ADDENDUM  # noqa: E402
-
-
-def _turn(points, angle):
-    c, s = np.cos(angle), np.sin(angle)
-    return points @ np.array([[c, s], [-s, c]])
 
 
 def plot_mesh(result: GearResult, path: str, positions: int = 4):
@@ -23,8 +19,8 @@ def plot_mesh(result: GearResult, path: str, positions: int = 4):
     shapes = outlines(result)
     fig, axes = plt.subplots(1, positions, figsize=(4 * positions, 4.2))
     for ax, k in zip(axes, np.linspace(0, len(d.phi1) - 1, positions, endpoint=False).astype(int)):
-        ax.fill(*np.r_[_turn(shapes["driver"], -d.phi1[k])].T, color="tab:blue", alpha=0.35, lw=0.6, ec="tab:blue")
-        driven = _turn(shapes["driven"], d.phi2[k]) + [d.center_distance, 0]
+        ax.fill(*rotate_about(shapes["driver"], (0.0, 0.0), -d.phi1[k]).T, color="tab:blue", alpha=0.35, lw=0.6, ec="tab:blue")
+        driven = rotate_about(shapes["driven"], (0.0, 0.0), d.phi2[k]) + [d.center_distance, 0]
         ax.fill(*driven.T, color="tab:orange", alpha=0.35, lw=0.6, ec="tab:orange")
         ax.plot([0, d.center_distance], [0, 0], "k+", ms=8)
         ax.plot(d.radius[0][k], 0, "r.", ms=5)

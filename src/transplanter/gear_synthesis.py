@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from transplanter.errors import InfeasibleError
-from transplanter.gear_pair import GearPairDesign, design_pair, panels
+from transplanter.gear_pair import GearPairDesign, arc_length, design_pair, panels
 from transplanter.gear_problem import GearProblem
 from transplanter.gear_teeth import PairTeeth, generate_teeth
 from transplanter.pitch_curves import from_ratio
@@ -82,7 +82,7 @@ def synthesize_gear(problem: GearProblem) -> GearResult:
         if problem.teeth % driver.lobes:
             raise InfeasibleError(f"{problem.source}: pair.teeth = {problem.teeth}: expected a multiple of the driver "
                                   f"order {driver.lobes} (equal teeth on every lobe)")
-        perimeter = design_pair(driver, problem.driven_order, center, problem.driver_speed, problem.source).perimeters[0]
+        perimeter = arc_length(driver, panels(driver.breaks))[-1]
         factor = np.pi * problem.module * problem.teeth / perimeter
         driver = driver.scaled(factor)
         center = center * factor if center is not None and problem.ratio is not None else None

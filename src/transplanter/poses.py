@@ -31,9 +31,11 @@ def pole(first, second) -> np.ndarray:
 
 
 def rotate_about(points, pivot, angle) -> np.ndarray:
-    """Points (..., 2) turned counterclockwise by ``angle`` about ``pivot``."""
+    """Points (..., 2) turned counterclockwise by ``angle`` (broadcast like points[..., 0]) about ``pivot``."""
     pivot = np.asarray(pivot, float)
-    return pivot + np.einsum("...ij,...j->...i", rotation(angle), np.asarray(points, float) - pivot)
+    offset = np.asarray(points, float) - pivot
+    c, s = np.cos(angle), np.sin(angle)
+    return pivot + np.stack([c * offset[..., 0] - s * offset[..., 1], s * offset[..., 0] + c * offset[..., 1]], -1)
 
 
 def relative_to_link(poses: np.ndarray, pivot, phases) -> np.ndarray:

@@ -18,16 +18,13 @@ from __future__ import annotations
 import numpy as np
 
 from transplanter.gear_pair import GearPairDesign, driven_angle
-from transplanter.rack_teeth import ADDENDUM, DEDENDUM, PitchTable, pitch_table, rack_profile
+from transplanter.poses import rotate_about
+from transplanter.rack_teeth import ADDENDUM, DEDENDUM, PitchTable, orientation, pitch_table, rack_profile
+
+ORIGIN = (0.0, 0.0)
 
 #: Polar bins per turn: about 0.01 deg, a few micrometres of arc at gear sizes.
 BINS = 36000
-
-
-def _rotate(points, angle):
-    """Points (..., 2) turned by ``angle`` (shaped like points[..., 0])."""
-    c, s = np.cos(angle), np.sin(angle)
-    return np.stack([c * points[..., 0] - s * points[..., 1], s * points[..., 0] + c * points[..., 1]], -1)
 
 
 def shaper_cutter(module: float, alpha: float, teeth: int) -> np.ndarray:
@@ -81,21 +78,16 @@ def _lower_envelope(points: np.ndarray, tip: np.ndarray, chunks: list[np.ndarray
         index = np.minimum(((np.arctan2(cloud[:, 1], cloud[:, 0]) + np.pi) * (BINS / (2 * np.pi))).astype(int), BINS - 1)
         np.minimum.at(radius, index, np.hypot(cloud[:, 0], cloud[:, 1]))
     outline = radius[:, None] * np.c_[np.cos(centers), np.sin(centers)]
-    return outline if _counterclockwise(points) else outline[::-1]
-
-
-def _counterclockwise(points):
-    return np.sum(points[:-1, 0] * np.diff(points[:, 1]) - points[:-1, 1] * np.diff(points[:, 0])) > 0
+    return outline if orientation(points) > 0 else outline[::-1]
 
 
 def _densify(outline: np.ndarray, step: float) -> np.ndarray:
     """Points along a closed outline no farther apart than ``step``."""
-    closed = np.r_[outline, outline[:1]]
-    pieces = []
-    for a, b in zip(closed[:-1], closed[1:]):
-        count = max(1, int(np.ceil(np.linalg.norm(b - a) / step)))
-        pieces.append(a + np.linspace(0, 1, count, endpoint=False)[:, None] * (b - a))
-    return np.concatenate(pieces)
+    edges = np.roll(outline, -1, axis=0) - outline
+    counts = np.maximum(1, np.ceil(np.linalg.norm(edges, axis=1) / step).astype(int))
+    segment = np.repeat(np.arange(len(outline)), counts)
+    fraction = (np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts, counts)) / counts[segment]
+    return outline[segment] + fraction[:, None] * edges[segment]
 
 
 def shaper_profile(table: PitchTable, module: float, alpha: float, cutter_teeth: int,
@@ -104,7 +96,7 @@ def shaper_profile(table: PitchTable, module: float, alpha: float, cutter_teeth:
     step = step or module / 40
     radius = module * cutter_teeth / 2
     cutter, cutter_angle = _by_angle(_densify(shaper_cutter(module, alpha, cutter_teeth), step / 2))
-    o = table._outward
+    o = table.orientation
     pitch = np.pi * module
     s = np.r_[np.arange(0.0, table.perimeter, step), table.perimeter]
     contact, _, normal = table.at(s)
@@ -116,7 +108,7 @@ def shaper_profile(table: PitchTable, module: float, alpha: float, cutter_teeth:
     reach = 2.5 * (ADDENDUM + DEDENDUM) * module / radius
 
     def place(points, rows):
-        return center[rows, None, :] + _rotate(points[None], turn[rows, None])
+        return center[rows, None, :] + rotate_about(points[None], ORIGIN, turn[rows, None])
 
     tip = table.points + ADDENDUM * module * table.normals
     return _lower_envelope(table.points, tip, _swept(cutter, cutter_angle, local_facing, reach, place))
@@ -133,8 +125,8 @@ def mate_profile(design: GearPairDesign, driver_outline: np.ndarray, driven: Pit
     phi2 = driven_angle(design, phi1)
 
     def place(points, rows):
-        world = _rotate(points[None], -phi1[rows, None])            # driver points near the line of centres
-        return _rotate(world - [design.center_distance, 0.0], -phi2[rows, None])
+        world = rotate_about(points[None], ORIGIN, -phi1[rows, None])            # driver points near the line of centres
+        return rotate_about(world - [design.center_distance, 0.0], ORIGIN, -phi2[rows, None])
 
     tip = driven.points + ADDENDUM * module * driven.normals
     return _lower_envelope(driven.points, tip, _swept(outline, outline_angle, phi1, reach, place))
