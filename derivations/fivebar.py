@@ -8,6 +8,8 @@ gives, after eliminating theta3 by |EF| = L3,
 and with t = tan(theta4 / 2) the quadratic (P - Q) t^2 + 2 R t + (P + Q) = 0 (eq 9). It has a
 real root, i.e. the chain closes for the given theta1, theta2, iff
     B^2 - 4 A C = 4 (Q^2 + R^2 - P^2) >= 0                                     (eq 10).
+Since sqrt(Q^2 + R^2) = 2 L4 |BF|, the scale-free margin (Q^2 + R^2 - P^2) / (Q^2 + R^2) is
+sin^2 of the angle EBF: 0 where B, E, F line up (the chain jams or changes branch), 1 at best.
 """
 from __future__ import annotations
 
@@ -62,4 +64,8 @@ def derive() -> list[Derived]:
                 doc="Eq (10): B^2 - 4 A C = 4 (Q^2 + R^2 - P^2); the chain closes where it is >= 0.",
                 inputs=(("lengths", lengths), ("crank_angles", crank)),
                 outputs=(("discriminant", (4 * (q**2 + r**2 - p**2),)),)),
+        Derived(name="fivebar_closure_margin",
+                doc="(Q^2 + R^2 - P^2) / (Q^2 + R^2) = sin^2(angle EBF): eq (10) without its scale, in [0, 1] where it closes.",
+                inputs=(("lengths", lengths), ("crank_angles", crank)),
+                outputs=(("margin", ((q**2 + r**2 - p**2) / (q**2 + r**2),)),)),
     ]

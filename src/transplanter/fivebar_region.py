@@ -1,0 +1,111 @@
+"""Solution region of the five-bar (seed 000 section 3.2.1, Figure 5).
+
+The 2R chain B-E is a 4-pose Burmester dyad of the plate; the 3R chain O-A-F is a 4-pose
+dyad of the plate seen from the carrier (phases = the carrier's clockwise turns). Both
+families are traced completely (``synthesis``). Each chain is first held to its own
+ranges (and the 3R chain to an increasing relative angle: the gears never reverse); the
+survivors are paired into five-bars, and every pair is judged over a whole turn by
+``fivebar_candidate``. The feasible pairs are ranked by their smallest closure margin.
+"""
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+import numpy as np
+
+from transplanter.dyad import Link
+from transplanter.fivebar_candidate import Candidate, evaluate_candidate
+from transplanter.fivebar_linkage import from_hinges
+from transplanter.fivebar_problem import FiveBarProblem
+from transplanter.poses import carry
+from transplanter.synthesis import DyadProblem, Synthesis, synthesize
+
+TWO_PI = 2 * np.pi
+
+
+@dataclass(frozen=True)
+class ChainFamily:
+    """One sampled dyad family: fixed-side and moving-side hinges in pose 1, and which survive."""
+
+    synthesis: Synthesis
+    fixed: np.ndarray        # B (2R) or A (3R), (N, 2)
+    moving: np.ndarray       # E (2R) or F (3R), (N, 2)
+    kept: np.ndarray         # bool (N,): within ranges and free of the chain's own defects
+    reasons: dict            # why dyads were dropped: condition -> count
+
+
+@dataclass(frozen=True)
+class Region:
+    receiving: ChainFamily   # 2R chain B-E
+    carrier: ChainFamily     # 3R chain O-A-F
+    candidates: list[Candidate]   # every pair, feasible ones first, best first
+    pair_defects: dict            # condition -> number of pairs it removed (first failing condition)
+
+    @property
+    def feasible(self) -> list[Candidate]:
+        return [c for c in self.candidates if c.feasible]
+
+
+def _family(synthesis: Synthesis) -> tuple[np.ndarray, np.ndarray]:
+    dyads = synthesis.dyads
+    return (np.array([d.center for d in dyads]).reshape(-1, 2), np.array([d.circle for d in dyads]).reshape(-1, 2))
+
+
+def _within(values, bounds):
+    return np.ones(len(values), bool) if bounds is None else (values >= bounds[0]) & (values <= bounds[1])
+
+
+def _count(reasons: dict, name: str, mask: np.ndarray, kept: np.ndarray) -> np.ndarray:
+    reasons[name] = int(np.sum(kept & ~mask))
+    return kept & mask
+
+
+def chain_families(problem: FiveBarProblem) -> tuple[ChainFamily, ChainFamily]:
+    base = DyadProblem(poses=problem.poses, samples=problem.samples, radius_mm=problem.radius_mm,
+                       source=problem.source, labels=problem.labels)
+    receiving = synthesize(base)
+    carrier = synthesize(dataclasses.replace(base, link=Link(np.zeros(2), -problem.carrier_turns)))
+    p1 = problem.poses[0, :2]
+
+    b, e = _family(receiving)
+    reasons, kept = {}, np.ones(len(b), bool)
+    kept = _count(reasons, "ranges.ep", _within(np.linalg.norm(e - p1, axis=1), problem.ranges.get("ep")), kept)
+    kept = _count(reasons, "ranges.x_e", _within(e[:, 0], problem.ranges.get("x_e")), kept)
+    two_r = ChainFamily(receiving, b, e, kept, reasons)
+
+    a, f = _family(carrier)
+    reasons, kept = {}, np.ones(len(a), bool)
+    kept = _count(reasons, "ranges.fp", _within(np.linalg.norm(f - p1, axis=1), problem.ranges.get("fp")), kept)
+    kept = _count(reasons, "ranges.x_f", _within(f[:, 0], problem.ranges.get("x_f")), kept)
+    kept = _count(reasons, "order (relative angle not increasing through the key poses)",
+                  _increasing_relative_angle(problem, a, f), kept)
+    return two_r, ChainFamily(carrier, a, f, kept, reasons)
+
+
+def _increasing_relative_angle(problem: FiveBarProblem, a1: np.ndarray, f1: np.ndarray) -> np.ndarray:
+    """rho_i = theta2_i - theta1_i at the key poses, for every 3R dyad: strictly increasing (mod 2 pi from rho_1)."""
+    turns = problem.carrier_turns
+    theta1 = np.arctan2(a1[:, 1], a1[:, 0])[:, None] - turns
+    a = np.hypot(a1[:, 0], a1[:, 1])[:, None, None] * np.stack([np.cos(theta1), np.sin(theta1)], -1)
+    f = carry(problem.poses, f1)
+    rho = np.arctan2(f[..., 1] - a[..., 1], f[..., 0] - a[..., 0]) - theta1
+    steps = np.mod(rho - rho[:, :1], TWO_PI)
+    return np.all(np.diff(steps, axis=1) > 0, axis=1)
+
+
+def solution_region(problem: FiveBarProblem) -> Region:
+    receiving, carrier = chain_families(problem)
+    candidates = []
+    for i in np.flatnonzero(receiving.kept):
+        for j in np.flatnonzero(carrier.kept):
+            mech = from_hinges(problem.poses[0], receiving.fixed[i], receiving.moving[i],
+                               carrier.fixed[j], carrier.moving[j])
+            candidates.append(evaluate_candidate(problem, mech, check_ranges=False))
+    defects = {}
+    for candidate in candidates:
+        if candidate.defects:
+            name = candidate.defects[0].split(":")[0]
+            defects[name] = defects.get(name, 0) + 1
+    candidates.sort(key=lambda c: (not c.feasible, -np.nan_to_num(c.min_margin, nan=-np.inf)))
+    return Region(receiving, carrier, candidates, defects)
