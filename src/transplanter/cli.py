@@ -60,6 +60,40 @@ def _gear(args) -> int:
     return 0
 
 
+def _fivebar(args) -> int:
+    from transplanter.fivebar_problem import load_fivebar_problem
+
+    problem = load_fivebar_problem(args.file)
+    if args.design:
+        from transplanter.fivebar_evaluation import evaluate_design, load_design
+        from transplanter.fivebar_report import evaluation_json, evaluation_markdown
+
+        report = evaluation_json(evaluate_design(problem, load_design(args.design)), problem.poses[0])
+        text, figures = evaluation_markdown(report, problem.labels), []
+    else:
+        from transplanter.fivebar_plots import plot_fivebar_figures
+        from transplanter.fivebar_report import to_json, to_markdown
+        from transplanter.fivebar_synthesis import synthesize_fivebar
+
+        result = synthesize_fivebar(problem)
+        report = to_json(result)
+        figures = plot_fivebar_figures(result, Path(args.out)) if args.out else []
+        text = to_markdown(report, problem.labels, figures)
+    if args.out:
+        out = Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "report.json").write_text(json.dumps(report, indent=2) + "\n")
+        (out / "report.md").write_text(text)
+    if args.json:
+        json.dump(report, sys.stdout)
+        sys.stdout.write("\n")
+    else:
+        sys.stdout.write(text)
+        if args.out:
+            sys.stdout.write(f"wrote {args.out}/report.md, report.json" + "".join(f", {f}" for f in figures) + "\n")
+    return 0
+
+
 def _derive(args) -> int:
     from transplanter.derive import run_build
 
@@ -80,6 +114,13 @@ def _parser() -> argparse.ArgumentParser:
     gear.add_argument("--json", action="store_true", help="print one JSON object")
     gear.add_argument("--out", metavar="DIR", help="write report, CSV/SVG/DXF drawings and figures here")
     gear.set_defaults(run=_gear)
+    fivebar = commands.add_parser("fivebar", help="five-bar seedling pushing mechanism with its planetary gear train "
+                                  "(seed 000): region, precise design, gears, verification")
+    fivebar.add_argument("file", help="five-bar problem file (TOML, mm and degrees)")
+    fivebar.add_argument("--json", action="store_true", help="print the report as one JSON object")
+    fivebar.add_argument("--out", metavar="DIR", help="write report.md, report.json and the figures here")
+    fivebar.add_argument("--design", metavar="DESIGN.toml", help="evaluate this given design instead of designing one")
+    fivebar.set_defaults(run=_fivebar)
     derive = commands.add_parser("derive", help="regenerate src/transplanter/_generated from derivations/")
     derive.add_argument("--check", action="store_true", help="exit 1 if the generated code is out of step")
     derive.set_defaults(run=_derive)

@@ -17,7 +17,7 @@ import numpy as np
 
 from transplanter.fivebar_linkage import FiveBar, assembly_branch
 from transplanter.fivebar_problem import FiveBarProblem
-from transplanter.relative_angle import RelativeAngle, fit_relative_angle
+from transplanter.relative_angle import RelativeAngle, fit_relative_angle, negative_intervals, ratio_range
 from transplanter.return_stroke import ReturnStroke, solve_return_stroke
 
 TWO_PI = 2 * np.pi
@@ -87,9 +87,10 @@ def evaluate_candidate(problem: FiveBarProblem, mech: FiveBar, check_ranges: boo
     relative = fit_relative_angle(np.r_[turns, stroke.carrier_turns], np.r_[rho, stroke.relative_angles],
                                   problem.spline_count)
     margin, slope = whole_turn(mech, relative)
-    ratio = (float(1 / slope.max()), float(1 / slope.min())) if slope.min() > 0 else (float("nan"),) * 2
+    ratio = ratio_range(slope)
     if slope.min() <= 0:
-        defects.append(f"monotonic: rho' reaches {slope.min():.3f}")
+        spans = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in negative_intervals(GRID, slope))
+        defects.append(f"monotonic: rho' <= 0 (down to {slope.min():.3f}) for carrier turns {spans} deg")
     elif ratio[0] < problem.ratio_bounds[0] or ratio[1] > problem.ratio_bounds[1]:
         defects.append(f"ratio: i0 spans [{ratio[0]:.3f}, {ratio[1]:.3f}], outside {list(problem.ratio_bounds)}")
     if not margin >= problem.min_closure_margin:

@@ -72,7 +72,21 @@ def _cross(u, v):
     return u[0] * v[1] - u[1] * v[0]
 
 
-def design_nlp(problem: FiveBarProblem, start: Candidate, added_turns=()) -> DesignSolution:
+@dataclass(frozen=True)
+class DesignNLP:
+    """The NLP in casadi form: decision vector, objective, constraints with bounds, start."""
+
+    x: ca.SX
+    objective: ca.SX
+    constraints: ca.SX
+    lbg: np.ndarray
+    ubg: np.ndarray
+    lbx: np.ndarray
+    x0: np.ndarray
+    branch: float
+
+
+def build_nlp(problem: FiveBarProblem, start: Candidate, added_turns=()) -> DesignNLP:
     n, m = problem.spline_count, len(problem.return_points)
     poses = problem.poses.copy()
     poses[:, :2] /= SCALE
@@ -127,17 +141,21 @@ def design_nlp(problem: FiveBarProblem, start: Candidate, added_turns=()) -> Des
                 [problem.ranges[k][1] for k in problem.ranges]]
     objective = ca.sumsqr(ret[2:4, :] - targets.T) + BENDING_WEIGHT * ca.mtimes([q.T, ca.DM(bending_matrix(n)), q])
 
-    solver = ca.nlpsol("fivebar_design", "ipopt", {"x": x, "f": objective, "g": g},
+    lbx = np.r_[1e-3, -np.inf, 1e-3, -np.inf, -np.inf, 1e-3, np.full(5 + (n - 1) + 4 * m, -np.inf)]
+    return DesignNLP(x, objective, g, lbg, ubg, lbx, _start_vector(start, problem), branch)
+
+
+def design_nlp(problem: FiveBarProblem, start: Candidate, added_turns=()) -> DesignSolution:
+    nlp = build_nlp(problem, start, added_turns)
+    solver = ca.nlpsol("fivebar_design", "ipopt", {"x": nlp.x, "f": nlp.objective, "g": nlp.constraints},
                        {"ipopt.print_level": 0, "ipopt.sb": "yes", "print_time": False, "ipopt.tol": 1e-12,
                         "ipopt.constr_viol_tol": 1e-12, "ipopt.max_iter": 1000})
-    solution = solver(x0=_start_vector(start, problem), lbg=lbg, ubg=ubg,
-                      lbx=np.r_[1e-3, -np.inf, 1e-3, -np.inf, -np.inf, 1e-3, np.full(5 + (n - 1) + 4 * m, -np.inf)],
-                      ubx=np.full(x.numel(), np.inf))
+    solution = solver(x0=nlp.x0, lbg=nlp.lbg, ubg=nlp.ubg, lbx=nlp.lbx, ubx=np.full(len(nlp.lbx), np.inf))
     stats = solver.stats()
     if not stats["success"]:
-        raise SolverError(f"{problem.source}: the design NLP did not converge from the best region candidate",
+        raise SolverError(f"{problem.source}: the design NLP did not converge from the region candidate",
                           stats["return_status"])
-    return _unpack(np.asarray(solution["x"]).ravel(), problem, branch, float(solution["f"]), stats)
+    return _unpack(np.asarray(solution["x"]).ravel(), problem, nlp.branch, float(solution["f"]), stats)
 
 
 def refine_design(problem: FiveBarProblem, start: Candidate) -> DesignSolution:

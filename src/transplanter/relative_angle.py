@@ -46,6 +46,29 @@ class RelativeAngle:
         return spline + 1.0 if order == 1 else spline
 
 
+def ratio_range(slope: np.ndarray) -> tuple[float, float]:
+    """(min, max) of the total ratio i0 = 1 / rho' (eq 11) from rho' samples; NaN when rho is not increasing."""
+    if slope.min() <= 0:
+        return float("nan"), float("nan")
+    return float(1 / slope.max()), float(1 / slope.min())
+
+
+def negative_intervals(turns: np.ndarray, values: np.ndarray) -> list[tuple[float, float]]:
+    """Carrier-turn intervals (deg) of a periodic grid where ``values`` <= 0."""
+    bad = values <= 0
+    if not bad.any():
+        return []
+    if bad.all():
+        return [(0.0, 360.0)]
+    starts = np.flatnonzero(bad & ~np.roll(bad, 1))
+    ends = np.flatnonzero(bad & ~np.roll(bad, -1))
+    intervals = []
+    for start in starts:
+        end = ends[np.argmin((ends - start) % len(bad))]      # the run's end, maybe past the wrap
+        intervals.append((float(np.degrees(turns[start])), float(np.degrees(turns[end]))))
+    return intervals
+
+
 def bending_matrix(count: int) -> np.ndarray:
     """G with q^T G q = int_0^2pi S''(c)^2 dc (midpoint sum; exact for the piecewise-linear S'')."""
     grid = (np.arange(BENDING_SAMPLES) + 0.5) * TWO_PI / BENDING_SAMPLES

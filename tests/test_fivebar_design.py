@@ -1,0 +1,213 @@
+"""Issue 3: the five-bar main job, its parts against ground truth, and the published design."""
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from transplanter.cli import main
+from transplanter.errors import InfeasibleError, ProblemError
+from transplanter.fivebar_candidate import evaluate_candidate
+from transplanter.fivebar_evaluation import evaluate_design, load_design
+from transplanter.fivebar_linkage import FiveBar
+from transplanter.fivebar_problem import load_fivebar_problem, parse_fivebar_problem
+from transplanter.fivebar_synthesis import synthesize_fivebar
+from transplanter.generated import numpy_twin
+from transplanter.periodic_bspline import basis_matrix, evaluate, kernel
+from transplanter.pitch_curves import ellipse
+from transplanter.planetary_train import printed_correction
+from transplanter.relative_angle import RelativeAngle, fit_relative_angle, negative_intervals
+from transplanter.return_stroke import solve_return_stroke
+from transplanter.toml_fields import read_toml
+from transplanter.train_rolling import conjugate_curve
+from transplanter.turn_map import TurnMap
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLE = ROOT / "examples/vegetable_planting.toml"
+
+
+@pytest.fixture(scope="module")
+def problem():
+    return load_fivebar_problem(EXAMPLE)
+
+
+@pytest.fixture(scope="module")
+def result(problem):
+    return synthesize_fivebar(problem)
+
+
+def test_kernel_is_the_cox_de_boor_cubic_basis():
+    """Eq (6) on uniform knots: sympy's recursion gives the centered kernel, piece by piece."""
+    x = sp.Symbol("x")
+    recursion = sp.bspline_basis(3, tuple(range(-2, 3)), 0, x)
+    for u in np.linspace(-2.5, 2.5, 41):
+        assert abs(float(recursion.subs(x, u)) - kernel(np.array(u))) < 1e-14
+    for order in (1, 2):
+        derivative = sp.diff(recursion, x, order)
+        for u in (-1.7, -0.3, 0.4, 1.2):
+            assert abs(float(derivative.subs(x, u)) - kernel(np.array(u), order)) < 1e-12
+
+
+def test_segment_form_matches_the_kernel_sum(rng):
+    q = rng.normal(size=12)
+    x = rng.uniform(-1, 8, 200)
+    for order in range(4):
+        assert np.abs(basis_matrix(x, 12, order) @ q - evaluate(x, q, order)).max() < 1e-12
+
+
+def test_fitted_relative_angle_interpolates_and_returns_after_a_turn(rng):
+    c = np.sort(np.r_[0.0, rng.uniform(0.1, 6.2, 8)])
+    rho = 0.3 + c + 0.2 * np.sin(c)
+    relative = fit_relative_angle(c, rho, 12)
+    assert np.abs(relative.evaluate(c) - rho).max() < 1e-12
+    assert abs(relative.evaluate(2 * np.pi) - relative.evaluate(0.0) - 2 * np.pi) < 1e-12
+
+
+def test_negative_intervals_wrap_around_the_turn():
+    turns = np.radians(np.arange(360.0))
+    values = np.ones(360)
+    values[350:] = values[:5] = values[100:120] = -1
+    assert negative_intervals(turns, values) == [(100.0, 119.0), (350.0, 4.0)]
+
+
+def test_turn_map_inverts_a_known_map():
+    turn = TurnMap(lambda x: 1 + 0.6 * np.cos(x))
+    x = np.linspace(0, 2 * np.pi, 97)
+    assert np.abs(turn(x) - (x + 0.6 * np.sin(x))).max() < 1e-13
+    assert np.abs(turn.inverse(x + 0.6 * np.sin(x)) - x).max() < 1e-12
+
+
+def test_conjugate_of_a_focal_ellipse_is_the_same_ellipse():
+    """At a = 2 x semi-major axis the driven curve is the ellipse turned half a turn: r = p / (1 + e cos psi)."""
+    curve = conjugate_curve(ellipse(30.0, 0.3), 60.0)
+    psi = np.linspace(0, 2 * np.pi, 50)
+    r, slope, _ = curve.evaluate(psi)
+    p = 30 * (1 - 0.09)
+    assert np.abs(r - p / (1 + 0.3 * np.cos(psi))).max() < 1e-10
+    assert np.abs(slope - p * 0.3 * np.sin(psi) / (1 + 0.3 * np.cos(psi))**2).max() < 1e-8
+
+
+def test_derived_closure_margin_is_sin_squared_of_angle_ebf(rng):
+    """The generated margin against the circle intersection of the linkage (no shared algebra)."""
+    margin = numpy_twin("fivebar", "fivebar_closure_margin")
+    mech = FiveBar(48.0, -0.5, 246.0, np.array([-78.6, -30.1]), 186.0, np.array([99.4, -11.3]),
+                   np.array([35.0, -33.1]), -1.0)
+    c = rng.uniform(0, 2 * np.pi, 50)
+    rho = -1.26 + c
+    state = mech.forward(c, rho)
+    theta1 = mech.carrier_angle - c
+    lengths = [mech.carrier_length, mech.rod_length, mech.link_length, mech.receiving_length, np.hypot(*mech.hinge_b)]
+    derived = margin(lengths, [theta1, theta1 + rho, np.full(50, np.arctan2(-30.1, 78.6))])[0]
+    assert np.allclose(derived, state["margin"], atol=1e-10)
+
+
+def test_return_stroke_recovers_a_constructed_mechanism(problem):
+    """Ground truth: P of a known five-bar at chosen turns; the IK gets back the turns and relative angles."""
+    mech = FiveBar(48.0, -0.5, 246.0, np.array([-78.6, -30.1]), 186.0, np.array([99.4, -11.3]),
+                   np.array([35.0, -33.1]), -1.0)
+    relative = RelativeAngle(-1.26, np.radians([0, 3, -4, 2, 0, 1, -2, 3, 0, -1, 2, 0]))
+    turns = np.radians([150.0, 190.0, 230.0, 270.0, 320.0])
+    points = mech.forward(turns, relative.evaluate(turns))["p"]
+    key = np.radians(90.0)
+    last = mech.forward(np.array([key]), relative.evaluate(np.array([key])))
+    stroke = solve_return_stroke(mech, points, key, relative.rho1, float(relative.evaluate(key)),
+                                 float(last["direction"][0]))
+    assert np.abs(stroke.carrier_turns - turns).max() < 1e-9
+    assert np.abs(stroke.relative_angles - relative.evaluate(turns)).max() < 1e-9
+
+
+def test_main_job_meets_the_key_poses_by_forward_simulation(result, problem):
+    check = result.verification
+    assert check.key_position_errors_mm.max() < 1e-6
+    assert np.abs(check.key_angle_errors_deg).max() < 1e-6
+    assert check.roundtrip_max_error_mm < 1e-6
+    assert check.contact_gap_mm < 1e-9
+    assert check.return_point_errors_mm.max() < 0.01        # least squares, measured about 1 um
+    assert check.relative_angle_monotonic
+    assert check.min_closure_margin >= problem.min_closure_margin - 1e-9
+    assert check.min_discriminant > 0
+    low, high = problem.ratio_bounds
+    assert low <= check.ratio_range[0] and check.ratio_range[1] <= high
+
+
+def test_main_job_design_keeps_ranges_and_both_chains_close(result, problem):
+    mech = result.design.mech
+    candidate = evaluate_candidate(problem, mech)
+    assert not [d for d in candidate.defects if d.startswith(("ranges", "order", "branch", "crank"))]
+    receiving, carrier = mech.joint_chain_errors(problem.poses, problem.carrier_turns)
+    assert np.abs(receiving).max() < 1e-9 and np.abs(carrier).max() < 1e-9
+
+
+def test_gear_stages_close_and_printed_eq12_does_not(result):
+    train = result.train
+    assert abs(train.stage_one.closure_error) < 1e-10 and abs(train.stage_two.closure_error) < 1e-10
+    k_printed, turn = printed_correction(train.relative_angle)
+    assert abs(np.degrees(turn) - 360) > 1.0           # measured: 355.1 deg per sun turn
+    assert abs(k_printed - train.correction) > 1e-3
+
+
+def test_published_table4_design(problem):
+    """Seed 000 Table 4 against Table 1: P is reachable to 0.08 mm, the plate angle is off by 0.6 deg at P2,
+    and the chain comes within sin^2(EBF) = 0.004 of jamming (closes, but below a 0.01 margin)."""
+    evaluation = evaluate_design(problem, load_design(ROOT / "examples/vegetable_planting_table4.toml"))
+    assert 0.03 < evaluation.position_errors_mm[1:].max() < 0.15
+    assert 0.3 < np.abs(evaluation.angle_errors_deg).max() < 1.0
+    assert 0 < evaluation.candidate.min_margin < 0.01
+    assert [d.split(":")[0] for d in evaluation.candidate.defects] == ["closure"]
+
+
+def test_cli_json_fields(tmp_path, capsys):
+    code = main(["fivebar", str(EXAMPLE), "--json", "--out", str(tmp_path)])
+    report = json.loads(capsys.readouterr().out)
+    assert code == 0
+    for key in ("key_pose_position_errors_mm", "key_pose_angle_errors_deg", "min_discriminant",
+                "relative_angle_monotonic", "design", "gear_closure_errors", "roundtrip_max_error_mm", "timings_s"):
+        assert key in report
+    assert len(report["key_pose_position_errors_mm"]) == 4 and report["relative_angle_monotonic"] is True
+    assert {"region.png", "relative_angle.png", "gears.png", "trajectory.png", "report.md"} <= {
+        p.name for p in tmp_path.iterdir()}
+
+
+def _edited(**changes):
+    data = read_toml(EXAMPLE)
+    for path, value in changes.items():
+        table, key = path.split("__")
+        data[table][key] = value
+    return data
+
+
+@pytest.mark.parametrize("changes, words", [
+    ({"ranges__ep": [100, 50]}, "ranges.ep"),
+    ({"conditions__min_closure_margin": 1.5}, "conditions.min_closure_margin"),
+    ({"conditions__ratio": [0.0, 2.0]}, "conditions.ratio"),
+    ({"spline__control_points": 4}, "spline.control_points"),
+])
+def test_bad_fivebar_fields_are_named(changes, words):
+    with pytest.raises(ProblemError, match=words.replace(".", r"\.")):
+        parse_fivebar_problem(_edited(**changes), "f.toml")
+
+
+def test_key_pose_count_and_turns_are_checked():
+    data = read_toml(EXAMPLE)
+    data["key_poses"] = data["key_poses"][:3]
+    with pytest.raises(ProblemError, match="exactly 4 key poses"):
+        parse_fivebar_problem(data, "f.toml")
+    data = read_toml(EXAMPLE)
+    data["key_poses"][2]["carrier_turn_deg"] = 10.0
+    with pytest.raises(ProblemError, match="strictly increasing"):
+        parse_fivebar_problem(data, "f.toml")
+
+
+def test_ranges_that_empty_the_region_are_named():
+    problem = parse_fivebar_problem(_edited(ranges__ep=[300.0, 400.0]), "f.toml")
+    with pytest.raises(InfeasibleError, match="no 2R chain B-E survives: ranges.ep"):
+        synthesize_fivebar(problem)
+
+
+def test_cli_exit_2_on_bad_design(tmp_path, capsys):
+    bad = tmp_path / "design.toml"
+    text = (ROOT / "examples/vegetable_planting_table4.toml").read_text()
+    bad.write_text(text.replace("carrier_length = 47.47", "carrier_length = -1"))
+    assert main(["fivebar", str(EXAMPLE), "--design", str(bad)]) == 2
+    assert "design.carrier_length" in capsys.readouterr().err
