@@ -200,8 +200,8 @@ def test_key_pose_count_and_turns_are_checked():
 
 
 def test_ranges_that_empty_the_region_are_named():
-    problem = parse_fivebar_problem(_edited(ranges__ep=[300.0, 400.0]), "f.toml")
-    with pytest.raises(InfeasibleError, match="no 2R chain B-E survives: ranges.ep"):
+    problem = parse_fivebar_problem(_edited(ranges__x_e=[100.0, 200.0]), "f.toml")
+    with pytest.raises(InfeasibleError, match=r"no 2R chain B-E survives: ranges\.x_e removes the last 210 .*closest: B"):
         synthesize_fivebar(problem)
 
 

@@ -18,7 +18,7 @@ Schema (README, "Five-bar problem files"); the carrier pivot O is the origin:
     x_e = [-100, 0]               # x of E in pose 1, mm
     x_f = [-20, 50]               # x of F in pose 1, mm
     [conditions]
-    min_closure_margin = 0.05     # sin^2(angle EBF) kept above this all round (eq 10 without scale)
+    min_closure_margin = 0.01     # sin^2(angle EBF) kept above this all round (eq 10 without scale)
     ratio = [0.25, 4.0]           # bounds on the total ratio i0 = dc / drho (eq 11)
     [spline]
     control_points = 12           # periodic cubic B-spline of the relative angle
@@ -50,7 +50,7 @@ class FiveBarProblem:
     labels: tuple[str, ...]
     return_labels: tuple[str, ...]
     ranges: dict = field(default_factory=dict)   # name -> (low, high)
-    min_closure_margin: float = 0.05
+    min_closure_margin: float = 0.01
     ratio_bounds: tuple[float, float] = (0.25, 4.0)
     spline_count: int = 12
     samples: int = 2000
@@ -109,7 +109,7 @@ def parse_fivebar_problem(data: dict, source: str = "<problem>") -> FiveBarProbl
 
     conditions = data.get("conditions", {})
     read.keys(conditions, {"min_closure_margin", "ratio"}, "conditions")
-    margin = read.number(conditions, "min_closure_margin", "conditions") if "min_closure_margin" in conditions else 0.05
+    margin = read.number(conditions, "min_closure_margin", "conditions") if "min_closure_margin" in conditions else 0.01
     if not 0 < margin < 1:
         read.fail("conditions.min_closure_margin", margin, "a number in (0, 1): sin^2 of the smallest angle EBF")
     ratio = _pair(read, conditions, "ratio", "conditions") if "ratio" in conditions else (0.25, 4.0)

@@ -33,6 +33,7 @@ class ChainFamily:
     moving: np.ndarray       # E (2R) or F (3R), (N, 2)
     kept: np.ndarray         # bool (N,): within ranges and free of the chain's own defects
     reasons: dict            # why dyads were dropped: condition -> count
+    shortfalls: dict         # range name -> how far each dyad is outside it (0 inside), (N,)
 
 
 @dataclass(frozen=True)
@@ -56,6 +57,10 @@ def _within(values, bounds):
     return np.ones(len(values), bool) if bounds is None else (values >= bounds[0]) & (values <= bounds[1])
 
 
+def _shortfall(values, bounds):
+    return np.zeros(len(values)) if bounds is None else np.fmax(bounds[0] - values, 0) + np.fmax(values - bounds[1], 0)
+
+
 def _count(reasons: dict, name: str, mask: np.ndarray, kept: np.ndarray) -> np.ndarray:
     reasons[name] = int(np.sum(kept & ~mask))
     return kept & mask
@@ -68,19 +73,19 @@ def chain_families(problem: FiveBarProblem) -> tuple[ChainFamily, ChainFamily]:
     carrier = synthesize(dataclasses.replace(base, link=Link(np.zeros(2), -problem.carrier_turns)))
     p1 = problem.poses[0, :2]
 
-    b, e = _family(receiving)
-    reasons, kept = {}, np.ones(len(b), bool)
-    kept = _count(reasons, "ranges.ep", _within(np.linalg.norm(e - p1, axis=1), problem.ranges.get("ep")), kept)
-    kept = _count(reasons, "ranges.x_e", _within(e[:, 0], problem.ranges.get("x_e")), kept)
-    two_r = ChainFamily(receiving, b, e, kept, reasons)
-
-    a, f = _family(carrier)
-    reasons, kept = {}, np.ones(len(a), bool)
-    kept = _count(reasons, "ranges.fp", _within(np.linalg.norm(f - p1, axis=1), problem.ranges.get("fp")), kept)
-    kept = _count(reasons, "ranges.x_f", _within(f[:, 0], problem.ranges.get("x_f")), kept)
-    kept = _count(reasons, "order (relative angle not increasing through the key poses)",
-                  _increasing_relative_angle(problem, a, f), kept)
-    return two_r, ChainFamily(carrier, a, f, kept, reasons)
+    families = []
+    for synthesis, limits in ((receiving, ("ep", "x_e")), (carrier, ("fp", "x_f"))):
+        fixed, moving = _family(synthesis)
+        measures = {limits[0]: np.linalg.norm(moving - p1, axis=1), limits[1]: moving[:, 0]}
+        reasons, kept = {}, np.ones(len(fixed), bool)
+        for name, values in measures.items():
+            kept = _count(reasons, f"ranges.{name}", _within(values, problem.ranges.get(name)), kept)
+        if synthesis is carrier:
+            kept = _count(reasons, "order (relative angle not increasing through the key poses)",
+                          _increasing_relative_angle(problem, fixed, moving), kept)
+        shortfalls = {name: _shortfall(values, problem.ranges.get(name)) for name, values in measures.items()}
+        families.append(ChainFamily(synthesis, fixed, moving, kept, reasons, shortfalls))
+    return families[0], families[1]
 
 
 def _increasing_relative_angle(problem: FiveBarProblem, a1: np.ndarray, f1: np.ndarray) -> np.ndarray:

@@ -36,13 +36,18 @@ class FiveBarResult:
 
 
 def _empty_family(problem: FiveBarProblem, name: str, family: ChainFamily):
-    stage = max(family.reasons, key=family.reasons.get)
-    hinges = "B and E" if name.endswith("B-E") else "A and F"
+    stage = [key for key, count in family.reasons.items() if count][-1]      # the one that left none
+    hinges = "B, E" if name.endswith("B-E") else "A, F"
+    total = sum(family.shortfalls.values())
+    closest = np.argsort(total)[:3]
+    listed = "; ".join(f"{hinges.split(', ')[0]} ({family.fixed[k][0]:.1f}, {family.fixed[k][1]:.1f}) "
+                       f"{hinges.split(', ')[1]} ({family.moving[k][0]:.1f}, {family.moving[k][1]:.1f}) outside by "
+                       + ", ".join(f"{key} {value[k]:.1f}" for key, value in family.shortfalls.items() if value[k] > 0)
+                       for k in closest)
     raise InfeasibleError(
-        f"{problem.source}: no {name} survives: {stage} removes {family.reasons[stage]} of "
+        f"{problem.source}: no {name} survives: {stage} removes the last {family.reasons[stage]} of "
         f"{len(family.fixed)} traced dyads ({', '.join(f'{k}: {v}' for k, v in family.reasons.items())}); "
-        f"widen {stage.split(' ')[0]} ({RANGE_FIELDS.get(stage.split('.')[-1], 'the condition')}) or move the "
-        f"poses; hinges {hinges} were searched within region.radius_mm = {problem.radius_mm:g}")
+        f"closest: {listed}")
 
 
 def _no_feasible_pair(problem: FiveBarProblem, region: Region):
