@@ -211,3 +211,9 @@ def test_cli_exit_2_on_bad_design(tmp_path, capsys):
     bad.write_text(text.replace("carrier_length = 47.47", "carrier_length = -1"))
     assert main(["fivebar", str(EXAMPLE), "--design", str(bad)]) == 2
     assert "design.carrier_length" in capsys.readouterr().err
+
+
+def test_region_without_a_feasible_five_bar_lists_counts_and_closest():
+    problem = parse_fivebar_problem(_edited(conditions__ratio=[0.95, 1.05]), "f.toml")
+    with pytest.raises(InfeasibleError, match=r"none of the 1664 five-bars .*ratio: \d+.*closest: \[B"):
+        synthesize_fivebar(problem)
