@@ -15,7 +15,7 @@ import numpy as np
 from transplanter.errors import InfeasibleError, ProblemError, SolverError
 from transplanter.fivebar_candidate import Candidate
 from transplanter.fivebar_nlp import DesignSolution, refine_design
-from transplanter.fivebar_problem import RANGE_FIELDS, FiveBarProblem
+from transplanter.fivebar_problem import FiveBarProblem
 from transplanter.fivebar_region import ChainFamily, Region, solution_region
 from transplanter.fivebar_verification import Verification, verify
 from transplanter.planetary_train import PlanetaryTrain, design_train
