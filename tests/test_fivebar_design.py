@@ -155,6 +155,8 @@ def test_published_table4_design(problem):
     assert 0.3 < np.abs(evaluation.angle_errors_deg).max() < 1.0
     assert 0 < evaluation.candidate.min_margin < 0.01
     assert [d.split(":")[0] for d in evaluation.candidate.defects] == ["closure"]
+    low, high = evaluation.candidate.ratio_range
+    assert 0.74 < low < 0.79 and 1.38 < high < 1.44       # measured: 0.77 to 1.41
 
 
 def test_cli_json_fields(tmp_path, capsys):
@@ -217,3 +219,12 @@ def test_region_without_a_feasible_five_bar_lists_counts_and_closest():
     problem = parse_fivebar_problem(_edited(conditions__ratio=[0.95, 1.05]), "f.toml")
     with pytest.raises(InfeasibleError, match=r"none of the 1664 five-bars .*ratio: \d+.*closest: \[B"):
         synthesize_fivebar(problem)
+
+
+def test_design_whose_plates_cannot_reach_p1_is_refused(tmp_path, capsys):
+    text = (ROOT / "examples/vegetable_planting_table4.toml").read_text()
+    bad = tmp_path / "design.toml"
+    bad.write_text(text.replace("push_plate_length = 55.01", "push_plate_length = 5.0"))
+    assert main(["fivebar", str(EXAMPLE), "--design", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert "design.push_plate_length = 5.0" in err and "cannot be spanned" in err and "Traceback" not in err

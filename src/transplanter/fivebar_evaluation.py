@@ -96,7 +96,7 @@ def evaluate_design(problem: FiveBarProblem, design: GivenDesign) -> DesignEvalu
         options.append((e1, mech, np.array(errors)))
     if not options:
         gap = np.linalg.norm(design.hinge_b - problem.poses[0, :2])
-        raise FieldReader(design.source).fail(
+        FieldReader(design.source).fail(
             "design.push_plate_length", design.push_plate_length,
             f"a plate that reaches: |B P1| = {gap:.3f} mm cannot be spanned by BE = "
             f"{design.receiving_plate_length:g} and EP = {design.push_plate_length:g}")
