@@ -1,0 +1,124 @@
+"""Reverse design of a planetary arm: two-link inverse kinematics and the monotonicity criterion
+(seeds 002 and 003), the idler train's ratio (seed 002 eq 5-9), the pick-up tip (seed 004 eq 15).
+
+The arm tip is P = s e(theta) + l e(psi) about the carrier pivot: theta the carrier's direction
+(pivot -> planet center), psi the arm's, gamma = psi - theta the arm relative to the carrier.
+
+- Inverse kinematics (seed 003): with r = |P| and phi3 = atan2(y, x), the elbow angle
+  phi4 in [0, pi] has cos phi4 = (s^2 + r^2 - l^2) / (2 s r); its sine comes from the
+  factored product (l - s + r)(l + s - r)(r + s - l)(r + s + l) / (2 s r)^2, which keeps its
+  digits where the arm straightens or folds. theta = phi3 + branch * phi4 (branch +1:
+  approach, -1: retraction).
+- Rates along a path parameter u (seed 002 eq 3-4 is the first-order step of the same
+  system): differentiating P(u) = s e(theta) + l e(psi) k times gives
+  s theta^(k) e_perp(theta) + l psi^(k) e_perp(psi) = known terms, solved here in closed form.
+- Monotonicity (seed 003): the carrier turns uniformly, so theta(u) must be monotonic, and
+  the gears never reverse, so gamma must be strictly monotonic in theta. The derivation
+  gives d gamma / d theta = -(P . P') / (l P' . e(psi)): the planet stops against the carrier
+  wherever the distance |P| from the pivot is stationary unless the arm is straight or
+  folded there (then P' . e(psi) vanishes too).
+- Arm lengths (seed 002 eq 1-2): the reachable annulus |s - l| <= r <= s + l fitted to the
+  path's farthest and nearest points.
+"""
+from __future__ import annotations
+
+import sympy as sp
+
+from derivations.spec import Derived, symbol_group
+
+
+def _unit(angle):
+    return sp.Matrix([sp.cos(angle), sp.sin(angle)])
+
+
+def inverse_angles(x, y, s, l, branch):
+    """(theta, psi) of the tip (x, y) on the given branch."""
+    r = sp.sqrt(x**2 + y**2)
+    product = (l - s + r) * (l + s - r) * (r + s - l) * (r + s + l)
+    elbow = sp.atan2(sp.sqrt(sp.Max(product, 0)), s**2 + r**2 - l**2)
+    theta = sp.atan2(y, x) + branch * elbow
+    psi = sp.atan2(y - s * sp.sin(theta), x - s * sp.cos(theta))
+    return theta, psi
+
+
+def path_rates(theta, psi, s, l, path_derivatives, order=3):
+    """theta^(k), psi^(k) for k = 1..order from P', P'', P''' by implicit differentiation."""
+    u = sp.Symbol("u", real=True)
+    th, ps = sp.Function("th")(u), sp.Function("ps")(u)
+    closure = s * _unit(th) + l * _unit(ps)
+    unknowns = [(sp.Symbol(f"dth{k}"), sp.Symbol(f"dps{k}")) for k in range(1, order + 1)]
+    known = {}
+    for k in range(1, order + 1):
+        equations = closure.diff(u, k) - sp.Matrix(path_derivatives[2 * (k - 1):2 * k])
+        for j in range(k, 0, -1):          # highest derivative first, so lower ones are not hit inside it
+            equations = equations.subs({th.diff(u, j): unknowns[j - 1][0], ps.diff(u, j): unknowns[j - 1][1]})
+        equations = equations.subs({th: theta, ps: psi})
+        solution = sp.solve(list(equations), unknowns[k - 1], dict=True)[0]
+        known.update({symbol: solution[symbol].subs(known) for symbol in unknowns[k - 1]})
+    return [known[symbol] for pair in unknowns for symbol in pair]
+
+
+def relative_per_carrier(theta, psi, s, l, dx, dy):
+    """d gamma / d theta = psi' / theta' - 1 along the path."""
+    theta1, psi1 = path_rates(theta, psi, s, l, (dx, dy), order=1)
+    return sp.simplify(psi1 / theta1 - 1)
+
+
+def arm_lengths(farthest, nearest):
+    """(s, l) with s + l = Lmax and l - s = Lmin (the arm the longer link, as seed 002 takes it)."""
+    s, l = sp.symbols("s l", positive=True)
+    solution = sp.solve([s + l - farthest, l - s - nearest], [s, l], dict=True)[0]
+    return solution[s], solution[l]
+
+
+def idler_total_ratio(sun_radius, planet_radius, center_distance):
+    """i13 = omega_sun / omega_planet (carrier frame) of sun-idler-planet with equal center
+    distances L: equal pitch-point speeds r1 w1 = (L - r1) w2 and (L - r3) w2 = r3 w3."""
+    w1, w2, w3 = sp.symbols("w1 w2 w3", positive=True)
+    speeds = sp.solve([sun_radius * w1 - (center_distance - sun_radius) * w2,
+                       (center_distance - planet_radius) * w2 - planet_radius * w3], [w2, w3], dict=True)[0]
+    return sp.simplify(w1 / speeds[w3])
+
+
+def pickup_tip(first, second, arm, carrier, bend, planet, mounting):
+    """Seed 004 eq (15): pivot -> O1 (first, at the carrier angle) -> O2 (second, bent by
+    ``bend``) -> needle tip (arm, turned by the planet's relative angle and its mounting)."""
+    return first * _unit(carrier) + second * _unit(carrier + bend) + arm * _unit(carrier + bend + planet + mounting)
+
+
+def derive() -> list[Derived]:
+    point, lengths = symbol_group("point", 2), symbol_group("lengths", 2)
+    branch = sp.Symbol("branch", real=True)
+    angles = symbol_group("angles", 2)
+    path = symbol_group("path", 6)
+    s, l = lengths
+    theta, psi = inverse_angles(*point, s, l, branch)
+    extremes = symbol_group("extremes", 2)
+    radii, center = symbol_group("radii", 2), sp.Symbol("center_distance", positive=True)
+    pickup_lengths, pickup_angles = symbol_group("pickup_lengths", 3), symbol_group("pickup_angles", 4)
+    return [
+        Derived(name="two_link_inverse",
+                doc="Carrier and arm directions (theta, psi) of the tip point for lengths (s, l) on a branch (+1 approach, -1 retraction).",
+                inputs=(("point", point), ("lengths", lengths), ("branch", (branch,))),
+                outputs=(("angles", (theta, psi)),)),
+        Derived(name="two_link_rates",
+                doc="theta', psi', theta'', psi'', theta''', psi''' along the path from (theta, psi), (s, l) and P', P'', P'''.",
+                inputs=(("angles", angles), ("lengths", lengths), ("path", path)),
+                outputs=(("rates", tuple(path_rates(*angles, s, l, path))),)),
+        Derived(name="planetary_relative_per_carrier",
+                doc="Monotonicity criterion: d gamma / d theta = -(P . P') / (l P' . e(psi)); the gears never reverse where it keeps one sign.",
+                inputs=(("angles", angles), ("lengths", lengths), ("path", path[:2])),
+                outputs=(("slope", (relative_per_carrier(*angles, s, l, *path[:2]),)),)),
+        Derived(name="arm_lengths_from_extremes",
+                doc="Seed 002 eq (1-2): carrier s and arm l from the farthest and nearest path points (Lmax, Lmin).",
+                inputs=(("extremes", extremes),),
+                outputs=(("lengths", arm_lengths(*extremes)),)),
+        Derived(name="idler_total_ratio",
+                doc="Seed 002 eq (5-9): i13 of sun-idler-planet from the sun's and the planet's contact radii and the center distance.",
+                inputs=(("radii", radii), ("center_distance", (center,))),
+                outputs=(("ratio", (idler_total_ratio(*radii, center),)),)),
+        Derived(name="pickup_tip",
+                doc="Seed 004 eq (15): needle tip from L1, L2, S and the carrier angle, bend delta0, planet turn, mounting alpha0.",
+                inputs=(("pickup_lengths", pickup_lengths), ("pickup_angles", pickup_angles)),
+                outputs=(("tip", tuple(pickup_tip(*pickup_lengths, *pickup_angles))),)),
+    ]
