@@ -94,6 +94,35 @@ def _fivebar(args) -> int:
     return 0
 
 
+def _reverse(args) -> int:
+    from transplanter.reverse_problem import load_reverse_problem
+    from transplanter.reverse_report import to_json, to_markdown
+    from transplanter.reverse_synthesis import reverse_design
+
+    result = reverse_design(load_reverse_problem(args.file))
+    report = to_json(result)
+    figures = []
+    if args.out:
+        from transplanter.reverse_plots import plot_reverse_figures
+
+        out = Path(args.out)
+        figures = plot_reverse_figures(result, out)
+        (out / "report.json").write_text(json.dumps(report, indent=2) + "\n")
+        (out / "report.md").write_text(to_markdown(report, figures))
+    if args.json:
+        json.dump(report, sys.stdout)
+        sys.stdout.write("\n")
+    else:
+        sys.stdout.write(to_markdown(report, []))
+        if args.out:
+            sys.stdout.write(f"wrote {args.out}/report.md, report.json" + "".join(f", {f}" for f in figures) + "\n")
+    if not result.monotonic:
+        print(f"transplanter: error: {result.problem.source}: the path fails the monotonicity criterion: "
+              + "; ".join(v.message for v in result.violations), file=sys.stderr)
+        return 2
+    return 0
+
+
 def _derive(args) -> int:
     from transplanter.derive import run_build
 
@@ -121,6 +150,12 @@ def _parser() -> argparse.ArgumentParser:
     fivebar.add_argument("--out", metavar="DIR", help="write report.md, report.json and the figures here")
     fivebar.add_argument("--design", metavar="DESIGN.toml", help="evaluate this given design instead of designing one")
     fivebar.set_defaults(run=_fivebar)
+    reverse = commands.add_parser("reverse", help="planetary non-circular gear train that makes the arm tip follow a "
+                                  "closed path (seeds 002-004): inverse kinematics, monotonicity, gears, round trip")
+    reverse.add_argument("file", help="reverse-design problem file (TOML, mm and degrees)")
+    reverse.add_argument("--json", action="store_true", help="print the report as one JSON object")
+    reverse.add_argument("--out", metavar="DIR", help="write report.md, report.json and the figures here")
+    reverse.set_defaults(run=_reverse)
     derive = commands.add_parser("derive", help="regenerate src/transplanter/_generated from derivations/")
     derive.add_argument("--check", action="store_true", help="exit 1 if the generated code is out of step")
     derive.set_defaults(run=_derive)

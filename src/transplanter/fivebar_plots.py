@@ -11,7 +11,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from transplanter.fivebar_synthesis import FiveBarResult  # noqa: E402
-from transplanter.poses import rotate_about  # noqa: E402
+from transplanter.train_figure import draw_four_gear_train  # noqa: E402
 
 
 def plot_region(result: FiveBarResult, path: str):
@@ -67,32 +67,16 @@ def plot_relative_angle(result: FiveBarResult, path: str):
 def plot_gears(result: FiveBarResult, path: str):
     train = result.train
     grid = result.verification.carrier_turns
-    slope = train.relative_angle.evaluate(grid, 1)
-    first = np.sqrt(1 / slope) / train.correction
+    first, second = train.stage_ratios(grid)
     fig, (ax, right) = plt.subplots(1, 2, figsize=(12, 5))
-    for values, label in ((1 / slope, "i0 (total)"), (first, "I1 corrected (sun : intermediate)"),
-                          (train.correction * np.sqrt(1 / slope), "I2 corrected (intermediate : planet)")):
+    for values, label in ((first * second, "i0 (total)"), (first, "I1 corrected (sun : intermediate)"),
+                          (second, "I2 corrected (intermediate : planet)")):
         ax.plot(np.degrees(grid), values, label=label)
     ax.set_xlabel("carrier turn c (deg)")
     ax.set_ylabel("transmission ratio")
     ax.legend(fontsize=8)
-    a1, a2 = train.center_distances
-    length = result.design.mech.carrier_length
-    shaft_angle = np.arccos(np.clip((a1**2 + length**2 - a2**2) / (2 * a1 * length), -1, 1))
-    shaft = a1 * np.array([np.cos(shaft_angle), np.sin(shaft_angle)])
-    planet_center = np.array([length, 0.0])
-    toward_planet = np.arctan2(*(planet_center - shaft)[::-1])
-    drawn = ((train.stage_one.points[0], np.zeros(2), shaft_angle, "sun"),
-             (train.stage_one.points[1], shaft, shaft_angle, "first intermediate"),
-             (train.stage_two.points[0], shaft, toward_planet, "second intermediate"),
-             (train.stage_two.points[1], planet_center, toward_planet, "planet"))
-    for points, center, angle, label in drawn:
-        right.plot(*(rotate_about(points, (0.0, 0.0), angle) + center).T, label=label)
-        right.plot(*center, "k+")
-    right.plot([0, shaft[0], length], [0, shaft[1], 0], "k:", lw=0.8)
-    right.set_aspect("equal")
+    draw_four_gear_train(right, train, result.design.mech.carrier_length)
     right.set_title("pitch curves on the carrier (O left, A right) at pose 1", fontsize=9)
-    right.legend(fontsize=7)
     fig.savefig(path, dpi=120, bbox_inches="tight")
     plt.close(fig)
 

@@ -36,7 +36,7 @@ def conjugate_curve(driver: PitchCurve, center_distance: float) -> PitchCurve:
     return PitchCurve("conjugate", {"center_distance": a}, 1, evaluate, (), tuple(turn(np.asarray(driver.breaks))))
 
 
-def _arc(curve: PitchCurve) -> TurnMap:
+def arc_map(curve: PitchCurve) -> TurnMap:
     return TurnMap(lambda phi: np.hypot(*curve.evaluate(phi)[:2]), curve.breaks)
 
 
@@ -52,7 +52,7 @@ def roll_train(train: PlanetaryTrain, carrier_turns: np.ndarray) -> Rolling:
     sun, second = train.sun, train.second_intermediate
     first, planet = conjugate_curve(sun, a1), conjugate_curve(second, a2)
     c = np.mod(carrier_turns, 2 * np.pi)
-    psi = _arc(first).inverse(_arc(sun)(c))
-    chi = _arc(planet).inverse(_arc(second)(psi))
+    psi = arc_map(first).inverse(arc_map(sun)(c))
+    chi = arc_map(planet).inverse(arc_map(second)(psi))
     gaps = (sun.evaluate(c)[0] + first.evaluate(psi)[0] - a1, second.evaluate(psi)[0] + planet.evaluate(chi)[0] - a2)
     return Rolling(c, chi, gaps)
