@@ -61,20 +61,19 @@ class ClosedTrajectory:
             slope = np.polynomial.polynomial.polyder(square)
             bend = np.polynomial.polynomial.polyder(slope)
             for root in np.polynomial.polynomial.polyroots(slope):
-                if abs(root.imag) > 1e-9 or not 0 <= root.real < 1:
+                if abs(root.imag) > 1e-9 or not -1e-9 <= root.real <= 1 + 1e-9:   # a root at a joint may fall either side
                     continue
                 t = root.real
                 curvature = np.polynomial.polynomial.polyval(t, bend)
                 if curvature == 0:
                     continue
                 radius = float(np.sqrt(np.polynomial.polynomial.polyval(t, square)))
-                extremes.append(RadialExtreme(TWO_PI * (k + t) / self.count, radius,
+                extremes.append(RadialExtreme(float(np.mod(TWO_PI * (k + t) / self.count, TWO_PI)), radius,
                                               "farthest" if curvature < 0 else "nearest"))
         extremes.sort(key=lambda e: e.parameter)
-        # a root at a segment's end is found by both segments that meet there: keep one
-        return [e for k, e in enumerate(extremes)
-                if k == 0 and abs(e.parameter - extremes[-1].parameter + TWO_PI) > 1e-9 * TWO_PI
-                or k > 0 and e.parameter - extremes[k - 1].parameter > 1e-9 * TWO_PI]
+        # a root at a joint is found by both segments that meet there: keep one
+        gaps = np.diff([e.parameter for e in extremes] + [extremes[0].parameter + TWO_PI]) if extremes else []
+        return [e for e, gap in zip(extremes, gaps) if gap > 1e-8]
 
     def turning_speed_floor(self, samples_per_segment: int = 64) -> tuple[float, float]:
         """(smallest |P'|, where): zero means the curve stops (a cusp of the control polygon)."""
