@@ -76,11 +76,27 @@ class ArmMotion:
         reference = np.interp(np.mod(x, TWO_PI), np.r_[self.grid, TWO_PI], table)
         return raw + TWO_PI * np.round((reference - raw) / TWO_PI)
 
-    def angles(self, x) -> tuple[np.ndarray, np.ndarray]:
-        """Continuous theta(x) and gamma(x) over one cycle (x in [0, 2 pi])."""
+    def _continuous(self, x):
         theta, psi = self.raw_angles(x)
         theta = self._unwrapped(x, theta, self.theta_grid)
         return theta, self._unwrapped(x, psi - theta, self.gamma_grid)
+
+    def angles(self, x) -> tuple[np.ndarray, np.ndarray]:
+        """Continuous theta(x) and gamma(x) over one cycle (x in [0, 2 pi]). At a touch the elbow
+        angle is the square root of a rounding error (~1e-8 rad), so within TOUCH_LIMIT of one
+        the angles are interpolated between the two sides (error O(TOUCH_LIMIT^2))."""
+        x = np.asarray(x, float)
+        theta, gamma = self._continuous(x)
+        for touch in self.touches:
+            offset = np.mod(x - touch.parameter + np.pi, TWO_PI) - np.pi
+            near = np.abs(offset) < TOUCH_LIMIT
+            if near.any():
+                sides = self._continuous(np.mod(touch.parameter + np.array([-TOUCH_LIMIT, TOUCH_LIMIT]), TWO_PI))
+                weight = (offset[near] + TOUCH_LIMIT) / (2 * TOUCH_LIMIT)
+                for values, (before, after), table in zip((theta, gamma), sides, (self.theta_grid, self.gamma_grid)):
+                    after = before + np.angle(np.exp(1j * (after - before)))
+                    values[near] = self._unwrapped(x[near], before + weight * (after - before), table)
+        return theta, gamma
 
     def carrier_turn_at(self, x) -> np.ndarray:
         return self.direction * (self.angles(x)[0] - self.theta_grid[0])
@@ -105,9 +121,10 @@ class ArmMotion:
         return carrier, planet
 
     def _rates(self, x):
-        theta, psi = self.raw_angles(x)
+        theta, psi = self.raw_angles(x)      # exactly at a touch the closed form divides 0 by 0
         path = np.concatenate([np.moveaxis(self.trajectory.evaluate(x, k), -1, 0) for k in (1, 2, 3)])
-        rates = _rates(np.array([theta, psi]), self.lengths[:, None], path)[0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rates = _rates(np.array([theta, psi]), self.lengths[:, None], path)[0]
         theta_k, psi_k = rates[0::2], rates[1::2]
         return self.direction * theta_k, -self.direction * (psi_k - theta_k)
 
@@ -156,12 +173,8 @@ def solve_arm(trajectory: ClosedTrajectory, carrier_length: float, arm_length: f
     theta, psi = motion.raw_angles(np.r_[grid, 0.0])
     theta = np.unwrap(theta)
     gamma = np.unwrap(psi - theta)
-    if any(min(t.parameter, TWO_PI - t.parameter) < TOUCH_LIMIT for t in touches):
-        # At a touch the elbow angle is the square root of a rounding error (~1e-8 rad): the start
-        # angles, the references of c and chi, are the mean of the two sides instead.
-        side_theta, side_psi = motion.raw_angles(np.array([TWO_PI - TOUCH_LIMIT, TOUCH_LIMIT]))
-        side_theta = theta[0] + np.angle(np.exp(1j * (side_theta - theta[0])))
-        side_gamma = gamma[0] + np.angle(np.exp(1j * (side_psi - side_theta - gamma[0])))
-        theta[[0, -1]] += side_theta.mean() - theta[0]
-        gamma[[0, -1]] += side_gamma.mean() - gamma[0]
+    motion = ArmMotion(trajectory, carrier_length, arm_length, direction, start_branch, touches, grid, theta, gamma)
+    start = motion.angles(np.zeros(1))          # the references of c and chi, safe at a touch
+    theta[[0, -1]] += start[0][0] - theta[0]
+    gamma[[0, -1]] += start[1][0] - gamma[0]
     return ArmMotion(trajectory, carrier_length, arm_length, direction, start_branch, touches, grid, theta, gamma)

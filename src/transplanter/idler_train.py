@@ -88,25 +88,34 @@ def _turned(curve: PitchCurve, angle: float) -> PitchCurve:
                                breaks=tuple(np.mod(np.asarray(curve.breaks) - angle, TWO_PI)))
 
 
-def design_idler_train(relative: RelativeMotion, center_distance: float, source: str = "<train>") -> IdlerTrain:
-    c, r1, iterations, converged, residual, x = seed_iteration(relative, center_distance)
-    sun = spline(c, r1)
+def build_idler_train(sun: PitchCurve, source: str = "<train>") -> tuple[GearPairDesign, PitchCurve]:
+    """The sun-idler pair at its closing center distance, and the planet as the conjugate of the
+    idler's far side (same center distance, so the planet closes too)."""
     stage_one = design_pair(sun, 1, None, source=source)
     idler = conjugate_curve(sun, stage_one.center_distance)
-    planet = conjugate_curve(_turned(idler, np.pi), stage_one.center_distance)
+    return stage_one, conjugate_curve(_turned(idler, np.pi), stage_one.center_distance)
+
+
+def design_idler_train(relative: RelativeMotion, center_distance: float, source: str = "<train>") -> IdlerTrain:
+    c, r1, iterations, converged, residual, x = seed_iteration(relative, center_distance)
+    stage_one, planet = build_idler_train(spline(c, r1), source)
     return IdlerTrain(stage_one, planet, iterations, converged, residual, float(x))
 
 
-def verify_idler_train(motion: ArmMotion, train: IdlerTrain) -> ReverseVerification:
-    """Roll sun -> idler -> planet by equal arc lengths and rebuild the tip."""
-    a = train.center_distance
-    sun = train.stage_one.driver
+def roll_idler_train(stage_one: GearPairDesign, planet: PitchCurve, carrier_turns: np.ndarray):
+    """(chi, contact gaps): sun -> idler -> planet rolled by equal arc lengths from the curves alone."""
+    a, sun = stage_one.center_distance, stage_one.driver
     idler = conjugate_curve(sun, a)
-    seen_from_planet = _turned(idler, np.pi)
+    far_side = _turned(idler, np.pi)
+    psi = arc_map(idler).inverse(arc_map(sun)(carrier_turns))
+    chi = arc_map(planet).inverse(arc_map(far_side)(psi))
+    gaps = (sun.evaluate(carrier_turns)[0] + idler.evaluate(psi)[0] - a,
+            far_side.evaluate(psi)[0] + planet.evaluate(chi)[0] - a)
+    return chi, gaps
+
+
+def verify_idler_train(motion: ArmMotion, train: IdlerTrain) -> ReverseVerification:
     c = np.linspace(0, TWO_PI, CHECK_POINTS, endpoint=False)
-    psi = arc_map(idler).inverse(arc_map(sun)(c))
-    chi = arc_map(train.planet).inverse(arc_map(seen_from_planet)(psi))
-    gaps = (sun.evaluate(c)[0] + idler.evaluate(psi)[0] - a,
-            seen_from_planet.evaluate(psi)[0] + train.planet.evaluate(chi)[0] - a)
+    chi, gaps = roll_idler_train(train.stage_one, train.planet, c)
     target = motion.trajectory.evaluate(motion.parameter_at(c))
     return ReverseVerification(c, target, rebuild_tip(motion, None, c, chi), gaps)

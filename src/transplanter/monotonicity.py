@@ -98,4 +98,8 @@ def fix_hints(trajectory: ClosedTrajectory, motion: ArmMotion, derived_lengths: 
         hints.append("the distance from the pivot is stationary away from the reach circles at "
                      + "; ".join(stationary) + ": the gears stop there whatever the train; reshape the path so "
                      "|P| rises monotonically from its nearest to its farthest point and back, or move the pivot")
+    if not hints:
+        hints.append("none of: the other start branch, the other direction, the lengths from the path's extremes; "
+                     "the path itself must change where it fails (the carrier can only advance, the gears only "
+                     "one way)")
     return hints

@@ -77,14 +77,14 @@ def _trajectory_points(read: FieldReader, table: dict) -> tuple[np.ndarray, str]
         k = int(np.argmin(gaps[:-1]))
         read.fail(f"trajectory.points[{k + 1}]", points[k + 1].tolist(),
                   f"a point distinct from points[{k}] (a repeated point makes the curve stop there)")
+    spread = np.linalg.svd(points - points.mean(axis=0), compute_uv=False)
+    if spread[1] <= 1e-9 * spread[0]:
+        read.fail("trajectory.points", f"{len(points)} points", "points that enclose an area (these lie on one line)")
     if gaps[-1] > OPEN_GAP_FACTOR * gaps[:-1].max():
         read.fail("trajectory.points", f"{len(points)} points from {points[0].tolist()} to {points[-1].tolist()}",
                   f"a closed curve: the way back from the last point to the first is {gaps[-1]:.1f} mm, "
                   f"{gaps[-1] / gaps[:-1].max():.1f} times the longest step between the others (the curve looks "
                   "open; add the points of the return stroke)")
-    spread = np.linalg.svd(points - points.mean(axis=0), compute_uv=False)
-    if spread[1] <= 1e-9 * spread[0]:
-        read.fail("trajectory.points", f"{len(points)} points", "points that enclose an area (these lie on one line)")
     return points, kind
 
 
