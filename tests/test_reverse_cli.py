@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from transplanter.cli import main
+from transplanter.errors import TransplanterWarning
 
 ROOT = Path(__file__).resolve().parents[1]
 RICE = (ROOT / "examples" / "rice_hoe_reverse.toml").read_text()
@@ -97,3 +98,14 @@ def test_center_distances_that_cannot_place_the_planet(tmp_path, capsys):
     text = RICE.replace('split = "sqrt"', 'split = "sqrt"\ncenter_distances = [40.0, 40.0]')
     assert _run(tmp_path, text) == 2
     assert "adding up to the carrier length 92.3" in capsys.readouterr().err
+
+
+def test_idler_train_report_says_how_far_it_misses(tmp_path, capsys):
+    text = RICE.replace('topology = "sun-intermediate-planet"', 'topology = "sun-idler-planet"').replace(
+        'split = "sqrt"', 'split = "identical_sun_planet"')
+    with pytest.warns(TransplanterWarning, match="misses the path by up to"):
+        assert _run(tmp_path, text, "--json") == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report["idler_iteration"]["settled"] is False
+    assert report["roundtrip_max_error_mm"] > 1.0
+    assert len(report["gear_closure_errors"]) == 1 and abs(report["gear_closure_errors"][0]) < 1e-9

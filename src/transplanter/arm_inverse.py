@@ -63,7 +63,8 @@ class ArmMotion:
         return np.array([self.carrier_length, self.arm_length])
 
     def branch(self, x) -> np.ndarray:
-        switches = np.array([t.parameter for t in self.touches])
+        # a touch at the very start counts as the end of the cycle, so start_branch holds from x = 0
+        switches = np.array([t.parameter if t.parameter > 1e-9 else TWO_PI for t in self.touches])
         passed = np.sum(np.mod(np.asarray(x, float), TWO_PI)[..., None] > switches, axis=-1)
         return self.start_branch * (-1.0) ** passed
 

@@ -79,7 +79,7 @@ def seed_iteration(relative: RelativeMotion, center_distance: float):
         if settled or stalled >= STALL:
             break
     residual, i12, x = best
-    return c, L / (1 + i12), iteration, settled, residual, x
+    return c, L / (1 + i12), iteration, bool(settled), residual, x
 
 
 def _turned(curve: PitchCurve, angle: float) -> PitchCurve:

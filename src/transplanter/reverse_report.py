@@ -67,7 +67,7 @@ def to_json(result: ReverseResult) -> dict:
     })
     train = result.train
     if isinstance(train, IdlerTrain):
-        report["idler_iteration"] = {"iterations": train.iterations, "settled": train.converged,
+        report["idler_iteration"] = {"iterations": train.iterations, "settled": bool(train.converged),
                                      "eq5_model_residual": train.model_residual, "correction_x": train.correction,
                                      "center_distance_mm": train.center_distance}
     else:

@@ -7,6 +7,7 @@ the monotonicity criterion comes back with its violations and fix hints and no t
 """
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -14,7 +15,7 @@ import numpy as np
 from transplanter.arm_inverse import TOUCH_TOLERANCE_MM, ArmMotion, solve_arm
 from transplanter.carrier_frame_motion import CarrierFrameMotion
 from transplanter.closed_trajectory import TWO_PI, ClosedTrajectory, interpolating_polygon
-from transplanter.errors import InfeasibleError, ProblemError
+from transplanter.errors import InfeasibleError, ProblemError, TransplanterWarning
 from transplanter.generated import numpy_twin
 from transplanter.idler_train import IdlerTrain, design_idler_train, verify_idler_train
 from transplanter.monotonicity import Violation, fix_hints, violations
@@ -23,6 +24,8 @@ from transplanter.reverse_problem import ReverseProblem
 from transplanter.reverse_verification import CarrierGeometry, ReverseVerification, verify_reverse
 
 _arm_lengths = numpy_twin("planetary", "arm_lengths_from_extremes")
+#: A train whose rolled tip strays further than this from the path is reported with a warning (mm).
+ROUNDTRIP_TOLERANCE_MM = 1e-6
 
 
 @dataclass(frozen=True)
@@ -128,10 +131,19 @@ def reverse_design(problem: ReverseProblem) -> ReverseResult:
     relative = CarrierFrameMotion(motion)
     if problem.topology == "sun-idler-planet":
         train = design_idler_train(relative, s / 2, problem.source)
-        return ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, None, train,
-                             verify_idler_train(motion, train))
+        return _warn_on_miss(ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, None,
+                                           train, verify_idler_train(motion, train)))
     centers = (geometry.first, geometry.second) if geometry else (problem.center_distances or (s / 2, s / 2))
     exponent = problem.peak_to_valley if problem.split == "peak_to_valley" else 0.5
     train = design_train(relative, centers, problem.source, exponent)
-    return ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, geometry, train,
-                         verify_reverse(motion, train, geometry))
+    return _warn_on_miss(ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, geometry,
+                                       train, verify_reverse(motion, train, geometry)))
+
+
+def _warn_on_miss(result: ReverseResult) -> ReverseResult:
+    miss = result.verification.max_error_mm
+    if miss > ROUNDTRIP_TOLERANCE_MM:
+        warnings.warn(f"{result.problem.source}: the {result.problem.topology} train, rolled from its pitch curves, "
+                      f"misses the path by up to {miss:.4g} mm (more than {ROUNDTRIP_TOLERANCE_MM:g} mm)",
+                      TransplanterWarning, stacklevel=2)
+    return result
