@@ -20,9 +20,6 @@ its time, and how far its round trip stays from the path, against the package's.
 """
 from __future__ import annotations
 
-import subprocess
-import sys
-import tempfile
 import time
 from pathlib import Path
 
@@ -30,6 +27,7 @@ import numpy as np
 from scipy.integrate import cumulative_trapezoid, simpson
 from scipy.interpolate import BSpline
 
+from fresh_process import cli_seconds  # bench/ is the script's own folder
 from transplanter.reverse_problem import load_reverse_problem
 from transplanter.reverse_synthesis import reverse_design
 
@@ -95,12 +93,7 @@ def main():
               f"trip {miss:.2e} mm ({miss / result.verification.max_error_mm:.0e}x the package's), stage 1 closure "
               f"{closure:.1e} rad")
 
-    with tempfile.TemporaryDirectory() as out:
-        start = time.perf_counter()
-        subprocess.run([sys.executable, "-m", "transplanter", "reverse", str(EXAMPLE), "--out", out],
-                       check=True, stdout=subprocess.DEVNULL)
-        print(f"CLI in a fresh process, with report and figures: {time.perf_counter() - start:.2f} s")
-
+    print(f"CLI in a fresh process, with report and figures: {cli_seconds('reverse', str(EXAMPLE)):.2f} s")
 
 if __name__ == "__main__":
     main()

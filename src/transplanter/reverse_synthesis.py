@@ -93,7 +93,8 @@ def choose_motion(trajectory: ClosedTrajectory, s: float, l: float, direction: i
     """The start branch asked for, or (auto) the one that passes with the smaller ratio spread."""
     starts = {"approach": (1,), "retraction": (-1,), "auto": (1, -1)}[branch]
     motions = [solve_arm(trajectory, s, l, direction, b) for b in starts]
-    judged = [(len(violations(m)), _ratio_spread(m) if not violations(m) else np.inf, k) for k, m in enumerate(motions)]
+    counts = [len(violations(m)) for m in motions]
+    judged = [(count, np.inf if count else _ratio_spread(m), k) for k, (m, count) in enumerate(zip(motions, counts))]
     return motions[min(judged)[2]]
 
 
