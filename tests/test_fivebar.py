@@ -7,7 +7,6 @@ alone would be harmless); C1 = C. With the printed A1 the quadratic's roots miss
 five-bar that closes, and its discriminant misjudges which crank positions can close.
 """
 import numpy as np
-import pytest
 import sympy as sp
 
 from derivations import fivebar

@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from transplanter.dyad import Link
-from transplanter.errors import ProblemError, TransplanterWarning
+from transplanter.errors import TransplanterWarning
 from transplanter.toml_fields import FieldReader, read_toml
 from transplanter.synthesis import DyadProblem
 
