@@ -96,10 +96,10 @@ def rice():
 def test_rice_example_reproduces_its_path_by_rolling(rice):
     assert rice.monotonic
     assert (rice.motion.carrier_length, rice.motion.arm_length) == pytest.approx((92.3, 162.0), abs=1e-9)
-    assert [t.circle for t in rice.motion.touches] == ["inner", "outer"]
+    assert [(t.circle, t.parameter) for t in rice.motion.touches] == [("outer", pytest.approx(np.pi)), ("inner", TWO_PI)]
     assert rice.verification.max_error_mm < 1e-6
     assert max(abs(rice.train.stage_one.closure_error), abs(rice.train.stage_two.closure_error)) < 1e-9
-    _, ratio = rice.total_ratio()
+    ratio = rice.motion.total_ratio()
     first, second = rice.train.stage_ratios(rice.verification.carrier_turns)
     assert first * second == pytest.approx(1 / rice.relative.evaluate(rice.verification.carrier_turns, 1), rel=1e-12)
     assert ratio.min() > 0

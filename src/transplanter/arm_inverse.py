@@ -63,8 +63,7 @@ class ArmMotion:
         return np.array([self.carrier_length, self.arm_length])
 
     def branch(self, x) -> np.ndarray:
-        # a touch at the very start counts as the end of the cycle, so start_branch holds from x = 0
-        switches = np.array([t.parameter if t.parameter > 1e-9 else TWO_PI for t in self.touches])
+        switches = np.array([t.parameter for t in self.touches])
         passed = np.sum(np.mod(np.asarray(x, float), TWO_PI)[..., None] > switches, axis=-1)
         return self.start_branch * (-1.0) ** passed
 
@@ -88,16 +87,21 @@ class ArmMotion:
         the angles are interpolated between the two sides (error O(TOUCH_LIMIT^2))."""
         x = np.asarray(x, float)
         theta, gamma = self._continuous(x)
+        for touch, offset, near in self._near_touches(x):
+            sides = self._continuous(np.mod(touch.parameter + np.array([-TOUCH_LIMIT, TOUCH_LIMIT]), TWO_PI))
+            weight = (offset[near] + TOUCH_LIMIT) / (2 * TOUCH_LIMIT)
+            for values, (before, after), table in zip((theta, gamma), sides, (self.theta_grid, self.gamma_grid)):
+                after = before + np.angle(np.exp(1j * (after - before)))
+                values[near] = self._unwrapped(x[near], before + weight * (after - before), table)
+        return theta, gamma
+
+    def _near_touches(self, x):
+        """(touch, signed offset of x from it, mask of x within TOUCH_LIMIT) for each touch some x is near."""
         for touch in self.touches:
             offset = np.mod(x - touch.parameter + np.pi, TWO_PI) - np.pi
             near = np.abs(offset) < TOUCH_LIMIT
             if near.any():
-                sides = self._continuous(np.mod(touch.parameter + np.array([-TOUCH_LIMIT, TOUCH_LIMIT]), TWO_PI))
-                weight = (offset[near] + TOUCH_LIMIT) / (2 * TOUCH_LIMIT)
-                for values, (before, after), table in zip((theta, gamma), sides, (self.theta_grid, self.gamma_grid)):
-                    after = before + np.angle(np.exp(1j * (after - before)))
-                    values[near] = self._unwrapped(x[near], before + weight * (after - before), table)
-        return theta, gamma
+                yield touch, offset, near
 
     def carrier_turn_at(self, x) -> np.ndarray:
         return self.direction * (self.angles(x)[0] - self.theta_grid[0])
@@ -112,14 +116,16 @@ class ArmMotion:
         0 / 0: within TOUCH_LIMIT of one, the mean of the values TOUCH_LIMIT either side (error O(h^2))."""
         x = np.mod(np.asarray(x, float), TWO_PI)
         carrier, planet = self._rates(x)
-        for touch in self.touches:
-            offset = np.mod(x - touch.parameter + np.pi, TWO_PI) - np.pi
-            near = np.abs(offset) < TOUCH_LIMIT
-            if near.any():
-                sides = [self._rates(np.array([touch.parameter + h])) for h in (-TOUCH_LIMIT, TOUCH_LIMIT)]
-                carrier[:, near] = (sides[0][0] + sides[1][0]) / 2
-                planet[:, near] = (sides[0][1] + sides[1][1]) / 2
+        for touch, _, near in self._near_touches(x):
+            sides = [self._rates(np.array([touch.parameter + h])) for h in (-TOUCH_LIMIT, TOUCH_LIMIT)]
+            carrier[:, near] = (sides[0][0] + sides[1][0]) / 2
+            planet[:, near] = (sides[0][1] + sides[1][1]) / 2
         return carrier, planet
+
+    def total_ratio(self) -> np.ndarray:
+        """i0 = 1 / chi'(c), sun to planet in the carrier frame, on the reference grid."""
+        (c1, _, _), (h1, _, _) = self.path_rates(self.grid)
+        return c1 / h1
 
     def _rates(self, x):
         theta, psi = self.raw_angles(x)      # exactly at a touch the closed form divides 0 by 0
@@ -160,8 +166,10 @@ def find_touches(trajectory: ClosedTrajectory, carrier_length: float, arm_length
     for extreme in trajectory.radial_extremes():
         bound, circle = (outer, "outer") if extreme.kind == "farthest" else (inner, "inner")
         if abs(bound - extreme.radius) <= TOUCH_TOLERANCE_MM:
-            touches.append(Touch(extreme.parameter, circle, bound - extreme.radius))
-    return tuple(touches)
+            # a touch at the very start is put at the end of the cycle: the start branch holds from x = 0
+            parameter = extreme.parameter if extreme.parameter > 1e-9 else TWO_PI
+            touches.append(Touch(parameter, circle, bound - extreme.radius))
+    return tuple(sorted(touches, key=lambda touch: touch.parameter))
 
 
 def solve_arm(trajectory: ClosedTrajectory, carrier_length: float, arm_length: float, direction: int,
@@ -176,6 +184,5 @@ def solve_arm(trajectory: ClosedTrajectory, carrier_length: float, arm_length: f
     gamma = np.unwrap(psi - theta)
     motion = ArmMotion(trajectory, carrier_length, arm_length, direction, start_branch, touches, grid, theta, gamma)
     start = motion.angles(np.zeros(1))          # the references of c and chi, safe at a touch
-    theta[[0, -1]] += start[0][0] - theta[0]
-    gamma[[0, -1]] += start[1][0] - gamma[0]
+    theta, gamma = (np.r_[s[0], v[1:-1], v[-1] + s[0] - v[0]] for s, v in zip(start, (theta, gamma)))
     return ArmMotion(trajectory, carrier_length, arm_length, direction, start_branch, touches, grid, theta, gamma)

@@ -57,7 +57,7 @@ def to_json(result: ReverseResult) -> dict:
     }
     if not result.monotonic:
         return report
-    _, ratio = result.total_ratio()
+    ratio = result.motion.total_ratio()
     gears, closure = _gears(result)
     report.update({
         "ratio_range": [float(ratio.min()), float(ratio.max())],

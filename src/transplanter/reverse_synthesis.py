@@ -46,12 +46,6 @@ class ReverseResult:
     def monotonic(self) -> bool:
         return not self.violations
 
-    def total_ratio(self) -> tuple[np.ndarray, np.ndarray]:
-        """(x, i0 = 1 / chi'(c)) on the check grid."""
-        x = self.motion.grid
-        (c1, _, _), (h1, _, _) = self.motion.path_rates(x)
-        return x, c1 / h1
-
 
 def build_trajectory(problem: ReverseProblem) -> ClosedTrajectory:
     control = problem.points if problem.kind == "control_points" else interpolating_polygon(problem.points)
@@ -84,8 +78,7 @@ def _unreachable(problem: ReverseProblem, trajectory: ClosedTrajectory, s: float
 
 
 def _ratio_spread(motion: ArmMotion) -> float:
-    (c1, _, _), (h1, _, _) = motion.path_rates(motion.grid)
-    ratio = c1 / h1
+    ratio = motion.total_ratio()
     return float(ratio.max() / ratio.min())
 
 
