@@ -137,7 +137,7 @@ def test_idler_rolling_against_the_pitch_point_speeds():
     the sun angle whose contact point the idler carries round to the planet, half an idler turn
     later: psi(c*) = psi(c) + pi with psi' = r1 / (L - r1). Integrated on a fine grid, this must
     match the arc-length rolling."""
-    stage_one, planet = build_idler_train(ellipse(20.0, 0.25))
+    stage_one, stage_two, planet = build_idler_train(ellipse(20.0, 0.25))
     L = stage_one.center_distance
     c = np.linspace(0, TWO_PI, 200001)
     r1 = stage_one.driver.evaluate(c)[0]
@@ -151,6 +151,14 @@ def test_idler_rolling_against_the_pitch_point_speeds():
     assert rolled == pytest.approx(np.interp(check, c, chi), abs=1e-6)
     assert max(np.abs(g).max() for g in gaps) < 1e-9
     assert np.ptp(rate) > 0.05          # the planet really runs unevenly, so the check has teeth
+
+    # the README's claim on this train: it can only produce ratios with i13(c) i13(c*) = 1
+    h, where = 1e-4, np.linspace(0.3, 6.0, 9)
+    def rolled_rate(at):
+        return (roll_idler_train(stage_one, planet, at + h)[0] - roll_idler_train(stage_one, planet, at - h)[0]) / (2 * h)
+    star = np.interp(np.mod(np.interp(where, c, psi) + np.pi, TWO_PI), psi, c)
+    assert rolled_rate(where) * rolled_rate(star) == pytest.approx(1, abs=1e-6)
+    assert max(abs(stage_one.closure_error), abs(stage_two.closure_error)) < 1e-9
 
 
 def test_self_crossing_path_is_accepted():

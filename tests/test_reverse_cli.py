@@ -98,6 +98,10 @@ def test_center_distances_that_cannot_place_the_planet(tmp_path, capsys):
     text = RICE.replace('split = "sqrt"', 'split = "sqrt"\ncenter_distances = [40.0, 40.0]')
     assert _run(tmp_path, text) == 2
     assert "adding up to the carrier length 92.3" in capsys.readouterr().err
+    text = RICE.replace('topology = "sun-intermediate-planet"', 'topology = "sun-idler-planet"').replace(
+        'split = "sqrt"', 'split = "identical_sun_planet"\ncenter_distances = [40.0, 52.3]')
+    assert _run(tmp_path, text) == 2
+    assert "expected two equal distances for sun-idler-planet" in capsys.readouterr().err
 
 
 def test_idler_train_report_says_how_far_it_misses(tmp_path, capsys):
@@ -108,4 +112,6 @@ def test_idler_train_report_says_how_far_it_misses(tmp_path, capsys):
     report = json.loads(capsys.readouterr().out)
     assert report["idler_iteration"]["settled"] is False
     assert report["roundtrip_max_error_mm"] > 1.0
-    assert len(report["gear_closure_errors"]) == 1 and abs(report["gear_closure_errors"][0]) < 1e-9
+    assert len(report["gear_closure_errors"]) == 2 and max(map(abs, report["gear_closure_errors"])) < 1e-9
+    sun, idler, planet = report["gears"]
+    assert planet["radius_range_mm"] == pytest.approx(sun["radius_range_mm"], abs=1e-6)   # conjugates of one idler

@@ -41,7 +41,8 @@ GRID, ITERATIONS, TOLERANCE, STALL = 1440, 500, 1e-12, 20
 @dataclass(frozen=True)
 class IdlerTrain:
     stage_one: GearPairDesign          # sun -> idler
-    planet: PitchCurve                 # conjugate of the idler from the planet's side
+    stage_two: GearPairDesign          # the idler's far side -> planet, same center distance
+    planet: PitchCurve                 # conjugate of the idler's far side, in the planet's own angle
     iterations: int
     converged: bool
     model_residual: float              # max |i13 - i12 i23| under eq (8)'s model, relative
@@ -88,18 +89,18 @@ def _turned(curve: PitchCurve, angle: float) -> PitchCurve:
                                breaks=tuple(np.mod(np.asarray(curve.breaks) - angle, TWO_PI)))
 
 
-def build_idler_train(sun: PitchCurve, source: str = "<train>") -> tuple[GearPairDesign, PitchCurve]:
-    """The sun-idler pair at its closing center distance, and the planet as the conjugate of the
-    idler's far side (same center distance, so the planet closes too)."""
+def build_idler_train(sun: PitchCurve, source: str = "<train>") -> tuple[GearPairDesign, GearPairDesign, PitchCurve]:
+    """The sun-idler pair at its closing center distance; the pair of the idler's far side and the
+    planet at the same distance (checked to close by the gear-pair library); the planet curve."""
     stage_one = design_pair(sun, 1, None, source=source)
-    idler = conjugate_curve(sun, stage_one.center_distance)
-    return stage_one, conjugate_curve(_turned(idler, np.pi), stage_one.center_distance)
+    far_side = _turned(conjugate_curve(sun, stage_one.center_distance), np.pi)
+    stage_two = design_pair(far_side, 1, stage_one.center_distance, source=source)
+    return stage_one, stage_two, conjugate_curve(far_side, stage_one.center_distance)
 
 
 def design_idler_train(relative: RelativeMotion, center_distance: float, source: str = "<train>") -> IdlerTrain:
     c, r1, iterations, converged, residual, x = seed_iteration(relative, center_distance)
-    stage_one, planet = build_idler_train(spline(c, r1), source)
-    return IdlerTrain(stage_one, planet, iterations, converged, residual, float(x))
+    return IdlerTrain(*build_idler_train(spline(c, r1), source), iterations, converged, residual, float(x))
 
 
 def roll_idler_train(stage_one: GearPairDesign, planet: PitchCurve, carrier_turns: np.ndarray):

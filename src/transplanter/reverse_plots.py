@@ -83,9 +83,7 @@ def plot_gears(result: ReverseResult, path: str):
         driver, idler = train.stage_one.points
         ax.plot(*driver.T, label="sun")
         ax.plot(*(idler + [a, 0]).T, label="idler")
-        phi = np.linspace(0, TWO_PI, 721)
-        planet = train.planet.evaluate(phi)[0][:, None] * np.c_[-np.cos(phi), np.sin(phi)]
-        ax.plot(*(planet + [2 * a, 0]).T, label="planet (conjugate of the idler's far side)")
+        ax.plot(*(train.stage_two.points[1] + [2 * a, 0]).T, label="planet (conjugate of the idler's far side)")
         for center in (0, a, 2 * a):
             ax.plot(center, 0, "k+")
         ax.set_aspect("equal")

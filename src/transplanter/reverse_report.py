@@ -18,13 +18,12 @@ def _gear(name: str, radius: np.ndarray, convexity: np.ndarray, perimeter: float
 
 def _gears(result: ReverseResult) -> tuple[list[dict], list[float]]:
     train, module = result.train, result.problem.module
-    one = train.stage_one
+    one, two = train.stage_one, train.stage_two
     gears = [_gear("sun", one.radius[0], one.convexity[0], one.perimeters[0], module)]
     if isinstance(train, IdlerTrain):
         gears += [_gear("idler", one.radius[1], one.convexity[1], one.perimeters[1], module),
-                  _gear("planet", one.radius[0], one.convexity[0], one.perimeters[0], module)]
-        return gears, [one.closure_error]
-    two = train.stage_two
+                  _gear("planet", two.radius[1], two.convexity[1], two.perimeters[1], module)]
+        return gears, [one.closure_error, two.closure_error]
     gears += [_gear("first intermediate", one.radius[1], one.convexity[1], one.perimeters[1], module),
               _gear("second intermediate", two.radius[0], two.convexity[0], two.perimeters[0], module),
               _gear("planet", two.radius[1], two.convexity[1], two.perimeters[1], module)]

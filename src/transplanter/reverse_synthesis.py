@@ -99,6 +99,10 @@ def carrier_geometry(problem: ReverseProblem, s: float) -> CarrierGeometry | Non
             raise ProblemError(f"{problem.source}: train.center_distances = {list(centers)}: expected two distances "
                                f"adding up to the carrier length {s:.6g} mm on a straight carrier (or topology "
                                "\"pick-up\" for a bent one)")
+        if problem.topology == "sun-idler-planet" and centers is not None and abs(centers[0] - centers[1]) > 1e-9 * s:
+            raise ProblemError(f"{problem.source}: train.center_distances = {list(centers)}: expected two equal "
+                               "distances for sun-idler-planet (seed 002: the idler then makes the sun and the planet "
+                               "the same curve)")
         return None
     first, second = centers if centers is not None else (s / 2, s / 2)
     cosine = (s**2 - first**2 - second**2) / (2 * first * second)
