@@ -10,6 +10,23 @@ from pathlib import Path
 from transplanter.errors import TransplanterError
 
 
+def _publish(args, report: dict, file_text: str, screen_text: str, written: list[str]):
+    """Write report.json and report.md (next to ``written``, already in --out) and print the
+    JSON (--json) or the screen text, the same way for every command."""
+    if args.out:
+        out = Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "report.json").write_text(json.dumps(report, indent=2) + "\n")
+        (out / "report.md").write_text(file_text)
+    if args.json:
+        json.dump(report, sys.stdout)
+        sys.stdout.write("\n")
+    else:
+        sys.stdout.write(screen_text)
+        if args.out:
+            sys.stdout.write(f"wrote {args.out}/" + ", ".join(["report.md", "report.json", *written]) + "\n")
+
+
 def _burmester(args) -> int:
     from transplanter.plots import plot_synthesis
     from transplanter.problem import load_problem
@@ -20,18 +37,9 @@ def _burmester(args) -> int:
     if args.plot:
         plot_synthesis(result, args.plot)
     if args.out:
-        out = Path(args.out)
-        out.mkdir(parents=True, exist_ok=True)
-        plot_synthesis(result, str(out / "burmester.png"))
-        (out / "report.json").write_text(json.dumps(to_json(result), indent=2) + "\n")
-        (out / "report.md").write_text(to_markdown(result, "burmester.png"))
-    if args.json:
-        json.dump(to_json(result), sys.stdout)
-        sys.stdout.write("\n")
-    else:
-        sys.stdout.write(to_text(result))
-        if args.out:
-            sys.stdout.write(f"\nwrote {args.out}/report.md, report.json, burmester.png\n")
+        Path(args.out).mkdir(parents=True, exist_ok=True)
+        plot_synthesis(result, str(Path(args.out) / "burmester.png"))
+    _publish(args, to_json(result), to_markdown(result, "burmester.png"), to_text(result), ["burmester.png"])
     return 0
 
 
@@ -44,19 +52,12 @@ def _gear(args) -> int:
 
     result = synthesize_gear(load_gear_problem(args.file))
     report = to_json(result)
+    drawings, figures = [], []
     if args.out:
-        out = Path(args.out)
-        drawings = [p.name for p in write_drawings(result, out)]
-        figures = plot_gear_figures(result, out)
-        (out / "report.json").write_text(json.dumps(report, indent=2) + "\n")
-        (out / "report.md").write_text(to_markdown(report, figures, drawings))
-    if args.json:
-        json.dump(report, sys.stdout)
-        sys.stdout.write("\n")
-    else:
-        sys.stdout.write(to_markdown(report, [], []).replace("# ", "", 1))
-        if args.out:
-            sys.stdout.write(f"wrote {args.out}/report.md, report.json, drawings and figures\n")
+        drawings = [p.name for p in write_drawings(result, Path(args.out))]
+        figures = plot_gear_figures(result, Path(args.out))
+    _publish(args, report, to_markdown(report, figures, drawings),
+             to_markdown(report, [], []).replace("# ", "", 1), drawings + figures)
     return 0
 
 
@@ -79,18 +80,7 @@ def _fivebar(args) -> int:
         report = to_json(result)
         figures = plot_fivebar_figures(result, Path(args.out)) if args.out else []
         text = to_markdown(report, problem.labels, figures)
-    if args.out:
-        out = Path(args.out)
-        out.mkdir(parents=True, exist_ok=True)
-        (out / "report.json").write_text(json.dumps(report, indent=2) + "\n")
-        (out / "report.md").write_text(text)
-    if args.json:
-        json.dump(report, sys.stdout)
-        sys.stdout.write("\n")
-    else:
-        sys.stdout.write(text)
-        if args.out:
-            sys.stdout.write(f"wrote {args.out}/report.md, report.json" + "".join(f", {f}" for f in figures) + "\n")
+    _publish(args, report, text, text, figures)
     return 0
 
 
@@ -105,17 +95,8 @@ def _reverse(args) -> int:
     if args.out:
         from transplanter.reverse_plots import plot_reverse_figures
 
-        out = Path(args.out)
-        figures = plot_reverse_figures(result, out)
-        (out / "report.json").write_text(json.dumps(report, indent=2) + "\n")
-        (out / "report.md").write_text(to_markdown(report, figures))
-    if args.json:
-        json.dump(report, sys.stdout)
-        sys.stdout.write("\n")
-    else:
-        sys.stdout.write(to_markdown(report, []))
-        if args.out:
-            sys.stdout.write(f"wrote {args.out}/report.md, report.json" + "".join(f", {f}" for f in figures) + "\n")
+        figures = plot_reverse_figures(result, Path(args.out))
+    _publish(args, report, to_markdown(report, figures), to_markdown(report, []), figures)
     if not result.monotonic:
         print(f"transplanter: error: {result.problem.source}: the path fails the monotonicity criterion: "
               + "; ".join(v.message for v in result.violations), file=sys.stderr)
@@ -129,33 +110,31 @@ def _derive(args) -> int:
     return run_build(["--check"] if args.check else [])
 
 
+def _command(commands, name: str, run, summary: str, file_help: str, extras: str):
+    """A subcommand with the arguments every design command takes: FILE, --json, --out DIR."""
+    command = commands.add_parser(name, help=summary)
+    command.add_argument("file", help=file_help)
+    command.add_argument("--json", action="store_true", help="print the report as one JSON object")
+    command.add_argument("--out", metavar="DIR", help=f"write report.md, report.json and {extras} here")
+    command.set_defaults(run=run)
+    return command
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="transplanter", description="Synthesis of seedling transplanting mechanisms.")
     commands = parser.add_subparsers(dest="command", required=True)
-    burmester = commands.add_parser("burmester", help="RR dyads that guide a body through 3 or more poses")
-    burmester.add_argument("file", help="problem file (TOML, mm and degrees)")
-    burmester.add_argument("--json", action="store_true", help="print one JSON object instead of a table")
+    burmester = _command(commands, "burmester", _burmester, "RR dyads that guide a body through 3 or more poses",
+                         "problem file (TOML, mm and degrees)", "the figure")
     burmester.add_argument("--plot", metavar="PNG", help="write the figure to this file")
-    burmester.add_argument("--out", metavar="DIR", help="write report.md, report.json and the figure here")
-    burmester.set_defaults(run=_burmester)
-    gear = commands.add_parser("gear", help="a pair of non-circular gears: pitch curves, closure, teeth, drawings")
-    gear.add_argument("file", help="gear problem file (TOML, mm and degrees)")
-    gear.add_argument("--json", action="store_true", help="print one JSON object")
-    gear.add_argument("--out", metavar="DIR", help="write report, CSV/SVG/DXF drawings and figures here")
-    gear.set_defaults(run=_gear)
-    fivebar = commands.add_parser("fivebar", help="five-bar seedling pushing mechanism with its planetary gear train "
-                                  "(seed 000): region, precise design, gears, verification")
-    fivebar.add_argument("file", help="five-bar problem file (TOML, mm and degrees)")
-    fivebar.add_argument("--json", action="store_true", help="print the report as one JSON object")
-    fivebar.add_argument("--out", metavar="DIR", help="write report.md, report.json and the figures here")
+    _command(commands, "gear", _gear, "a pair of non-circular gears: pitch curves, closure, teeth, drawings",
+             "gear problem file (TOML, mm and degrees)", "CSV/SVG/DXF drawings and figures")
+    fivebar = _command(commands, "fivebar", _fivebar, "five-bar seedling pushing mechanism with its planetary gear "
+                       "train (seed 000): region, precise design, gears, verification",
+                       "five-bar problem file (TOML, mm and degrees)", "the figures")
     fivebar.add_argument("--design", metavar="DESIGN.toml", help="evaluate this given design instead of designing one")
-    fivebar.set_defaults(run=_fivebar)
-    reverse = commands.add_parser("reverse", help="planetary non-circular gear train that makes the arm tip follow a "
-                                  "closed path (seeds 002-004): inverse kinematics, monotonicity, gears, round trip")
-    reverse.add_argument("file", help="reverse-design problem file (TOML, mm and degrees)")
-    reverse.add_argument("--json", action="store_true", help="print the report as one JSON object")
-    reverse.add_argument("--out", metavar="DIR", help="write report.md, report.json and the figures here")
-    reverse.set_defaults(run=_reverse)
+    _command(commands, "reverse", _reverse, "planetary non-circular gear train that makes the arm tip follow a closed "
+             "path (seeds 002-004): inverse kinematics, monotonicity, gears, round trip",
+             "reverse-design problem file (TOML, mm and degrees)", "the figures")
     derive = commands.add_parser("derive", help="regenerate src/transplanter/_generated from derivations/")
     derive.add_argument("--check", action="store_true", help="exit 1 if the generated code is out of step")
     derive.set_defaults(run=_derive)
