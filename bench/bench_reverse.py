@@ -12,8 +12,8 @@ verified pitch curves of the four-gear train (square-root split with correction 
   sampled extremes, the ratio by finite differences of the sampled angles (seed 002's
   "difference method"), the split and correction factor by Simpson's rule, pitch curves
   r = a / (1 + I) on the grid, and the round trip by equal arc lengths with linear
-  interpolation. (Seed 002's point-by-point Newton with scipy's fsolve stalls where the arm
-  straightens, the Jacobian being singular there, so the closed form is used for both.)
+  interpolation. (Seed 002's point-by-point Newton has the Jacobian determinant s l sin(gamma),
+  zero where the arm straightens or folds, which these paths must do: both use the closed form.)
 
 The issue's target is under 2 s for the package. The baseline is run at three sample counts:
 its time, and how far its round trip stays from the path, against the package's.
