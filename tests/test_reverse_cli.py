@@ -62,6 +62,8 @@ BAD = {
     "open curve": (_problem(_ellipse(12)[:7]), ["trajectory.points", "closed curve", "looks open"]),
     "collinear": (_problem([[0, 0], [10, 0], [20, 0], [30, 0], [40, 0]]), ["trajectory.points", "one line"]),
     "repeated point": (_problem(np.r_[_ellipse(8)[:3], _ellipse(8)[2:]]), ["trajectory.points[3]", "distinct"]),
+    "cusp": (_problem([[0, 0], [100, 0], [150, 50], [100, 0], [100, 100], [0, 100]], kind="control_points"),
+             ["trajectory.points", "the curve stops", "u = 0.3333", "folds straight back"]),
     "too few": (_problem(_ellipse(3)), ["trajectory.points", "at least 4"]),
     "kind": (_problem(_ellipse(), kind="spline"), ["trajectory.kind", "spline", "control_points"]),
     "one length": (_problem(_ellipse(), arm="carrier_length = 50.0"), ["arm.carrier_length", "neither"]),

@@ -54,8 +54,9 @@ def build_trajectory(problem: ReverseProblem) -> ClosedTrajectory:
     scale = np.linalg.norm(np.diff(np.r_[control, control[:1]], axis=0), axis=1).mean()
     if speed < 1e-6 * scale:
         raise ProblemError(f"{problem.source}: trajectory.points: the curve stops (speed {speed:.3g} mm per unit "
-                           f"parameter) at u = {where / TWO_PI:.4f}: expected a curve that keeps moving (three "
-                           "control points in a row on one line with the middle one doubled back make a cusp)")
+                           f"parameter) at u = {where / TWO_PI:.4f}: expected a curve that keeps moving (a control "
+                           "polygon that folds straight back on itself, its neighbours of a point coinciding, makes "
+                           "a cusp)")
     return trajectory
 
 
