@@ -174,3 +174,15 @@ def test_self_crossing_path_is_accepted():
     assert np.any(np.linalg.norm(p - q, axis=1)[5:195] < 1.0)      # the two halves meet away from the ends
     assert result.monotonic
     assert result.verification.max_error_mm < 1e-6
+
+
+def test_moving_pivot_and_path_together_changes_nothing(rice):
+    """The pivot is read from [arm]: shifting it and the path by the same vector gives the same design."""
+    shift = np.array([30.0, -20.0])
+    data = {"trajectory": {"kind": "control_points", "points": (rice.problem.points + shift).tolist()},
+            "arm": {"pivot": shift.tolist(), "direction": "clockwise"}}
+    moved = reverse_design(parse_reverse_problem(data))
+    assert (moved.motion.carrier_length, moved.motion.arm_length) == pytest.approx(
+        (rice.motion.carrier_length, rice.motion.arm_length), abs=1e-9)
+    assert moved.motion.total_ratio() == pytest.approx(rice.motion.total_ratio(), rel=1e-9)
+    assert moved.verification.max_error_mm < 1e-6
