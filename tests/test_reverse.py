@@ -184,5 +184,9 @@ def test_moving_pivot_and_path_together_changes_nothing(rice):
     moved = reverse_design(parse_reverse_problem(data))
     assert (moved.motion.carrier_length, moved.motion.arm_length) == pytest.approx(
         (rice.motion.carrier_length, rice.motion.arm_length), abs=1e-9)
-    assert moved.motion.total_ratio() == pytest.approx(rice.motion.total_ratio(), rel=1e-9)
+    # at the touches the ratio is the mean of the rates 1e-5 either side, good to about 1e-6
+    away = np.all([np.abs(np.mod(rice.motion.grid - t.parameter + np.pi, TWO_PI) - np.pi) > 1e-3
+                   for t in rice.motion.touches], axis=0)
+    assert moved.motion.total_ratio()[away] == pytest.approx(rice.motion.total_ratio()[away], rel=1e-9)
+    assert moved.motion.total_ratio() == pytest.approx(rice.motion.total_ratio(), rel=1e-5)
     assert moved.verification.max_error_mm < 1e-6
