@@ -10,7 +10,7 @@ from transplanter.closed_trajectory import TWO_PI, ClosedTrajectory, interpolati
 from transplanter.errors import TransplanterWarning
 from transplanter.generated import numpy_twin
 from transplanter.idler_train import build_idler_train, roll_idler_train
-from transplanter.monotonicity import violations
+from transplanter.monotonicity import stationary_radii, violations
 from transplanter.pitch_curves import ellipse
 from transplanter.planetary_train import printed_peak_to_valley_turn
 from transplanter.reverse_problem import load_reverse_problem, parse_reverse_problem
@@ -65,6 +65,7 @@ def test_gears_stop_where_the_distance_from_the_pivot_is_stationary():
     motion = solve_arm(circle, 100.0, 140.0, 1, 1)
     found = violations(motion)
     assert any(v.condition == "gears" for v in found)
+    assert len(stationary_radii(motion)) == 4           # two farthest, two nearest, none on a circle
     for extreme in circle.radial_extremes():
         theta, gamma = motion.angles(np.array([extreme.parameter]))
         d1 = circle.evaluate(extreme.parameter, 1)
@@ -95,6 +96,7 @@ def rice():
 
 def test_rice_example_reproduces_its_path_by_rolling(rice):
     assert rice.monotonic
+    assert stationary_radii(rice.motion) == []         # both extremes touch, the one at the start too
     assert (rice.motion.carrier_length, rice.motion.arm_length) == pytest.approx((92.3, 162.0), abs=1e-9)
     assert [(t.circle, t.parameter) for t in rice.motion.touches] == [("outer", pytest.approx(np.pi)), ("inner", TWO_PI)]
     assert rice.verification.max_error_mm < 1e-6

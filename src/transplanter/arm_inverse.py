@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from transplanter.closed_trajectory import ClosedTrajectory, TWO_PI
+from transplanter.closed_trajectory import TWO_PI, ClosedTrajectory, RadialExtreme
 from transplanter.generated import numpy_twin
 
 _inverse = numpy_twin("planetary", "two_link_inverse")
@@ -160,15 +160,23 @@ class ArmMotion:
                                       (touches[:, None] + grading).ravel()], TWO_PI))
 
 
+def touched_circle(extreme: RadialExtreme, carrier_length: float, arm_length: float) -> tuple[str, float] | None:
+    """("outer" or "inner", gap in mm) when this extreme of |P| touches a reach circle, else None."""
+    if extreme.kind == "farthest":
+        bound, circle = carrier_length + arm_length, "outer"
+    else:
+        bound, circle = abs(carrier_length - arm_length), "inner"
+    return (circle, bound - extreme.radius) if abs(bound - extreme.radius) <= TOUCH_TOLERANCE_MM else None
+
+
 def find_touches(trajectory: ClosedTrajectory, carrier_length: float, arm_length: float) -> tuple[Touch, ...]:
-    outer, inner = carrier_length + arm_length, abs(carrier_length - arm_length)
     touches = []
     for extreme in trajectory.radial_extremes():
-        bound, circle = (outer, "outer") if extreme.kind == "farthest" else (inner, "inner")
-        if abs(bound - extreme.radius) <= TOUCH_TOLERANCE_MM:
+        touched = touched_circle(extreme, carrier_length, arm_length)
+        if touched:
             # a touch at the very start is put at the end of the cycle: the start branch holds from x = 0
             parameter = extreme.parameter if extreme.parameter > 1e-9 else TWO_PI
-            touches.append(Touch(parameter, circle, bound - extreme.radius))
+            touches.append(Touch(parameter, *touched))
     return tuple(sorted(touches, key=lambda touch: touch.parameter))
 
 

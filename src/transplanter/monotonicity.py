@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from transplanter.arm_inverse import BRANCH_NAMES, DIRECTION_NAMES, ArmMotion, solve_arm
+from transplanter.arm_inverse import BRANCH_NAMES, DIRECTION_NAMES, ArmMotion, solve_arm, touched_circle
 from transplanter.closed_trajectory import TWO_PI, ClosedTrajectory
 
 @dataclass(frozen=True)
@@ -75,9 +75,8 @@ def violations(motion: ArmMotion) -> list[Violation]:
 
 def stationary_radii(motion: ArmMotion) -> list[str]:
     """Extremes of |P| away from both reach circles: there d gamma / d theta = 0 (the gears stop)."""
-    touched = {round(t.parameter, 9) for t in motion.touches}
-    return [f"|P| = {e.radius:.3f} mm at {_where(motion, e.parameter)}"
-            for e in motion.trajectory.radial_extremes() if round(e.parameter, 9) not in touched]
+    return [f"|P| = {e.radius:.3f} mm at {_where(motion, e.parameter)}" for e in motion.trajectory.radial_extremes()
+            if not touched_circle(e, motion.carrier_length, motion.arm_length)]
 
 
 def fix_hints(trajectory: ClosedTrajectory, motion: ArmMotion, derived_lengths: tuple[float, float]) -> list[str]:
