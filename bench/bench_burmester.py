@@ -24,11 +24,11 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
 from ground_truth import dyad_poses  # noqa: E402
-from transplanter.five_poses import burmester_points  # noqa: E402
-from transplanter.four_poses import trace_dyads  # noqa: E402
-from transplanter.poses import Frame, carry, pole, rotation  # noqa: E402
-from transplanter.problem import load_problem  # noqa: E402
-from transplanter.synthesis import synthesize  # noqa: E402
+from transplanter.burmester.five_poses import burmester_points  # noqa: E402
+from transplanter.burmester.four_poses import trace_dyads  # noqa: E402
+from transplanter.geometry.poses import Frame, carry, pole, rotation  # noqa: E402
+from transplanter.burmester.problem import load_problem  # noqa: E402
+from transplanter.burmester.synthesis import synthesize  # noqa: E402
 
 SAMPLES = 2000
 

@@ -20,16 +20,16 @@ import numpy as np
 from scipy.optimize import minimize
 
 from fresh_process import cli_seconds  # bench/ is the script's own folder
-from transplanter.fivebar_nlp import build_nlp, design_nlp
-from transplanter.fivebar_problem import load_fivebar_problem
-from transplanter.fivebar_region import solution_region
+from transplanter.fivebar.nlp import build_nlp, design_nlp
+from transplanter.fivebar.problem import load_problem
+from transplanter.fivebar.region import solution_region
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "vegetable_planting.toml"
 
 
 def main():
-    problem = load_fivebar_problem(EXAMPLE)
+    problem = load_problem(EXAMPLE)
     start = time.perf_counter()
     region = solution_region(problem)
     sweep = time.perf_counter() - start

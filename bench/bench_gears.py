@@ -17,8 +17,8 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 
-from transplanter.gear_problem import load_gear_problem  # noqa: E402
-from transplanter.gear_synthesis import synthesize_gear  # noqa: E402
+from transplanter.gears.problem import load_problem  # noqa: E402
+from transplanter.gears.synthesis import synthesize  # noqa: E402
 
 
 def best_time(function, repeat):
@@ -35,9 +35,9 @@ def main():
         import ncgears
     except ImportError:
         sys.exit("bench_gears needs ncgears: pip install ncgears")
-    problem = load_gear_problem(ROOT / "examples/gear_ellipse.toml")
-    synthesize_gear(problem)
-    ours, result = best_time(lambda: synthesize_gear(problem), 5)
+    problem = load_problem(ROOT / "examples/gear_ellipse.toml")
+    synthesize(problem)
+    ours, result = best_time(lambda: synthesize(problem), 5)
     semi_major = 30.0 * result.design.driver.scale
     with tempfile.TemporaryDirectory() as folder:
         # the same curve up to scale: ncgears scales it to a perimeter of pi m Z itself

@@ -5,7 +5,7 @@
 Both start from the 19 control points of examples/rice_hoe_reverse.toml and end with
 verified pitch curves of the four-gear train (square-root split with correction factor).
 
-- Package: ``reverse_design`` (closed-form inverse kinematics with branch switches, rates to
+- Package: ``synthesize`` (closed-form inverse kinematics with branch switches, rates to
   third order from the generated derivation, panel polynomials, gear pairs, rolling check).
 - Baseline, the sampled way the papers describe, with scipy: the path from scipy's periodic
   BSpline at N samples, the same closed-form inverse kinematics and branch switches at the
@@ -28,8 +28,8 @@ from scipy.integrate import cumulative_trapezoid, simpson
 from scipy.interpolate import BSpline
 
 from fresh_process import cli_seconds  # bench/ is the script's own folder
-from transplanter.reverse_problem import load_reverse_problem
-from transplanter.reverse_synthesis import reverse_design
+from transplanter.reverse.problem import load_problem
+from transplanter.reverse.synthesis import synthesize
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "rice_hoe_reverse.toml"
@@ -75,12 +75,12 @@ def baseline(control: np.ndarray, s: float, l: float, direction: int, start_bran
 
 
 def main():
-    problem = load_reverse_problem(EXAMPLE)
-    reverse_design(problem)                                        # warm: casadi/numpy imports, generated code
+    problem = load_problem(EXAMPLE)
+    synthesize(problem)                                        # warm: casadi/numpy imports, generated code
     start = time.perf_counter()
-    result = reverse_design(problem)
+    result = synthesize(problem)
     package = time.perf_counter() - start
-    print(f"package  reverse_design: {package:.3f} s; round trip {result.verification.max_error_mm:.2e} mm, "
+    print(f"package  synthesize: {package:.3f} s; round trip {result.verification.max_error_mm:.2e} mm, "
           f"closure errors {result.train.stage_one.closure_error:.1e}, {result.train.stage_two.closure_error:.1e} rad")
 
     s, l = result.motion.carrier_length, result.motion.arm_length

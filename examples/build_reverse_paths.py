@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from transplanter.closed_trajectory import ClosedTrajectory
+from transplanter.geometry.closed_trajectory import ClosedTrajectory
 
 HERE = Path(__file__).resolve().parent
 

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
-from transplanter.dyad import verify_dyad
-from transplanter.problem import load_problem
+from transplanter.geometry.dyad import verify_dyad
+from transplanter.burmester.problem import load_problem
 
 ROOT = Path(__file__).resolve().parents[1]
 

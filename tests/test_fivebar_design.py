@@ -8,20 +8,21 @@ import sympy as sp
 
 from transplanter.cli import main
 from transplanter.errors import InfeasibleError, ProblemError
-from transplanter.fivebar_candidate import evaluate_candidate
-from transplanter.fivebar_evaluation import evaluate_design, load_design
-from transplanter.fivebar_linkage import FiveBar
-from transplanter.fivebar_problem import load_fivebar_problem, parse_fivebar_problem
-from transplanter.fivebar_synthesis import synthesize_fivebar
+from transplanter.fivebar.candidate import evaluate_candidate
+from transplanter.fivebar.evaluation import evaluate_design, load_design
+from transplanter.fivebar.linkage import FiveBar
+from transplanter.fivebar.problem import load_problem, parse_problem
+from transplanter.fivebar.region import ChainFamily
+from transplanter.fivebar.synthesis import _empty_family, synthesize
 from transplanter.generated import numpy_twin
-from transplanter.periodic_bspline import basis_matrix, evaluate, kernel
-from transplanter.pitch_curves import ellipse
-from transplanter.planetary_train import printed_correction
-from transplanter.relative_angle import RelativeAngle, fit_relative_angle, negative_intervals
-from transplanter.return_stroke import solve_return_stroke
+from transplanter.geometry.periodic_bspline import basis_matrix, evaluate, kernel
+from transplanter.gears.pitch_curves import ellipse
+from transplanter.trains.planetary import printed_correction
+from transplanter.fivebar.relative_angle import RelativeAngle, fit_relative_angle, negative_intervals
+from transplanter.fivebar.return_stroke import solve_return_stroke
 from transplanter.toml_fields import read_toml
-from transplanter.train_rolling import conjugate_curve
-from transplanter.turn_map import TurnMap
+from transplanter.trains.rolling import conjugate_curve
+from transplanter.geometry.turn_map import TurnMap
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples/vegetable_planting.toml"
@@ -29,12 +30,12 @@ EXAMPLE = ROOT / "examples/vegetable_planting.toml"
 
 @pytest.fixture(scope="module")
 def problem():
-    return load_fivebar_problem(EXAMPLE)
+    return load_problem(EXAMPLE)
 
 
 @pytest.fixture(scope="module")
 def result(problem):
-    return synthesize_fivebar(problem)
+    return synthesize(problem)
 
 
 def test_kernel_is_the_cox_de_boor_cubic_basis():
@@ -187,24 +188,24 @@ def _edited(**changes):
 ])
 def test_bad_fivebar_fields_are_named(changes, words):
     with pytest.raises(ProblemError, match=words.replace(".", r"\.")):
-        parse_fivebar_problem(_edited(**changes), "f.toml")
+        parse_problem(_edited(**changes), "f.toml")
 
 
 def test_key_pose_count_and_turns_are_checked():
     data = read_toml(EXAMPLE)
     data["key_poses"] = data["key_poses"][:3]
     with pytest.raises(ProblemError, match="exactly 4 key poses"):
-        parse_fivebar_problem(data, "f.toml")
+        parse_problem(data, "f.toml")
     data = read_toml(EXAMPLE)
     data["key_poses"][2]["carrier_turn_deg"] = 10.0
     with pytest.raises(ProblemError, match="strictly increasing"):
-        parse_fivebar_problem(data, "f.toml")
+        parse_problem(data, "f.toml")
 
 
 def test_ranges_that_empty_the_region_are_named():
-    problem = parse_fivebar_problem(_edited(ranges__x_e=[100.0, 200.0]), "f.toml")
+    problem = parse_problem(_edited(ranges__x_e=[100.0, 200.0]), "f.toml")
     with pytest.raises(InfeasibleError, match=r"no 2R chain B-E survives: ranges\.x_e removes the last 210 .*closest: B"):
-        synthesize_fivebar(problem)
+        synthesize(problem)
 
 
 def test_cli_exit_2_on_bad_design(tmp_path, capsys):
@@ -216,9 +217,9 @@ def test_cli_exit_2_on_bad_design(tmp_path, capsys):
 
 
 def test_region_without_a_feasible_five_bar_lists_counts_and_closest():
-    problem = parse_fivebar_problem(_edited(conditions__ratio=[0.95, 1.05]), "f.toml")
+    problem = parse_problem(_edited(conditions__ratio=[0.95, 1.05]), "f.toml")
     with pytest.raises(InfeasibleError, match=r"none of the 1664 five-bars .*ratio: \d+.*closest: \[B"):
-        synthesize_fivebar(problem)
+        synthesize(problem)
 
 
 def test_design_whose_plates_cannot_reach_p1_is_refused(tmp_path, capsys):
@@ -228,3 +229,12 @@ def test_design_whose_plates_cannot_reach_p1_is_refused(tmp_path, capsys):
     assert main(["fivebar", str(EXAMPLE), "--design", str(bad)]) == 2
     err = capsys.readouterr().err
     assert "design.push_plate_length = 5.0" in err and "cannot be spanned" in err and "Traceback" not in err
+
+
+def test_an_emptied_family_says_why_dyads_inside_every_range_were_dropped(problem):
+    order = "order (relative angle not increasing through the key poses)"
+    family = ChainFamily(synthesis=None, fixed=np.zeros((2, 2)), moving=np.ones((2, 2)), kept=np.zeros(2, bool),
+                         reasons={"ranges.fp": 0, order: 2}, shortfalls={"fp": np.zeros(2)})
+    with pytest.raises(InfeasibleError, match=r"F \(1\.0, 1\.0\) within the ranges, dropped by order") as error:
+        _empty_family(problem, "3R chain O-A-F", family)
+    assert "outside by" not in str(error.value)

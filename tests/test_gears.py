@@ -7,12 +7,12 @@ from scipy.spatial import cKDTree
 
 from derivations import gears as derivation
 from transplanter.errors import InfeasibleError
-from transplanter.gear_pair import design_pair
-from transplanter.gear_teeth import generate_teeth
+from transplanter.gears.pair import design_pair
+from transplanter.gears.teeth import generate_teeth
 from transplanter.generated import casadi_function, numpy_twin
-from transplanter.pitch_curves import denatured_limacon, denatured_partner, ellipse, limacon
-from transplanter.rack_teeth import pitch_table, rack_profile, _flank
-from transplanter.swept_teeth import shaper_profile
+from transplanter.gears.pitch_curves import denatured_limacon, denatured_partner, ellipse, limacon
+from transplanter.gears.rack_teeth import pitch_table, rack_profile, _flank
+from transplanter.gears.swept_teeth import shaper_profile
 
 ellipse_center = casadi_function("gears", "ellipse_center_distance")
 limacon_center = casadi_function("gears", "limacon_center_distance")
@@ -231,7 +231,7 @@ def test_concave_pitch_curve_is_refused_for_the_rack():
 
 
 def test_self_intersection_count():
-    from transplanter.gear_teeth import self_intersections
+    from transplanter.gears.teeth import self_intersections
     t = np.linspace(0, 2 * np.pi, 2000, endpoint=False)
     outline = np.c_[np.cos(t), np.sin(t)] * (1 + 0.1 * np.cos(30 * t))[:, None]
     assert self_intersections(outline) == 0
@@ -242,11 +242,11 @@ def test_self_intersection_count():
 def test_analytic_ratio_is_corrected_to_close():
     """i12 = 1 + 0.35 cos(phi) + 0.1 sin(2 phi) does not close; with the constant factor k of seed 000
     eq (12) the pair does, and its ratio is k times the formula at every sample."""
-    from transplanter.gear_problem import parse_gear_problem
-    from transplanter.gear_synthesis import synthesize_gear
-    problem = parse_gear_problem({"driver": {"family": "ratio", "expression": "1 + 0.35*cos(phi) + 0.1*sin(2*phi)",
+    from transplanter.gears.problem import parse_problem
+    from transplanter.gears.synthesis import synthesize
+    problem = parse_problem({"driver": {"family": "ratio", "expression": "1 + 0.35*cos(phi) + 0.1*sin(2*phi)",
                                              "correct": True}, "pair": {"center_distance": 80.0}})
-    result = synthesize_gear(problem)
+    result = synthesize(problem)
     d = result.design
     formula = 1 + 0.35 * np.cos(d.phi1) + 0.1 * np.sin(2 * d.phi1)
     assert np.allclose(d.ratio, result.ratio_correction * formula, rtol=1e-12)

@@ -9,9 +9,9 @@ the curve but not on it, and the exact dyad with the published length |BE| has i
 import numpy as np
 import pytest
 
-from transplanter.dyad import verify_dyad
-from transplanter.problem import load_problem
-from transplanter.synthesis import synthesize
+from transplanter.geometry.dyad import verify_dyad
+from transplanter.burmester.problem import load_problem
+from transplanter.burmester.synthesis import synthesize
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -5,16 +5,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from transplanter.arm_inverse import solve_arm
-from transplanter.closed_trajectory import TWO_PI, ClosedTrajectory, interpolating_polygon
+from transplanter.reverse.arm_inverse import solve_arm
+from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, interpolating_polygon
 from transplanter.errors import TransplanterWarning
 from transplanter.generated import numpy_twin
-from transplanter.idler_train import build_idler_train, roll_idler_train
-from transplanter.monotonicity import stationary_radii, violations
-from transplanter.pitch_curves import ellipse
-from transplanter.planetary_train import printed_peak_to_valley_turn
-from transplanter.reverse_problem import load_reverse_problem, parse_reverse_problem
-from transplanter.reverse_synthesis import reverse_design
+from transplanter.reverse.idler_train import build_idler_train, roll_idler_train
+from transplanter.reverse.monotonicity import stationary_radii, violations
+from transplanter.gears.pitch_curves import ellipse
+from transplanter.trains.planetary import printed_peak_to_valley_turn
+from transplanter.reverse.problem import load_problem, parse_problem
+from transplanter.reverse.synthesis import synthesize
 
 ROOT = Path(__file__).resolve().parents[1]
 inverse = numpy_twin("planetary", "two_link_inverse")
@@ -91,7 +91,7 @@ def test_pickup_tip_of_eq15_is_the_two_link_arm(rng):
 
 @pytest.fixture(scope="module")
 def rice():
-    return reverse_design(load_reverse_problem(ROOT / "examples" / "rice_hoe_reverse.toml"))
+    return synthesize(load_problem(ROOT / "examples" / "rice_hoe_reverse.toml"))
 
 
 def test_rice_example_reproduces_its_path_by_rolling(rice):
@@ -108,7 +108,7 @@ def test_rice_example_reproduces_its_path_by_rolling(rice):
 
 
 def test_pickup_example_on_a_bent_carrier():
-    result = reverse_design(load_reverse_problem(ROOT / "examples" / "pickup_arm_reverse.toml"))
+    result = synthesize(load_problem(ROOT / "examples" / "pickup_arm_reverse.toml"))
     assert result.monotonic and result.geometry is not None
     assert np.degrees(result.geometry.bend) > 1
     assert result.verification.max_error_mm < 1e-6
@@ -123,10 +123,10 @@ def test_peak_to_valley_as_printed_does_not_close(rice):
 def test_seed_002_idler_iteration_cannot_reproduce_the_hoe(rice):
     """Identical sun and planet with one idler realise only ratios with i13(c) i13(c*) = 1: on the
     rice path seed 002's iteration stalls and the train, rolled as built, misses the path by mm."""
-    data = load_reverse_problem(ROOT / "examples" / "rice_hoe_reverse.toml")
+    data = load_problem(ROOT / "examples" / "rice_hoe_reverse.toml")
     from dataclasses import replace
     with pytest.warns(TransplanterWarning, match="misses the path"):
-        result = reverse_design(replace(data, topology="sun-idler-planet", split="identical_sun_planet"))
+        result = synthesize(replace(data, topology="sun-idler-planet", split="identical_sun_planet"))
     assert not result.train.converged
     assert result.train.model_residual > 0.01
     assert result.verification.max_error_mm > 1.0
@@ -170,7 +170,7 @@ def test_self_crossing_path_is_accepted():
     alpha = np.radians(-90 + 12 * np.sin(2 * tau))
     data = {"trajectory": {"kind": "control_points", "points": np.c_[rho * np.cos(alpha), rho * np.sin(alpha)].tolist()},
             "arm": {"direction": "clockwise"}}
-    result = reverse_design(parse_reverse_problem(data))
+    result = synthesize(parse_problem(data))
     x = np.linspace(0, TWO_PI, 400, endpoint=False)
     p, q = result.trajectory.evaluate(x), result.trajectory.evaluate(np.mod(TWO_PI - x, TWO_PI))
     assert np.any(np.linalg.norm(p - q, axis=1)[5:195] < 1.0)      # the two halves meet away from the ends
@@ -183,7 +183,7 @@ def test_moving_pivot_and_path_together_changes_nothing(rice):
     shift = np.array([30.0, -20.0])
     data = {"trajectory": {"kind": "control_points", "points": (rice.problem.points + shift).tolist()},
             "arm": {"pivot": shift.tolist(), "direction": "clockwise"}}
-    moved = reverse_design(parse_reverse_problem(data))
+    moved = synthesize(parse_problem(data))
     assert (moved.motion.carrier_length, moved.motion.arm_length) == pytest.approx(
         (rice.motion.carrier_length, rice.motion.arm_length), abs=1e-9)
     # at the touches the ratio is the mean of the rates 1e-5 either side, good to about 1e-6

@@ -4,11 +4,11 @@ import pytest
 from scipy.optimize import least_squares
 
 from ground_truth import dyad_poses, fourbar_poses
-from transplanter.dyad import Link, verify_dyad
-from transplanter.five_poses import center_cubic
-from transplanter.four_poses import circle_cubic
-from transplanter.poses import Frame, carry, relative_to_link, rotate_about
-from transplanter.synthesis import DyadProblem, synthesize
+from transplanter.geometry.dyad import Link, verify_dyad
+from transplanter.burmester.five_poses import center_cubic
+from transplanter.burmester.four_poses import circle_cubic
+from transplanter.geometry.poses import Frame, carry, relative_to_link, rotate_about
+from transplanter.burmester.synthesis import DyadProblem, synthesize
 from derivations.burmester import circular_cubic
 
 

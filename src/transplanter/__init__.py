@@ -1,7 +1,7 @@
 """transplanter: precise synthesis of seedling transplanting mechanisms.
 
-Entry points: ``transplanter.problem.load_problem`` and ``transplanter.synthesis.synthesize``
-(dyads through poses); the ``transplanter`` command wraps them.
+Each mechanism is a subpackage with the same API: ``load_problem``/``parse_problem`` (TOML file or
+dict, mm and degrees) and ``synthesize``; the ``transplanter`` command wraps them.
 """
 
 __version__ = "0.1.0"

@@ -28,10 +28,10 @@ def _publish(args, report: dict, file_text: str, screen_text: str, written: list
 
 
 def _burmester(args) -> int:
-    from transplanter.plots import plot_synthesis
-    from transplanter.problem import load_problem
-    from transplanter.report import to_json, to_markdown, to_text
-    from transplanter.synthesis import synthesize
+    from transplanter.burmester.figures import plot_synthesis
+    from transplanter.burmester.problem import load_problem
+    from transplanter.burmester.report import to_json, to_markdown, to_text
+    from transplanter.burmester.synthesis import synthesize
 
     result = synthesize(load_problem(args.file))
     if args.plot:
@@ -44,13 +44,13 @@ def _burmester(args) -> int:
 
 
 def _gear(args) -> int:
-    from transplanter.drawings import write_drawings
-    from transplanter.gear_plots import plot_gear_figures
-    from transplanter.gear_problem import load_gear_problem
-    from transplanter.gear_report import to_json, to_markdown
-    from transplanter.gear_synthesis import synthesize_gear
+    from transplanter.gears.drawings import write_drawings
+    from transplanter.gears.figures import plot_gear_figures
+    from transplanter.gears.problem import load_problem
+    from transplanter.gears.report import to_json, to_markdown
+    from transplanter.gears.synthesis import synthesize
 
-    result = synthesize_gear(load_gear_problem(args.file))
+    result = synthesize(load_problem(args.file))
     report = to_json(result)
     drawings, figures = [], []
     if args.out:
@@ -62,21 +62,21 @@ def _gear(args) -> int:
 
 
 def _fivebar(args) -> int:
-    from transplanter.fivebar_problem import load_fivebar_problem
+    from transplanter.fivebar.problem import load_problem
 
-    problem = load_fivebar_problem(args.file)
+    problem = load_problem(args.file)
     if args.design:
-        from transplanter.fivebar_evaluation import evaluate_design, load_design
-        from transplanter.fivebar_report import evaluation_json, evaluation_markdown
+        from transplanter.fivebar.evaluation import evaluate_design, load_design
+        from transplanter.fivebar.report import evaluation_json, evaluation_markdown
 
         report = evaluation_json(evaluate_design(problem, load_design(args.design)), problem.poses[0])
         text, figures = evaluation_markdown(report, problem.labels), []
     else:
-        from transplanter.fivebar_plots import plot_fivebar_figures
-        from transplanter.fivebar_report import to_json, to_markdown
-        from transplanter.fivebar_synthesis import synthesize_fivebar
+        from transplanter.fivebar.figures import plot_fivebar_figures
+        from transplanter.fivebar.report import to_json, to_markdown
+        from transplanter.fivebar.synthesis import synthesize
 
-        result = synthesize_fivebar(problem)
+        result = synthesize(problem)
         report = to_json(result)
         figures = plot_fivebar_figures(result, Path(args.out)) if args.out else []
         text = to_markdown(report, problem.labels, figures)
@@ -85,15 +85,15 @@ def _fivebar(args) -> int:
 
 
 def _reverse(args) -> int:
-    from transplanter.reverse_problem import load_reverse_problem
-    from transplanter.reverse_report import to_json, to_markdown
-    from transplanter.reverse_synthesis import reverse_design
+    from transplanter.reverse.problem import load_problem
+    from transplanter.reverse.report import to_json, to_markdown
+    from transplanter.reverse.synthesis import synthesize
 
-    result = reverse_design(load_reverse_problem(args.file))
+    result = synthesize(load_problem(args.file))
     report = to_json(result)
     figures = []
     if args.out:
-        from transplanter.reverse_plots import plot_reverse_figures
+        from transplanter.reverse.figures import plot_reverse_figures
 
         figures = plot_reverse_figures(result, Path(args.out))
     _publish(args, report, to_markdown(report, figures), to_markdown(report, []), figures)

@@ -1,0 +1,123 @@
+"""TOML problem files (mm, degrees) -> a validated ``DyadProblem`` (mm, radians).
+
+Schema (README, "Problem files"):
+
+    title = "..."                      # optional
+    [[poses]]                          # three or more
+    x = -23.1                          # mm
+    y = -309.7                         # mm
+    angle_deg = 113.8                  # body orientation, counterclockwise from +x
+    label = "P1"                       # optional
+    [relative]                         # optional: the dyad's ground is a turning link
+    pivot = [0.0, 0.0]                 # mm, its fixed pivot
+    phases_deg = [0, -18, -50, -90]    # its angle at each pose, counterclockwise positive
+    [three_poses]                      # required with exactly three poses
+    circle_points = [[x, y], ...]      # moving pivots in pose 1: find their centers
+    center_points = [[x, y], ...]      # fixed pivots: find their circle points
+    [search]                           # optional
+    samples = 720                      # pencil directions tracing each 4-pose curve
+    radius_mm = 600.0                  # keep pivots within this distance of the pose centroid
+
+Every error names the file, the field, the value and what was expected.
+"""
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+from transplanter.geometry.dyad import Link
+from transplanter.errors import TransplanterWarning
+from transplanter.toml_fields import FieldReader, read_toml
+from transplanter.burmester.synthesis import DyadProblem
+
+_TOP_KEYS = {"title", "description", "poses", "relative", "three_poses", "search"}
+_POSE_KEYS = {"x", "y", "angle_deg", "label"}
+_RELATIVE_KEYS = {"pivot", "phases_deg"}
+_THREE_KEYS = {"circle_points", "center_points"}
+_SEARCH_KEYS = {"samples", "radius_mm"}
+
+
+def load_problem(path: str | Path) -> DyadProblem:
+    """Read and validate a problem file; raises ``ProblemError`` naming what is wrong."""
+    return parse_problem(read_toml(path), str(path))
+
+
+def parse_problem(data: dict, source: str = "<problem>") -> DyadProblem:
+    read = FieldReader(source)
+    read.keys(data, _TOP_KEYS, "")
+    poses_table = data.get("poses")
+    if not isinstance(poses_table, list) or not all(isinstance(p, dict) for p in poses_table):
+        read.fail("poses", poses_table, "an array of tables [[poses]] with x, y, angle_deg")
+    if len(poses_table) < 3:
+        read.fail("poses", f"{len(poses_table)} poses", "at least 3 poses")
+    rows, labels = [], []
+    for k, pose in enumerate(poses_table):
+        where = f"poses[{k}]"
+        read.keys(pose, _POSE_KEYS, where)
+        rows.append([read.number(pose, "x", where), read.number(pose, "y", where), read.number(pose, "angle_deg", where)])
+        labels.append(str(pose.get("label", f"P{k + 1}")))
+    degrees = np.array(rows)
+    _check_distinct(read, degrees)
+    _warn_radians(source, degrees[:, 2])
+    poses = degrees.copy()
+    poses[:, 2] = np.radians(degrees[:, 2])
+
+    link = None
+    if "relative" in data:
+        relative = data["relative"]
+        read.keys(relative, _RELATIVE_KEYS, "relative")
+        if "pivot" not in relative or "phases_deg" not in relative:
+            read.fail("relative", relative, "both pivot = [x, y] and phases_deg = [one angle per pose]")
+        phases = relative["phases_deg"]
+        if not isinstance(phases, list) or len(phases) != len(poses):
+            read.fail("relative.phases_deg", phases, f"a list of {len(poses)} angles (one per pose, degrees)")
+        values = [read.number({"v": v}, "v", f"relative.phases_deg[{k}]") for k, v in enumerate(phases)]
+        link = Link(read.point(relative["pivot"], "relative.pivot"), np.radians(values))
+
+    circles = centers = np.empty((0, 2))
+    if "three_poses" in data:
+        three = data["three_poses"]
+        read.keys(three, _THREE_KEYS, "three_poses")
+        if len(poses) != 3:
+            read.fail("three_poses", three, f"no such table with {len(poses)} poses (it is for exactly 3)")
+        circles = read.points(three, "circle_points", "three_poses")
+        centers = read.points(three, "center_points", "three_poses")
+    if len(poses) == 3 and not (len(circles) or len(centers)):
+        read.fail("three_poses", data.get("three_poses"),
+                  "circle_points or center_points: three poses leave a two-parameter family of dyads, "
+                  "so choose one pivot and the package finds the other")
+
+    search = data.get("search", {})
+    read.keys(search, _SEARCH_KEYS, "search")
+    samples = search.get("samples", 720)
+    if isinstance(samples, bool) or not isinstance(samples, int) or not 16 <= samples <= 200_000:
+        read.fail("search.samples", samples, "a whole number from 16 to 200000")
+    radius = None
+    if "radius_mm" in search:
+        radius = read.number(search, "radius_mm", "search")
+        if radius <= 0:
+            read.fail("search.radius_mm", radius, "a positive distance (mm)")
+
+    return DyadProblem(poses=poses, link=link, circle_points=circles, center_points=centers,
+                       samples=samples, radius_mm=radius, source=source,
+                       title=str(data.get("title", "")), labels=tuple(labels))
+
+
+def _check_distinct(read: FieldReader, degrees: np.ndarray):
+    """Two poses with the same position and orientation carry no information: reject them."""
+    spread = max(np.ptp(degrees[:, :2], axis=0).max(), 1.0)
+    for i in range(len(degrees)):
+        for j in range(i + 1, len(degrees)):
+            same_place = np.linalg.norm(degrees[i, :2] - degrees[j, :2]) <= 1e-9 * spread
+            same_turn = abs((degrees[i, 2] - degrees[j, 2] + 180) % 360 - 180) <= 1e-9
+            if same_place and same_turn:
+                read.fail(f"poses[{j}]", dict(zip(("x", "y", "angle_deg"), degrees[j].tolist())),
+                          f"a pose different from poses[{i}] (they coincide)")
+
+
+def _warn_radians(source: str, angles_deg: np.ndarray):
+    if np.abs(angles_deg).max() <= 2 * np.pi and np.ptp(angles_deg) > 0:
+        warnings.warn(f"{source}: poses[].angle_deg are all within ±{2 * np.pi:.2f}: "
+                      f"these look like radians, but the field is in degrees", TransplanterWarning, stacklevel=3)

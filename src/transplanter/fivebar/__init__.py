@@ -1,0 +1,21 @@
+"""The five-bar seedling pushing mechanism of seed 000 with its planetary gear train.
+
+Public API: ``load_problem`` / ``parse_problem`` (TOML file or dict, mm and degrees) ->
+``FiveBarProblem``; ``synthesize(problem)`` -> ``FiveBarResult`` (region, design NLP, gears,
+verification); ``load_design`` + ``evaluate_design`` for a given (published) design.
+"""
+from transplanter.lazy_exports import lazy_exports
+
+__all__ = ["DesignEvaluation", "FiveBarProblem", "FiveBarResult", "GivenDesign", "evaluate_design",
+           "load_design", "load_problem", "parse_problem", "synthesize"]
+__getattr__, __dir__ = lazy_exports(__name__, {
+    "DesignEvaluation": "evaluation",
+    "GivenDesign": "evaluation",
+    "evaluate_design": "evaluation",
+    "load_design": "evaluation",
+    "FiveBarProblem": "problem",
+    "load_problem": "problem",
+    "parse_problem": "problem",
+    "FiveBarResult": "synthesis",
+    "synthesize": "synthesis",
+})

@@ -1,0 +1,110 @@
+"""Evaluating a given five-bar design (seed 000 Table 4 style) against a problem.
+
+A design gives the carrier O-A (length, angle in pose 1), connecting rod I A-F (length,
+angle in pose 1), |EP|, the receiving plate B-E and hinge B. E is where the circles about B
+and P1 meet: two assemblies, both judged (or the one nearest ``hinge_e``).
+
+Per key pose the carrier stands at its phase; the gear train is not given, so the rod's
+relative angle is the one that brings P closest to the key pose (what the best gear
+could do). Reported: that position error of P, the plate-angle error there, and, with the
+plate placed exactly, how far each chain misses (|BE| - L4, |AF| - L2). The whole-turn
+conditions come from ``evaluate_candidate`` with the relative angle fitted through the
+key and return points, as in the paper.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from transplanter.fivebar.candidate import Candidate, evaluate_candidate
+from transplanter.fivebar.linkage import FiveBar, circle_intersection, from_hinges
+from transplanter.fivebar.problem import FiveBarProblem
+from transplanter.toml_fields import FieldReader, read_toml
+
+_FIELDS = ("carrier_length", "carrier_angle_deg", "rod_length", "rod_angle_deg", "push_plate_length",
+           "receiving_plate_length")
+
+
+@dataclass(frozen=True)
+class GivenDesign:
+    carrier_length: float
+    carrier_angle: float       # rad
+    rod_length: float
+    rod_angle: float           # rad
+    push_plate_length: float   # |EP|
+    receiving_plate_length: float
+    hinge_b: np.ndarray
+    hinge_e: np.ndarray | None
+    source: str
+
+
+@dataclass(frozen=True)
+class DesignEvaluation:
+    design: GivenDesign
+    mech: FiveBar
+    candidate: Candidate
+    position_errors_mm: np.ndarray
+    angle_errors_deg: np.ndarray
+    chain_errors_mm: tuple[np.ndarray, np.ndarray]   # |BE| - L4, |AF| - L2 with the plate placed exactly
+    alternatives: list[float]                        # worst position error of each assembly tried
+
+
+def load_design(path: str | Path) -> GivenDesign:
+    data = read_toml(path)
+    read = FieldReader(str(path))
+    read.keys(data, {"design", "title", "description"}, "")
+    table = data.get("design")
+    read.keys(table, set(_FIELDS) | {"hinge_b", "hinge_e"}, "design")
+    values = {key: read.number(table, key, "design") for key in _FIELDS}
+    for key in ("carrier_length", "rod_length", "push_plate_length", "receiving_plate_length"):
+        if values[key] <= 0:
+            read.fail(f"design.{key}", values[key], "a positive length (mm)")
+    if "hinge_b" not in table:
+        read.fail("design.hinge_b", None, "the fixed hinge B = [x, y] (mm)")
+    hinge_e = read.point(table["hinge_e"], "design.hinge_e") if "hinge_e" in table else None
+    return GivenDesign(values["carrier_length"], np.radians(values["carrier_angle_deg"]), values["rod_length"],
+                       np.radians(values["rod_angle_deg"]), values["push_plate_length"],
+                       values["receiving_plate_length"], read.point(table["hinge_b"], "design.hinge_b"), hinge_e,
+                       str(path))
+
+
+def _closest_pose(mech: FiveBar, pose: np.ndarray, turn: float) -> tuple[float, float]:
+    """Smallest |P - P_i| over the rod's relative angle at carrier turn ``turn``, and the plate-angle error there."""
+    centre = float(mech.relative_angle_at(pose, turn))
+    for width in (np.radians(10.0), np.radians(0.02), np.radians(4e-5)):
+        rho = centre + np.linspace(-width, width, 2001)
+        state = mech.forward(np.full_like(rho, turn), rho)
+        distance = np.linalg.norm(state["p"] - pose[:2], axis=1)
+        k = int(np.nanargmin(distance))
+        centre = rho[k]
+    return float(distance[k]), float(np.degrees(np.angle(np.exp(1j * (state["direction"][k] - pose[2])))))
+
+
+def evaluate_design(problem: FiveBarProblem, design: GivenDesign) -> DesignEvaluation:
+    a1 = design.carrier_length * np.array([np.cos(design.carrier_angle), np.sin(design.carrier_angle)])
+    f1 = a1 + design.rod_length * np.array([np.cos(design.rod_angle), np.sin(design.rod_angle)])
+    options = []
+    for side in (1.0, -1.0):
+        e1, margin = circle_intersection(design.hinge_b, design.receiving_plate_length, problem.poses[0, :2],
+                                         design.push_plate_length, side)
+        if margin < 0:
+            continue
+        mech = from_hinges(problem.poses[0], design.hinge_b, e1, a1, f1)
+        errors = [_closest_pose(mech, pose, turn) for pose, turn in zip(problem.poses, problem.carrier_turns)]
+        options.append((e1, mech, np.array(errors)))
+    if not options:
+        gap = np.linalg.norm(design.hinge_b - problem.poses[0, :2])
+        FieldReader(design.source).fail(
+            "design.push_plate_length", design.push_plate_length,
+            f"a plate that reaches: |B P1| = {gap:.3f} mm cannot be spanned by BE = "
+            f"{design.receiving_plate_length:g} and EP = {design.push_plate_length:g}")
+    worst = [float(np.nanmax(o[2][:, 0])) for o in options]
+    if design.hinge_e is not None:
+        pick = int(np.argmin([np.linalg.norm(o[0] - design.hinge_e) for o in options]))
+    else:
+        pick = int(np.argmin(worst))
+    _, mech, errors = options[pick]
+    return DesignEvaluation(design, mech, evaluate_candidate(problem, mech), errors[:, 0], errors[:, 1],
+                            mech.joint_chain_errors(problem.poses, problem.carrier_turns), worst)

@@ -1,0 +1,113 @@
+"""The five-bar O-A-F-E-B of seed 000 (Figure 8) by plain geometry: circle intersections only.
+
+O is the origin. The carrier OA (length L1) stands at theta1 = carrier_angle - c after the
+carrier has turned clockwise by c from pose 1. Connecting rod I (A-F, length L2) stands
+at theta2 = theta1 + rho, rho being its angle relative to the carrier. The push plate is
+rigid: E and F are fixed in its frame (origin P, x axis along the plate direction). The
+receiving plate B-E (length L4) turns about the fixed hinge B. Nothing here uses the
+derived closure: this is the independent forward evaluation.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from transplanter.geometry.poses import rotation
+
+
+def _cross(u, v):
+    return u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
+
+
+def _angle(v):
+    return np.arctan2(v[..., 1], v[..., 0])
+
+
+def circle_intersection(center, radius, through, other_radius, side):
+    """Point X with |X - center| = radius and |X - through| = other_radius, on the ``side``
+    (+1 or -1, sign of cross(through - center, X - center)). Returns (X, sin^2 of the angle at
+    ``center``); where the circles miss, X is NaN and the second value negative."""
+    offset = np.asarray(through, float) - center
+    d = np.hypot(offset[..., 0], offset[..., 1])
+    cos_angle = (d**2 + radius**2 - other_radius**2) / (2 * d * radius)
+    margin = 1 - cos_angle**2
+    sin_angle = np.sqrt(np.where(margin >= 0, margin, np.nan))
+    u = offset / d[..., None]
+    normal = np.stack([-u[..., 1], u[..., 0]], -1)
+    point = center + radius * (cos_angle[..., None] * u + (side * sin_angle)[..., None] * normal)
+    return point, margin
+
+
+@dataclass(frozen=True)
+class FiveBar:
+    """Dimensions in mm and radians; ``branch`` is the sign of cross(F - B, E - B) (assembly of B-E-F)."""
+
+    carrier_length: float
+    carrier_angle: float
+    rod_length: float
+    hinge_b: np.ndarray
+    receiving_length: float
+    e_local: np.ndarray
+    f_local: np.ndarray
+    branch: float
+
+    @property
+    def link_length(self) -> float:
+        """L3 = |EF|, the push plate between its two hinges."""
+        return float(np.linalg.norm(self.e_local - self.f_local))
+
+    @property
+    def ep(self) -> float:
+        return float(np.linalg.norm(self.e_local))
+
+    @property
+    def fp(self) -> float:
+        return float(np.linalg.norm(self.f_local))
+
+    def carrier_point(self, c) -> np.ndarray:
+        theta1 = self.carrier_angle - np.asarray(c, float)
+        return self.carrier_length * np.stack([np.cos(theta1), np.sin(theta1)], -1)
+
+    def plate_points(self, poses: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """E and F where the plate stands in ``poses`` (rows x, y, plate direction)."""
+        turn = rotation(poses[..., 2])
+        return (poses[..., :2] + np.einsum("...ij,j->...i", turn, self.e_local),
+                poses[..., :2] + np.einsum("...ij,j->...i", turn, self.f_local))
+
+    def relative_angle_at(self, poses: np.ndarray, c) -> np.ndarray:
+        """rho = theta2 - theta1 that puts the plate in ``poses`` at carrier turns c (rad, in (-pi, pi])."""
+        a = self.carrier_point(c)
+        _, f = self.plate_points(poses)
+        return np.angle(np.exp(1j * (_angle(f - a) - _angle(a))))
+
+    def forward(self, c, rho) -> dict:
+        """Plate pose and hinges for carrier turns c and relative angles rho (same shape)."""
+        a = self.carrier_point(c)
+        theta2 = self.carrier_angle - np.asarray(c, float) + rho
+        f = a + self.rod_length * np.stack([np.cos(theta2), np.sin(theta2)], -1)
+        e, margin = circle_intersection(self.hinge_b, self.receiving_length, f, self.link_length, self.branch)
+        direction = _angle(f - e) - _angle(self.f_local - self.e_local)
+        p = e - np.einsum("...ij,j->...i", rotation(direction), self.e_local)
+        return {"p": p, "direction": direction, "a": a, "f": f, "e": e, "margin": margin}
+
+    def joint_chain_errors(self, poses: np.ndarray, c) -> tuple[np.ndarray, np.ndarray]:
+        """With the plate placed exactly in ``poses``: |BE| - L4 and |AF| - L2 (mm)."""
+        e, f = self.plate_points(poses)
+        return (np.linalg.norm(e - self.hinge_b, axis=-1) - self.receiving_length,
+                np.linalg.norm(f - self.carrier_point(c), axis=-1) - self.rod_length)
+
+
+def assembly_branch(hinge_b, e, f) -> np.ndarray:
+    """Sign of cross(F - B, E - B) for hinge positions E and F."""
+    return np.sign(_cross(np.asarray(f) - hinge_b, np.asarray(e) - hinge_b))
+
+
+def from_hinges(pose1: np.ndarray, hinge_b, e1, a1, f1) -> FiveBar:
+    """The five-bar whose hinges stand at B, E, A, F in pose 1 (plate pose ``pose1``)."""
+    back = rotation(-pose1[2])
+    return FiveBar(carrier_length=float(np.hypot(*a1)), carrier_angle=float(np.arctan2(a1[1], a1[0])),
+                   rod_length=float(np.linalg.norm(f1 - a1)), hinge_b=np.asarray(hinge_b, float),
+                   receiving_length=float(np.linalg.norm(e1 - hinge_b)),
+                   e_local=back @ (e1 - pose1[:2]), f_local=back @ (f1 - pose1[:2]),
+                   branch=float(assembly_branch(hinge_b, e1, f1)))

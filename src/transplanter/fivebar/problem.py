@@ -1,0 +1,145 @@
+"""TOML five-bar problem files (mm, degrees) -> a validated ``FiveBarProblem`` (mm, radians).
+
+Schema (README, "Five-bar problem files"); the carrier pivot O is the origin:
+
+    title = "..."
+    [[key_poses]]                 # exactly four: P of the push plate and the plate direction
+    label = "P1"
+    x = -23.1                     # mm
+    y = -309.7
+    angle_deg = 113.8             # plate direction, counterclockwise from +x
+    carrier_turn_deg = 0.0        # how far the carrier has turned clockwise since pose 1
+    [[return_points]]             # positions of P on the return stroke (no angle)
+    x = -125.0
+    y = -287.0
+    [ranges]                      # optional [low, high] limits (seed 000 Table 2)
+    ep = [55, 100]                # |EP| mm
+    fp = [20, 100]                # |FP| mm
+    x_e = [-100, 0]               # x of E in pose 1, mm
+    x_f = [-20, 50]               # x of F in pose 1, mm
+    [conditions]
+    min_closure_margin = 0.01     # sin^2(angle EBF) kept above this all round (eq 10 without scale)
+    ratio = [0.25, 4.0]           # bounds on the total ratio i0 = dc / drho (eq 11)
+    [spline]
+    control_points = 12           # periodic cubic B-spline of the relative angle
+    [region]
+    samples = 2000                # pencil lines tracing each 4-pose curve
+    radius_mm = 600.0             # hinges within this distance of the poses' centroid
+    [gears]
+    first_center_distance = 23.7  # sun to intermediate shaft, mm (default: half the carrier)
+    second_center_distance = 23.7 # intermediate shaft to planet, mm (default: the rest of the carrier)
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from transplanter.toml_fields import FieldReader, read_toml
+
+RANGE_FIELDS = {"ep": "|EP| (mm)", "fp": "|FP| (mm)", "x_e": "x of E in pose 1 (mm)", "x_f": "x of F in pose 1 (mm)"}
+_TOP_KEYS = {"title", "description", "key_poses", "return_points", "ranges", "conditions", "spline", "region", "gears"}
+
+
+@dataclass(frozen=True)
+class FiveBarProblem:
+    poses: np.ndarray                # (4, 3): x, y (mm), plate direction (rad)
+    carrier_turns: np.ndarray        # (4,) clockwise turn of the carrier since pose 1 (rad)
+    return_points: np.ndarray        # (m, 2) mm
+    labels: tuple[str, ...]
+    return_labels: tuple[str, ...]
+    ranges: dict = field(default_factory=dict)   # name -> (low, high)
+    min_closure_margin: float = 0.01
+    ratio_bounds: tuple[float, float] = (0.25, 4.0)
+    spline_count: int = 12
+    samples: int = 2000
+    radius_mm: float = 600.0
+    center_distances: tuple[float, float] | None = None
+    source: str = "<problem>"
+    title: str = ""
+
+
+def load_problem(path: str | Path) -> FiveBarProblem:
+    return parse_problem(read_toml(path), str(path))
+
+
+def _pair(read: FieldReader, table: dict, key: str, where: str) -> tuple[float, float]:
+    values = read.numbers(table, key, where, 2)
+    low, high = values[0], values[-1]
+    if len(values) != 2 or not low < high:
+        read.fail(f"{where}.{key}", table[key], "low < high")
+    return float(low), float(high)
+
+
+def _table_rows(read: FieldReader, data: dict, key: str, fields: tuple[str, ...]):
+    rows = data.get(key)
+    if not isinstance(rows, list) or not all(isinstance(r, dict) for r in rows):
+        read.fail(key, rows, f"an array of tables [[{key}]] with {', '.join(fields)}")
+    values, labels = [], []
+    for k, row in enumerate(rows):
+        where = f"{key}[{k}]"
+        read.keys(row, set(fields) | {"label"}, where)
+        values.append([read.number(row, name, where) for name in fields])
+        labels.append(str(row.get("label", "")))
+    return np.array(values, float).reshape(-1, len(fields)), labels
+
+
+def parse_problem(data: dict, source: str = "<problem>") -> FiveBarProblem:
+    read = FieldReader(source)
+    read.keys(data, _TOP_KEYS, "")
+    rows, labels = _table_rows(read, data, "key_poses", ("x", "y", "angle_deg", "carrier_turn_deg"))
+    if len(rows) != 4:
+        read.fail("key_poses", f"{len(rows)} poses", "exactly 4 key poses (the 4-pose solution region of seed 000)")
+    turns = rows[:, 3]
+    if turns[0] != 0 or np.any(np.diff(turns) <= 0) or turns[-1] >= 360:
+        read.fail("key_poses[].carrier_turn_deg", turns.tolist(),
+                  "0 at the first pose, then strictly increasing and below 360 (clockwise turn since pose 1)")
+    points, return_labels = _table_rows(read, data, "return_points", ("x", "y"))
+    if len(points) == 0:
+        read.fail("return_points", [], "at least one point of the return stroke (seed 000 Table 3 has five)")
+    labels = [label or f"P{k + 1}" for k, label in enumerate(labels)]
+    return_labels = [label or f"P{k + 5}" for k, label in enumerate(return_labels)]
+
+    ranges_table = data.get("ranges", {})
+    read.keys(ranges_table, set(RANGE_FIELDS), "ranges")
+    ranges = {key: _pair(read, ranges_table, key, "ranges") for key in ranges_table}
+    if "ep" in ranges and ranges["ep"][0] <= 0 or "fp" in ranges and ranges["fp"][0] < 0:
+        read.fail("ranges", ranges_table, "length ranges that start above zero")
+
+    conditions = data.get("conditions", {})
+    read.keys(conditions, {"min_closure_margin", "ratio"}, "conditions")
+    margin = read.number(conditions, "min_closure_margin", "conditions") if "min_closure_margin" in conditions else 0.01
+    if not 0 < margin < 1:
+        read.fail("conditions.min_closure_margin", margin, "a number in (0, 1): sin^2 of the smallest angle EBF")
+    ratio = _pair(read, conditions, "ratio", "conditions") if "ratio" in conditions else (0.25, 4.0)
+    if ratio[0] <= 0:
+        read.fail("conditions.ratio", list(ratio), "positive bounds (a ratio <= 0 reverses the gears)")
+
+    spline = data.get("spline", {})
+    read.keys(spline, {"control_points"}, "spline")
+    count = read.integer(spline, "control_points", "spline", len(points) + 4, 72, default=max(12, len(points) + 4))
+
+    region = data.get("region", {})
+    read.keys(region, {"samples", "radius_mm"}, "region")
+    samples = read.integer(region, "samples", "region", 64, 200_000, default=2000)
+    radius = read.number(region, "radius_mm", "region") if "radius_mm" in region else 600.0
+    if radius <= 0:
+        read.fail("region.radius_mm", radius, "a positive distance (mm)")
+
+    gears = data.get("gears", {})
+    read.keys(gears, {"first_center_distance", "second_center_distance"}, "gears")
+    centers = None
+    if gears:
+        if set(gears) != {"first_center_distance", "second_center_distance"}:
+            read.fail("gears", gears, "both first_center_distance and second_center_distance (mm), or neither")
+        centers = tuple(read.number(gears, key, "gears") for key in ("first_center_distance", "second_center_distance"))
+        if min(centers) <= 0:
+            read.fail("gears", gears, "positive center distances (mm)")
+
+    poses = rows[:, :3].copy()
+    poses[:, 2] = np.radians(poses[:, 2])
+    return FiveBarProblem(poses=poses, carrier_turns=np.radians(turns), return_points=points, labels=tuple(labels),
+                          return_labels=tuple(return_labels), ranges=ranges, min_closure_margin=margin,
+                          ratio_bounds=ratio, spline_count=count, samples=samples, radius_mm=radius,
+                          center_distances=centers, source=source, title=str(data.get("title", "")))

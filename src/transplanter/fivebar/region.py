@@ -1,0 +1,116 @@
+"""Solution region of the five-bar (seed 000 section 3.2.1, Figure 5).
+
+The 2R chain B-E is a 4-pose Burmester dyad of the plate; the 3R chain O-A-F is a 4-pose
+dyad of the plate seen from the carrier (phases = the carrier's clockwise turns). Both
+families are traced completely (``synthesis``). Each chain is first held to its own
+ranges (and the 3R chain to an increasing relative angle: the gears never reverse); the
+survivors are paired into five-bars, and every pair is judged over a whole turn by
+``fivebar_candidate``. The feasible pairs are ranked by their smallest closure margin.
+"""
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+import numpy as np
+
+from transplanter.geometry.dyad import Link
+from transplanter.fivebar.candidate import Candidate, evaluate_candidate
+from transplanter.fivebar.linkage import from_hinges
+from transplanter.fivebar.problem import FiveBarProblem
+from transplanter.geometry.poses import carry
+from transplanter.burmester.synthesis import DyadProblem, Synthesis, synthesize
+
+TWO_PI = 2 * np.pi
+
+
+@dataclass(frozen=True)
+class ChainFamily:
+    """One sampled dyad family: fixed-side and moving-side hinges in pose 1, and which survive."""
+
+    synthesis: Synthesis
+    fixed: np.ndarray        # B (2R) or A (3R), (N, 2)
+    moving: np.ndarray       # E (2R) or F (3R), (N, 2)
+    kept: np.ndarray         # bool (N,): within ranges and free of the chain's own defects
+    reasons: dict            # why dyads were dropped: condition -> count
+    shortfalls: dict         # range name -> how far each dyad is outside it (0 inside), (N,)
+
+
+@dataclass(frozen=True)
+class Region:
+    receiving: ChainFamily   # 2R chain B-E
+    carrier: ChainFamily     # 3R chain O-A-F
+    candidates: list[Candidate]   # every pair, feasible ones first, best first
+    pair_defects: dict            # condition -> number of pairs it removed (first failing condition)
+
+    @property
+    def feasible(self) -> list[Candidate]:
+        return [c for c in self.candidates if c.feasible]
+
+
+def _family(synthesis: Synthesis) -> tuple[np.ndarray, np.ndarray]:
+    dyads = synthesis.dyads
+    return (np.array([d.center for d in dyads]).reshape(-1, 2), np.array([d.circle for d in dyads]).reshape(-1, 2))
+
+
+def _within(values, bounds):
+    return np.ones(len(values), bool) if bounds is None else (values >= bounds[0]) & (values <= bounds[1])
+
+
+def _shortfall(values, bounds):
+    return np.zeros(len(values)) if bounds is None else np.fmax(bounds[0] - values, 0) + np.fmax(values - bounds[1], 0)
+
+
+def _count(reasons: dict, name: str, mask: np.ndarray, kept: np.ndarray) -> np.ndarray:
+    reasons[name] = int(np.sum(kept & ~mask))
+    return kept & mask
+
+
+def chain_families(problem: FiveBarProblem) -> tuple[ChainFamily, ChainFamily]:
+    base = DyadProblem(poses=problem.poses, samples=problem.samples, radius_mm=problem.radius_mm,
+                       source=problem.source, labels=problem.labels)
+    receiving = synthesize(base)
+    carrier = synthesize(dataclasses.replace(base, link=Link(np.zeros(2), -problem.carrier_turns)))
+    p1 = problem.poses[0, :2]
+
+    families = []
+    for synthesis, limits in ((receiving, ("ep", "x_e")), (carrier, ("fp", "x_f"))):
+        fixed, moving = _family(synthesis)
+        measures = {limits[0]: np.linalg.norm(moving - p1, axis=1), limits[1]: moving[:, 0]}
+        reasons, kept = {}, np.ones(len(fixed), bool)
+        for name, values in measures.items():
+            kept = _count(reasons, f"ranges.{name}", _within(values, problem.ranges.get(name)), kept)
+        if synthesis is carrier:
+            kept = _count(reasons, "order (relative angle not increasing through the key poses)",
+                          _increasing_relative_angle(problem, fixed, moving), kept)
+        shortfalls = {name: _shortfall(values, problem.ranges.get(name)) for name, values in measures.items()}
+        families.append(ChainFamily(synthesis, fixed, moving, kept, reasons, shortfalls))
+    return families[0], families[1]
+
+
+def _increasing_relative_angle(problem: FiveBarProblem, a1: np.ndarray, f1: np.ndarray) -> np.ndarray:
+    """rho_i = theta2_i - theta1_i at the key poses, for every 3R dyad: strictly increasing (mod 2 pi from rho_1)."""
+    turns = problem.carrier_turns
+    theta1 = np.arctan2(a1[:, 1], a1[:, 0])[:, None] - turns
+    a = np.hypot(a1[:, 0], a1[:, 1])[:, None, None] * np.stack([np.cos(theta1), np.sin(theta1)], -1)
+    f = carry(problem.poses, f1)
+    rho = np.arctan2(f[..., 1] - a[..., 1], f[..., 0] - a[..., 0]) - theta1
+    steps = np.mod(rho - rho[:, :1], TWO_PI)
+    return np.all(np.diff(steps, axis=1) > 0, axis=1)
+
+
+def solution_region(problem: FiveBarProblem) -> Region:
+    receiving, carrier = chain_families(problem)
+    candidates = []
+    for i in np.flatnonzero(receiving.kept):
+        for j in np.flatnonzero(carrier.kept):
+            mech = from_hinges(problem.poses[0], receiving.fixed[i], receiving.moving[i],
+                               carrier.fixed[j], carrier.moving[j])
+            candidates.append(evaluate_candidate(problem, mech, check_ranges=False))
+    defects = {}
+    for candidate in candidates:
+        if candidate.defects:
+            name = candidate.defects[0].split(":")[0]
+            defects[name] = defects.get(name, 0) + 1
+    candidates.sort(key=lambda c: (not c.feasible, -np.nan_to_num(c.min_margin, nan=-np.inf)))
+    return Region(receiving, carrier, candidates, defects)

@@ -1,0 +1,100 @@
+"""From a gear problem to a verified pair: curve, scaling, closure, tooth counts, teeth."""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from transplanter.errors import InfeasibleError
+from transplanter.gears.pair import GearPairDesign, arc_length, design_pair
+from transplanter.geometry.turn_quadrature import panels
+from transplanter.gears.problem import GearProblem
+from transplanter.gears.teeth import PairTeeth, generate_teeth
+from transplanter.gears.pitch_curves import from_ratio
+
+
+@dataclass(frozen=True)
+class ToothCounts:
+    """Nearest whole tooth counts with equal teeth per lobe, and what makes them exact."""
+
+    module: float
+    fractional: tuple[float, float]
+    counts: tuple[int, int]
+    exact_module: float            # module that makes ``counts`` exact at this size
+    scale_for_module: float        # scale of the curves that makes ``counts`` exact with ``module``
+
+
+@dataclass(frozen=True)
+class GearResult:
+    problem: GearProblem
+    design: GearPairDesign
+    tooth_counts: ToothCounts | None
+    teeth: PairTeeth | None
+    ratio_correction: float | None
+    timings_s: dict
+
+
+def tooth_counts(design: GearPairDesign, module: float) -> ToothCounts:
+    n1, n2 = design.orders
+    per_lobe = max(1, int(round(design.perimeters[0] / (np.pi * module * n1))))
+    counts = (per_lobe * n1, per_lobe * n2)
+    return ToothCounts(module, tuple(p / (np.pi * module) for p in design.perimeters), counts,
+                       design.perimeters[0] / (np.pi * counts[0]), np.pi * module * counts[0] / design.perimeters[0])
+
+
+def _ratio_curve(problem: GearProblem, center_distance: float):
+    """Driver from a ratio i12: closure does not depend on a (r1 = a / (1 + i12)), so a ratio that does
+    not close is corrected by a constant factor k when asked (seed 000 eq 12), or refused."""
+    ratio, breaks = problem.ratio
+    grid = panels(breaks)
+    dense = np.linspace(0, 2 * np.pi, 20001)
+    values = ratio(dense)
+    if not np.all(np.isfinite(values[0])) or values[0].min() <= 0:
+        k = int(np.nanargmin(np.where(np.isfinite(values[0]), values[0], -np.inf)))
+        raise InfeasibleError(f"{problem.source}: driver.ratio reaches {values[0][k]:.6g} at phi = "
+                              f"{np.degrees(dense[k]):.2f} deg: a ratio that touches zero or goes negative "
+                              f"reverses the driven gear; expected positive all round")
+    ends = [v[0] - v[-1] for v in values[:2]]
+    if max(abs(e) for e in ends) > 1e-9 * (1 + np.abs(values[0]).max()):
+        raise InfeasibleError(f"{problem.source}: driver.ratio is not periodic: i12(360 deg) - i12(0) = {-ends[0]:.3g} "
+                              f"and the slope differs by {-ends[1]:.3g}; expected a function of period 360 deg")
+    turn = grid.integrate(1 / ratio(grid.nodes.ravel())[0].reshape(grid.nodes.shape))[-1]
+    target = 2 * np.pi / problem.driven_order
+    factor = turn / target
+    if abs(factor - 1) > 1e-9 and not problem.correct_ratio:
+        raise InfeasibleError(
+            f"{problem.source}: driver.ratio closes at no center distance: with r1 = a / (1 + i12) the driven gear "
+            f"turns {np.degrees(turn):.6f} deg per driver turn for every a, not {np.degrees(target):.6f}; "
+            f"set driver.correct = true to scale i12 by k = {factor:.9f} (seed 000 eq 12)")
+    return from_ratio(ratio, factor, center_distance, breaks), (factor if problem.correct_ratio else None)
+
+
+def synthesize(problem: GearProblem) -> GearResult:
+    start = time.perf_counter()
+    correction = None
+    center = problem.center_distance
+    if problem.ratio is not None:
+        driver, correction = _ratio_curve(problem, center or 1.0)
+        center = center or 1.0
+    else:
+        driver = problem.driver
+    if problem.teeth is not None:
+        if problem.teeth % driver.lobes:
+            raise InfeasibleError(f"{problem.source}: pair.teeth = {problem.teeth}: expected a multiple of the driver "
+                                  f"order {driver.lobes} (equal teeth on every lobe)")
+        perimeter = arc_length(driver, panels(driver.breaks))[-1]
+        factor = np.pi * problem.module * problem.teeth / perimeter
+        driver = driver.scaled(factor)
+        center = center * factor if center is not None and problem.ratio is not None else None
+    design = design_pair(driver, problem.driven_order, center, problem.driver_speed, problem.source)
+    timings = {"pitch_curves": time.perf_counter() - start}
+    counts = teeth = None
+    if problem.module is not None:
+        counts = tooth_counts(design, problem.module)
+        if problem.teeth is not None:
+            start = time.perf_counter()
+            teeth = generate_teeth(design, problem.module, problem.pressure_angle, problem.source,
+                                   problem.cutter, problem.shaper_teeth)
+            timings["teeth"] = time.perf_counter() - start
+    return GearResult(problem, design, counts, teeth, correction, timings)

@@ -1,0 +1,139 @@
+"""TOML reverse-design problem files (mm, degrees) -> a validated ``ReverseProblem``.
+
+Schema (README, "Reverse-design problem files"):
+
+    title = "..."
+    [trajectory]
+    kind = "control_points"       # or "samples": points on the curve, interpolated
+    points = [[x, y], ...]        # mm, in the order the tip runs through them; at least 4
+    [arm]
+    pivot = [0.0, 0.0]            # carrier center, mm (default the origin)
+    carrier_length = 92.3         # s, mm; give both lengths or neither (then seed 002 eq 1-2)
+    arm_length = 162.0            # l, mm
+    direction = "clockwise"       # carrier rotation, or "counterclockwise" (default)
+    branch = "auto"               # at the first point: "approach", "retraction" or "auto"
+    [train]
+    topology = "sun-intermediate-planet"   # or "sun-idler-planet" (3 gears), "pick-up" (seed 004 eq 15)
+    split = "sqrt"                # or "peak_to_valley" (4 gears), "identical_sun_planet" (3 gears)
+    peak_to_valley = 0.6          # b of the peak-to-valley split, in (0, 1)
+    center_distances = [46.15, 46.15]      # mm; default s/2 each (collinear carrier)
+    module = 2.5                  # mm, for the tooth counts (default 2.5)
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from transplanter.toml_fields import FieldReader, read_toml
+
+TOPOLOGIES = {"sun-intermediate-planet": ("sqrt", "peak_to_valley"),
+              "pick-up": ("sqrt", "peak_to_valley"),
+              "sun-idler-planet": ("identical_sun_planet",)}
+_TOP_KEYS = {"title", "description", "trajectory", "arm", "train"}
+#: The closing gap (last point back to the first) may be at most this many times the longest other gap.
+OPEN_GAP_FACTOR = 3.0
+
+
+@dataclass(frozen=True)
+class ReverseProblem:
+    points: np.ndarray                       # (N, 2) relative to the pivot, mm
+    kind: str
+    pivot: np.ndarray
+    lengths: tuple[float, float] | None      # (carrier, arm) or None: from the path's extremes
+    direction: int                           # +1 counterclockwise, -1 clockwise
+    branch: str                              # "approach", "retraction", "auto"
+    topology: str = "sun-intermediate-planet"
+    split: str = "sqrt"
+    peak_to_valley: float = 0.5
+    center_distances: tuple[float, float] | None = None
+    module: float = 2.5
+    source: str = "<problem>"
+    title: str = ""
+
+
+def load_problem(path: str | Path) -> ReverseProblem:
+    return parse_problem(read_toml(path), str(path))
+
+
+def _choice(read: FieldReader, table: dict, key: str, where: str, options, default=None) -> str:
+    value = table.get(key, default)
+    if value not in options:
+        read.fail(f"{where}.{key}", value, "one of " + ", ".join(f'"{o}"' for o in options))
+    return value
+
+
+def _trajectory_points(read: FieldReader, table: dict) -> tuple[np.ndarray, str]:
+    read.keys(table, {"kind", "points"}, "trajectory")
+    kind = _choice(read, table, "kind", "trajectory", ("control_points", "samples"))
+    points = read.points(table, "points", "trajectory")
+    if len(points) > 4 and np.allclose(points[0], points[-1], rtol=0, atol=1e-9):
+        points = points[:-1]                 # closed explicitly: the last point repeats the first
+    if len(points) < 4:
+        read.fail("trajectory.points", table.get("points"), "at least 4 points [x, y] (mm) of a closed curve")
+    gaps = np.linalg.norm(np.diff(np.r_[points, points[:1]], axis=0), axis=1)
+    if gaps[:-1].min() < 1e-9 * max(gaps.max(), 1.0):
+        k = int(np.argmin(gaps[:-1]))
+        read.fail(f"trajectory.points[{k + 1}]", points[k + 1].tolist(),
+                  f"a point distinct from points[{k}] (a repeated point makes the curve stop there)")
+    spread = np.linalg.svd(points - points.mean(axis=0), compute_uv=False)
+    if spread[1] <= 1e-9 * spread[0]:
+        read.fail("trajectory.points", f"{len(points)} points", "points that enclose an area (these lie on one line)")
+    if gaps[-1] > OPEN_GAP_FACTOR * gaps[:-1].max():
+        read.fail("trajectory.points", f"{len(points)} points from {points[0].tolist()} to {points[-1].tolist()}",
+                  f"a closed curve: the way back from the last point to the first is {gaps[-1]:.1f} mm, "
+                  f"{gaps[-1] / gaps[:-1].max():.1f} times the longest step between the others (the curve looks "
+                  "open; add the points of the return stroke)")
+    return points, kind
+
+
+def _arm(read: FieldReader, table: dict):
+    read.keys(table, {"pivot", "carrier_length", "arm_length", "direction", "branch"}, "arm")
+    pivot = read.point(table.get("pivot", [0.0, 0.0]), "arm.pivot")
+    given = [key for key in ("carrier_length", "arm_length") if key in table]
+    lengths = None
+    if len(given) == 1:
+        read.fail(f"arm.{given[0]}", table[given[0]], "carrier_length and arm_length together, or neither "
+                  "(then both come from the farthest and nearest path points, seed 002 eq 1-2)")
+    if given:
+        lengths = tuple(read.number(table, key, "arm") for key in ("carrier_length", "arm_length"))
+        for key, value in zip(("carrier_length", "arm_length"), lengths):
+            if value <= 0:
+                read.fail(f"arm.{key}", value, "a positive length (mm)")
+    direction = _choice(read, table, "direction", "arm", ("counterclockwise", "clockwise"), "counterclockwise")
+    branch = _choice(read, table, "branch", "arm", ("auto", "approach", "retraction"), "auto")
+    return pivot, lengths, 1 if direction == "counterclockwise" else -1, branch
+
+
+def _train(read: FieldReader, table: dict):
+    read.keys(table, {"topology", "split", "peak_to_valley", "center_distances", "module"}, "train")
+    topology = _choice(read, table, "topology", "train", tuple(TOPOLOGIES), "sun-intermediate-planet")
+    split = _choice(read, table, "split", "train", TOPOLOGIES[topology], TOPOLOGIES[topology][0])
+    coefficient = read.number(table, "peak_to_valley", "train") if "peak_to_valley" in table else 0.5
+    if not 0 < coefficient < 1:
+        read.fail("train.peak_to_valley", coefficient, "a number in (0, 1): the share of the total ratio's swing "
+                  "that stage 1 carries")
+    centers = None
+    if "center_distances" in table:
+        centers = read.numbers(table, "center_distances", "train", 2)
+        if len(centers) != 2 or centers.min() <= 0:
+            read.fail("train.center_distances", table["center_distances"], "two positive center distances (mm)")
+        centers = (float(centers[0]), float(centers[1]))
+    module = read.number(table, "module", "train") if "module" in table else 2.5
+    if module <= 0:
+        read.fail("train.module", module, "a positive module (mm)")
+    return topology, split, coefficient, centers, module
+
+
+def parse_problem(data: dict, source: str = "<problem>") -> ReverseProblem:
+    read = FieldReader(source)
+    read.keys(data, _TOP_KEYS, "")
+    if "trajectory" not in data:
+        read.fail("trajectory", None, "a [trajectory] table with kind and points")
+    points, kind = _trajectory_points(read, data["trajectory"])
+    pivot, lengths, direction, branch = _arm(read, data.get("arm", {}))
+    topology, split, coefficient, centers, module = _train(read, data.get("train", {}))
+    return ReverseProblem(points=points - pivot, kind=kind, pivot=pivot, lengths=lengths, direction=direction,
+                          branch=branch, topology=topology, split=split, peak_to_valley=coefficient,
+                          center_distances=centers, module=module, source=source, title=str(data.get("title", "")))

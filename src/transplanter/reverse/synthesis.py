@@ -1,0 +1,148 @@
+"""Reverse design: closed tip path -> arm lengths -> inverse kinematics -> monotonicity ->
+ratio split -> pitch curves -> verification by rolling (seeds 002, 003, 004).
+
+``synthesize`` raises a ``ProblemError`` or ``InfeasibleError`` for a path it cannot use
+(a curve that stops, points out of reach, impossible center distances); a path that fails
+the monotonicity criterion comes back with its violations and fix hints and no train.
+"""
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from transplanter.reverse.arm_inverse import TOUCH_TOLERANCE_MM, ArmMotion, solve_arm
+from transplanter.reverse.carrier_frame_motion import CarrierFrameMotion
+from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, interpolating_polygon
+from transplanter.errors import InfeasibleError, ProblemError, TransplanterWarning
+from transplanter.generated import numpy_twin
+from transplanter.reverse.idler_train import IdlerTrain, design_idler_train, verify_idler_train
+from transplanter.reverse.monotonicity import Violation, fix_hints, violations
+from transplanter.trains.planetary import PlanetaryTrain, design_train
+from transplanter.reverse.problem import ReverseProblem
+from transplanter.reverse.verification import CarrierGeometry, ReverseVerification, verify_reverse
+
+_arm_lengths = numpy_twin("planetary", "arm_lengths_from_extremes")
+#: A train whose rolled tip strays further than this from the path is reported with a warning (mm).
+ROUNDTRIP_TOLERANCE_MM = 1e-6
+
+
+@dataclass(frozen=True)
+class ReverseResult:
+    problem: ReverseProblem
+    trajectory: ClosedTrajectory
+    extremes: tuple[float, float]              # farthest and nearest |P|, mm
+    lengths_derived: bool
+    motion: ArmMotion
+    violations: list[Violation]
+    hints: list[str]
+    relative: CarrierFrameMotion | None = None
+    geometry: CarrierGeometry | None = None
+    train: PlanetaryTrain | IdlerTrain | None = None
+    verification: ReverseVerification | None = None
+
+    @property
+    def monotonic(self) -> bool:
+        return not self.violations
+
+
+def build_trajectory(problem: ReverseProblem) -> ClosedTrajectory:
+    control = problem.points if problem.kind == "control_points" else interpolating_polygon(problem.points)
+    trajectory = ClosedTrajectory(control)
+    speed, where = trajectory.turning_speed_floor()
+    scale = np.linalg.norm(np.diff(np.r_[control, control[:1]], axis=0), axis=1).mean()
+    if speed < 1e-6 * scale:
+        raise ProblemError(f"{problem.source}: trajectory.points: the curve stops (speed {speed:.3g} mm per unit "
+                           f"parameter) at u = {where / TWO_PI:.4f}: expected a curve that keeps moving (a control "
+                           "polygon that folds straight back on itself, its neighbours of a point coinciding, makes "
+                           "a cusp)")
+    return trajectory
+
+
+def _unreachable(problem: ReverseProblem, trajectory: ClosedTrajectory, s: float, l: float):
+    x = np.linspace(0, TWO_PI, trajectory.count * 256, endpoint=False)
+    radius = np.linalg.norm(trajectory.evaluate(x), axis=1)
+    outer, inner = s + l, abs(s - l)
+    for excess, what in ((radius - outer, f"beyond the reach s + l = {outer:.4f} mm"),
+                         (inner - radius, f"inside the hole |s - l| = {inner:.4f} mm the arm cannot fold into")):
+        bad = excess > TOUCH_TOLERANCE_MM
+        if bad.any():
+            k = np.flatnonzero(bad)
+            worst = k[np.argmax(excess[k])]
+            first, last = x[k[0]], x[k[-1]]
+            p = trajectory.evaluate(np.array([first, last, x[worst]])) + problem.pivot
+            raise InfeasibleError(
+                f"{problem.source}: trajectory points from u = {first / TWO_PI:.4f} ({p[0, 0]:.2f}, {p[0, 1]:.2f}) to "
+                f"u = {last / TWO_PI:.4f} ({p[1, 0]:.2f}, {p[1, 1]:.2f}) lie {what}, by up to {excess[worst]:.4f} mm "
+                f"at ({p[2, 0]:.2f}, {p[2, 1]:.2f}); carrier_length = {s:g}, arm_length = {l:g}")
+
+
+def _ratio_spread(motion: ArmMotion) -> float:
+    ratio = motion.total_ratio()
+    return float(ratio.max() / ratio.min())
+
+
+def choose_motion(trajectory: ClosedTrajectory, s: float, l: float, direction: int, branch: str) -> ArmMotion:
+    """The start branch asked for, or (auto) the one that passes with the smaller ratio spread."""
+    starts = {"approach": (1,), "retraction": (-1,), "auto": (1, -1)}[branch]
+    motions = [solve_arm(trajectory, s, l, direction, b) for b in starts]
+    counts = [len(violations(m)) for m in motions]
+    judged = [(count, np.inf if count else _ratio_spread(m), k) for k, (m, count) in enumerate(zip(motions, counts))]
+    return motions[min(judged)[2]]
+
+
+def carrier_geometry(problem: ReverseProblem, s: float) -> CarrierGeometry | None:
+    """None for a straight carrier (sun, intermediate and planet shafts on one line)."""
+    centers = problem.center_distances
+    if problem.topology != "pick-up":
+        if centers is not None and abs(sum(centers) - s) > 1e-9 * s:
+            raise ProblemError(f"{problem.source}: train.center_distances = {list(centers)}: expected two distances "
+                               f"adding up to the carrier length {s:.6g} mm on a straight carrier (or topology "
+                               "\"pick-up\" for a bent one)")
+        if problem.topology == "sun-idler-planet" and centers is not None and abs(centers[0] - centers[1]) > 1e-9 * s:
+            raise ProblemError(f"{problem.source}: train.center_distances = {list(centers)}: expected two equal "
+                               "distances for sun-idler-planet (seed 002: the idler then makes the sun and the planet "
+                               "the same curve)")
+        return None
+    first, second = centers if centers is not None else (s / 2, s / 2)
+    cosine = (s**2 - first**2 - second**2) / (2 * first * second)
+    if abs(cosine) > 1:
+        raise ProblemError(f"{problem.source}: train.center_distances = {[first, second]}: expected L1, L2 that can "
+                           f"place the planet {s:.6g} mm from the pivot (|L1 - L2| <= s <= L1 + L2)")
+    return CarrierGeometry(first, second, float(np.arccos(cosine)))
+
+
+def synthesize(problem: ReverseProblem) -> ReverseResult:
+    trajectory = build_trajectory(problem)
+    radii = [e.radius for e in trajectory.radial_extremes()]
+    extremes = (max(radii), min(radii))
+    derived = problem.lengths is None
+    s, l = (float(v) for v in _arm_lengths(np.array(extremes))[0]) if derived else problem.lengths
+    _unreachable(problem, trajectory, s, l)
+    motion = choose_motion(trajectory, s, l, problem.direction, problem.branch)
+    found = violations(motion)
+    if found:
+        derived_lengths = tuple(float(v) for v in _arm_lengths(np.array(extremes))[0])
+        return ReverseResult(problem, trajectory, extremes, derived, motion, found,
+                             fix_hints(trajectory, motion, derived_lengths))
+    geometry = carrier_geometry(problem, s)
+    relative = CarrierFrameMotion(motion)
+    if problem.topology == "sun-idler-planet":
+        train = design_idler_train(relative, s / 2, problem.source)
+        return _warn_on_miss(ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, None,
+                                           train, verify_idler_train(motion, train)))
+    centers = (geometry.first, geometry.second) if geometry else (problem.center_distances or (s / 2, s / 2))
+    exponent = problem.peak_to_valley if problem.split == "peak_to_valley" else 0.5
+    train = design_train(relative, centers, problem.source, exponent)
+    return _warn_on_miss(ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, geometry,
+                                       train, verify_reverse(motion, train, geometry)))
+
+
+def _warn_on_miss(result: ReverseResult) -> ReverseResult:
+    miss = result.verification.max_error_mm
+    if miss > ROUNDTRIP_TOLERANCE_MM:
+        warnings.warn(f"{result.problem.source}: the {result.problem.topology} train, rolled from its pitch curves, "
+                      f"misses the path by up to {miss:.4g} mm (more than {ROUNDTRIP_TOLERANCE_MM:g} mm)",
+                      TransplanterWarning, stacklevel=2)
+    return result
