@@ -1,7 +1,8 @@
 """A transmission ratio written as a formula of phi, read safely into a casadi expression.
 
 Allowed: numbers, ``phi``, ``pi``, + - * / **, parentheses and cos, sin, tan, exp, sqrt, log.
-Anything else is refused with the offending piece named; nothing is evaluated by Python.
+Anything else is refused with the offending piece named; nothing is evaluated by Python
+but arithmetic on constants, which must stay finite (``1/0``, ``9**9**9**9`` are refused).
 """
 from __future__ import annotations
 
@@ -33,12 +34,26 @@ def _build(node, phi):
     if isinstance(node, ast.Name) and node.id in ("phi", "pi"):
         return phi if node.id == "phi" else math.pi
     if isinstance(node, ast.BinOp) and type(node.op) in _OPERATORS:
-        return _OPERATORS[type(node.op)](_build(node.left, phi), _build(node.right, phi))
+        return _finite(node, lambda: _OPERATORS[type(node.op)](_build(node.left, phi), _build(node.right, phi)))
     if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
         value = _build(node.operand, phi)
         return -value if isinstance(node.op, ast.USub) else value
     if (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in _FUNCTIONS
             and len(node.args) == 1 and not node.keywords):
-        return _FUNCTIONS[node.func.id](_build(node.args[0], phi))
+        return _finite(node, lambda: _FUNCTIONS[node.func.id](_build(node.args[0], phi)))
     raise ExpressionError(f"'{ast.unparse(node)}' is not allowed (numbers, phi, pi, + - * / **, "
                           f"{', '.join(_FUNCTIONS)})")
+
+
+def _finite(node, evaluate):
+    """``evaluate()``, refused when constants alone give no finite number (casadi folds them
+    into an SX constant; Python raises for float division by zero and overflow)."""
+    try:
+        value = evaluate()
+    except (ZeroDivisionError, OverflowError):
+        value = math.nan
+    if isinstance(value, ca.SX) and value.is_constant():
+        value = float(value)
+    if isinstance(value, float) and not math.isfinite(value):
+        raise ExpressionError(f"'{ast.unparse(node)}' is not a finite number")
+    return value
