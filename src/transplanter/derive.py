@@ -19,4 +19,6 @@ def run_build(argv: list[str]) -> int:
         build = importlib.import_module("derivations.build")
     except ModuleNotFoundError as error:
         raise TransplanterError(f"derive: {error.name} is not installed: it needs `pip install -e .[dev]`") from None
+    except SyntaxError as error:
+        raise TransplanterError(f"derive: {error.filename}:{error.lineno}: syntax error ({error.msg})") from None
     return build.main(argv)
