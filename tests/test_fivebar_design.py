@@ -238,3 +238,9 @@ def test_an_emptied_family_says_why_dyads_inside_every_range_were_dropped(proble
     with pytest.raises(InfeasibleError, match=r"F \(1\.0, 1\.0\) within the ranges, dropped by order") as error:
         _empty_family(problem, "3R chain O-A-F", family)
     assert "outside by" not in str(error.value)
+
+
+def test_a_region_radius_that_traces_no_dyad_is_named():
+    problem = parse_problem(_edited(region__radius_mm=1e-9), "f.toml")
+    with pytest.raises(InfeasibleError, match=r"no 2R chain B-E traced: .*region\.radius_mm = 1e-09 mm"):
+        synthesize(problem)

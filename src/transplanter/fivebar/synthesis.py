@@ -36,6 +36,9 @@ class FiveBarResult:
 
 
 def _empty_family(problem: FiveBarProblem, name: str, family: ChainFamily):
+    if len(family.fixed) == 0:
+        raise InfeasibleError(f"{problem.source}: no {name} traced: no dyad of the key poses has its hinges within "
+                              f"region.radius_mm = {problem.radius_mm:g} mm of the poses' centroid; enlarge it")
     stage = [key for key, count in family.reasons.items() if count][-1]      # the one that left none
     hinges = "B, E" if name.endswith("B-E") else "A, F"
     total = sum(family.shortfalls.values())
