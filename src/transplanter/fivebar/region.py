@@ -15,13 +15,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from transplanter.geometry.dyad import Link
-from transplanter.fivebar.candidate import Candidate, evaluate_candidate
+from transplanter.fivebar.candidate import Candidate, judge_candidates
 from transplanter.fivebar.linkage import from_hinges
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.geometry.poses import carry
 from transplanter.burmester.synthesis import DyadProblem, Synthesis, synthesize
 
 TWO_PI = 2 * np.pi
+#: Five-bars judged in one set of arrays (bounds the memory: CHUNK x 720 turns per array).
+CHUNK = 512
 
 
 @dataclass(frozen=True)
@@ -101,12 +103,14 @@ def _increasing_relative_angle(problem: FiveBarProblem, a1: np.ndarray, f1: np.n
 
 def solution_region(problem: FiveBarProblem) -> Region:
     receiving, carrier = chain_families(problem)
+    pairs = np.stack(np.meshgrid(np.flatnonzero(receiving.kept), np.flatnonzero(carrier.kept), indexing="ij"),
+                     -1).reshape(-1, 2)
     candidates = []
-    for i in np.flatnonzero(receiving.kept):
-        for j in np.flatnonzero(carrier.kept):
-            mech = from_hinges(problem.poses[0], receiving.fixed[i], receiving.moving[i],
-                               carrier.fixed[j], carrier.moving[j])
-            candidates.append(evaluate_candidate(problem, mech, check_ranges=False))
+    for chunk in np.array_split(pairs, np.arange(CHUNK, len(pairs), CHUNK)):
+        i, j = chunk[:, :1], chunk[:, 1:]
+        mech = from_hinges(problem.poses[0], receiving.fixed[i], receiving.moving[i], carrier.fixed[j],
+                           carrier.moving[j])
+        candidates += judge_candidates(problem, mech, check_ranges=False)
     defects = {}
     for candidate in candidates:
         if candidate.defects:
