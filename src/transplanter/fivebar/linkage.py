@@ -15,7 +15,7 @@ of a single vector: a batch and a single mechanism give the same bits.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -72,11 +72,11 @@ class FiveBar:
 
     def __getitem__(self, index) -> "FiveBar":
         """The mechanism(s) at ``index`` of a batch."""
-        return FiveBar(**{f.name: getattr(self, f.name)[index] for f in fields(self)})
+        return FiveBar(*(value[index] for value in vars(self).values()))
 
     def as_batch(self) -> "FiveBar":
         """One mechanism as a batch of one (fields (1, 1) and (1, 1, 2))."""
-        return FiveBar(**{f.name: np.asarray(getattr(self, f.name), float)[None, None] for f in fields(self)})
+        return FiveBar(*(np.asarray(value, float)[None, None] for value in vars(self).values()))
 
     @property
     def link_length(self) -> float | np.ndarray:

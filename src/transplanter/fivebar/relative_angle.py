@@ -11,6 +11,7 @@ rho is strictly increasing.
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -76,11 +77,15 @@ def negative_intervals(turns: np.ndarray, values: np.ndarray) -> list[tuple[floa
     return intervals
 
 
+@functools.lru_cache(maxsize=8)
 def bending_matrix(count: int) -> np.ndarray:
-    """G with q^T G q = int_0^2pi S''(c)^2 dc (midpoint sum; exact for the piecewise-linear S'')."""
+    """G with q^T G q = int_0^2pi S''(c)^2 dc (midpoint sum; exact for the piecewise-linear S'').
+    Computed once per ``count`` (read-only): every fit of the region uses it."""
     grid = (np.arange(BENDING_SAMPLES) + 0.5) * TWO_PI / BENDING_SAMPLES
     second = basis_matrix(grid, count, 2)
-    return second.T @ second * (TWO_PI / BENDING_SAMPLES)
+    matrix = second.T @ second * (TWO_PI / BENDING_SAMPLES)
+    matrix.flags.writeable = False
+    return matrix
 
 
 def fit_relative_angle(carrier_turns: np.ndarray, rho: np.ndarray, count: int) -> RelativeAngle:
