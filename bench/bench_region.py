@@ -21,11 +21,13 @@ from pathlib import Path
 import numpy as np
 
 from transplanter.errors import ProblemError
-from transplanter.fivebar.candidate import GRID, Candidate, crank_exists, range_values, whole_turn
+from transplanter.fivebar.candidate import (BRANCH, CRANK, RETURN, Candidate, closure_defect, crank_exists,
+                                            monotonic_defect, order_defect, range_defect, range_values, ratio_defect,
+                                            whole_turn)
 from transplanter.fivebar.linkage import FiveBar, assembly_branch, from_hinges
 from transplanter.fivebar.problem import FiveBarProblem, load_problem, parse_problem
 from transplanter.fivebar.region import chain_families, solution_region
-from transplanter.fivebar.relative_angle import fit_relative_angle, negative_intervals, ratio_range
+from transplanter.fivebar.relative_angle import fit_relative_angle, ratio_range
 from transplanter.fivebar.return_stroke import ReturnStroke, _options
 from transplanter.fivebar.synthesis import synthesize
 from transplanter.toml_fields import read_toml
@@ -61,32 +63,30 @@ def baseline_candidate(problem: FiveBarProblem, mech: FiveBar, check_ranges: boo
     rho = mech.relative_angle_at(problem.poses, turns)
     rho = rho[0] + np.mod(rho - rho[0], TWO_PI)
     values = range_values(problem, mech)
-    defects = [f"ranges.{key} = {values[key]:.2f} outside [{low:g}, {high:g}]"
-               for key, (low, high) in problem.ranges.items() if not low <= values[key] <= high] if check_ranges else []
+    defects = [range_defect(key, values[key], bounds) for key, bounds in problem.ranges.items()
+               if not bounds[0] <= values[key] <= bounds[1]] if check_ranges else []
     if np.any(np.diff(rho) <= 0):
-        defects.append("order: the relative angle does not increase through the key poses "
-                       f"({', '.join(f'{v:.1f}' for v in np.degrees(rho))} deg)")
+        defects.append(order_defect(rho))
     e, f = mech.plate_points(problem.poses)
     if np.any(assembly_branch(mech.hinge_b, e, f) != mech.branch):
-        defects.append("branch: the B-E-F assembly differs between key poses")
+        defects.append(BRANCH)
     if not crank_exists(mech):
-        defects.append("crank: the carrier cannot turn fully")
+        defects.append(CRANK)
     if defects:
         return Candidate(mech, rho, defects)
     stroke = baseline_return_stroke(mech, problem.return_points, turns[-1], rho[0], rho[-1], problem.poses[-1, 2])
     if stroke is None:
-        return Candidate(mech, rho, ["return: no assembly reaches the return points in order"])
+        return Candidate(mech, rho, [RETURN])
     relative = fit_relative_angle(np.r_[turns, stroke.carrier_turns], np.r_[rho, stroke.relative_angles],
                                   problem.spline_count)
     margin, slope = whole_turn(mech, relative)
     ratio = ratio_range(slope)
     if slope.min() <= 0:
-        spans = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in negative_intervals(GRID, slope))
-        defects.append(f"monotonic: rho' <= 0 (down to {slope.min():.3f}) for carrier turns {spans} deg")
+        defects.append(monotonic_defect(slope))
     elif ratio[0] < problem.ratio_bounds[0] or ratio[1] > problem.ratio_bounds[1]:
-        defects.append(f"ratio: i0 spans [{ratio[0]:.3f}, {ratio[1]:.3f}], outside {list(problem.ratio_bounds)}")
+        defects.append(ratio_defect(*ratio, problem.ratio_bounds))
     if not margin >= problem.min_closure_margin:
-        defects.append(f"closure: min sin^2(EBF) = {margin:.4f} < {problem.min_closure_margin:g}")
+        defects.append(closure_defect(margin, problem.min_closure_margin))
     return Candidate(mech, rho, defects, stroke, relative, margin, ratio)
 
 
@@ -108,7 +108,7 @@ def _exponent(counts, seconds) -> float:
     return float(np.polyfit(np.log(counts), np.log(seconds), 1)[0])
 
 
-def scaling(problem: FiveBarProblem, baseline_up_to: int = 2000):
+def scaling(problem: FiveBarProblem, baseline_up_to: int = 4000):
     rows = []
     for samples in SAMPLES:
         sampled = dataclasses.replace(problem, samples=samples)
@@ -118,9 +118,11 @@ def scaling(problem: FiveBarProblem, baseline_up_to: int = 2000):
         print(f"samples {samples:5d}: {len(region.candidates):7d} five-bars, {len(region.feasible):4d} feasible, "
               f"region {package:7.3f} s, former loop {former:7.3f} s")
     counts, package, former = (np.array([row[k] for row in rows], float) for k in (1, 3, 4))
-    big = counts >= 1000            # below that, fixed costs (the dyad tracing) dominate
-    print(f"exponent of region time against five-bars (>= 1000 of them): package {_exponent(counts[big], package[big]):.2f}"
-          f", former loop {_exponent(counts[big & np.isfinite(former)], former[big & np.isfinite(former)]):.2f}")
+    big = counts >= 400            # below that, the dyad tracing (linear in samples) dominates
+    both = big & np.isfinite(former)
+    print(f"exponent of region time against five-bars (>= 400 of them): package {_exponent(counts[big], package[big]):.2f}"
+          f", former loop {_exponent(counts[both], former[both]):.2f}; at {int(counts[both][-1])} five-bars the "
+          f"package takes {package[both][-1] / former[both][-1]:.3f} of the former loop's time")
 
 
 def _design_numbers(result) -> np.ndarray:

@@ -69,6 +69,28 @@ def whole_turn(mech: FiveBar, relative: RelativeAngle, grid: np.ndarray = GRID) 
     return np.min(state["margin"], axis=-1), relative.evaluate(grid, 1)
 
 
+def range_defect(key: str, value: float, bounds: tuple[float, float]) -> str:
+    return f"ranges.{key} = {value:.2f} outside [{bounds[0]:g}, {bounds[1]:g}]"
+
+
+def order_defect(rho: np.ndarray) -> str:
+    return ("order: the relative angle does not increase through the key poses "
+            f"({', '.join(f'{v:.1f}' for v in np.degrees(rho))} deg)")
+
+
+def monotonic_defect(slope: np.ndarray) -> str:
+    spans = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in negative_intervals(GRID, slope))
+    return f"monotonic: rho' <= 0 (down to {slope.min():.3f}) for carrier turns {spans} deg"
+
+
+def ratio_defect(low: float, high: float, bounds: tuple[float, float]) -> str:
+    return f"ratio: i0 spans [{low:.3f}, {high:.3f}], outside {list(bounds)}"
+
+
+def closure_defect(margin: float, minimum: float) -> str:
+    return f"closure: min sin^2(EBF) = {margin:.4f} < {minimum:g}"
+
+
 def _positions(rows: np.ndarray, count: int) -> np.ndarray:
     """Where each of ``count`` mechanisms sits in the subset ``rows`` (-1: not in it)."""
     where = np.full(count, -1)
@@ -107,11 +129,9 @@ def judge_candidates(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool 
     candidates = []
     for k in range(count):
         one = mech[k, 0]
-        defects = [f"ranges.{key} = {values[key][k, 0]:.2f} outside [{ranges[key][0]:g}, {ranges[key][1]:g}]"
-                   for key, bad in outside.items() if bad[k]]
+        defects = [range_defect(key, values[key][k, 0], ranges[key]) for key, bad in outside.items() if bad[k]]
         if disorder[k]:
-            defects.append("order: the relative angle does not increase through the key poses "
-                           f"({', '.join(f'{v:.1f}' for v in np.degrees(rho[k]))} deg)")
+            defects.append(order_defect(rho[k]))
         if branch_changes[k]:
             defects.append(BRANCH)
         if no_crank[k]:
@@ -124,12 +144,11 @@ def judge_candidates(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool 
             candidates.append(Candidate(one, rho[k], [RETURN]))
             continue
         if lowest[i] <= 0:
-            spans = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in negative_intervals(GRID, slope[i]))
-            defects.append(f"monotonic: rho' <= 0 (down to {lowest[i]:.3f}) for carrier turns {spans} deg")
+            defects.append(monotonic_defect(slope[i]))
         elif low[i] < problem.ratio_bounds[0] or high[i] > problem.ratio_bounds[1]:
-            defects.append(f"ratio: i0 spans [{low[i]:.3f}, {high[i]:.3f}], outside {list(problem.ratio_bounds)}")
+            defects.append(ratio_defect(low[i], high[i], problem.ratio_bounds))
         if not margin[i] >= problem.min_closure_margin:
-            defects.append(f"closure: min sin^2(EBF) = {margin[i]:.4f} < {problem.min_closure_margin:g}")
+            defects.append(closure_defect(margin[i], problem.min_closure_margin))
         j = at_judged[k]
         candidates.append(Candidate(one, rho[k], defects,
                                     ReturnStroke(stroke.carrier_turns[j], stroke.relative_angles[j], stroke.directions[j]),
