@@ -1,4 +1,4 @@
-"""One candidate five-bar judged over a whole turn: key-pose relative angles, return stroke,
+"""Candidate five-bars judged over a whole turn: key-pose relative angles, return stroke,
 fitted relative angle, and the conditions a gear-driven five-bar must meet.
 
 Conditions (each failure is named in ``defects``):
@@ -8,6 +8,10 @@ Conditions (each failure is named in ``defects``):
 - the return points have a consistent inverse kinematics (``return_stroke``);
 - the fitted rho(c) is strictly increasing, with the ratio i0 = 1/rho' inside the bounds;
 - the chain closes all round with sin^2(angle EBF) above the margin (eq 10).
+
+``judge_candidates`` checks a whole batch of mechanisms with array operations over
+(mechanisms x carrier turns), each stage only on the mechanisms the earlier ones kept;
+``evaluate_candidate`` is the same judgement of one mechanism.
 """
 from __future__ import annotations
 
@@ -18,11 +22,14 @@ import numpy as np
 from transplanter.fivebar.linkage import FiveBar, assembly_branch
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.relative_angle import RelativeAngle, fit_relative_angle, negative_intervals, ratio_range
-from transplanter.fivebar.return_stroke import ReturnStroke, solve_return_stroke
+from transplanter.fivebar.return_stroke import ReturnStroke, solve_return_strokes
 
 TWO_PI = 2 * np.pi
 #: Carrier turns at which the whole-turn conditions are checked.
 GRID = np.linspace(0, TWO_PI, 720, endpoint=False)
+BRANCH = "branch: the B-E-F assembly differs between key poses"
+CRANK = "crank: the carrier cannot turn fully"
+RETURN = "return: no assembly reaches the return points in order"
 
 
 @dataclass(frozen=True)
@@ -40,59 +47,116 @@ class Candidate:
         return not self.defects
 
 
-def crank_exists(mech: FiveBar) -> bool:
+def crank_exists(mech: FiveBar):
     """The carrier turns fully iff the chain A-F-E-B (L2, L3, L4) spans every |AB| in
-    [|L5 - L1|, L5 + L1]: at most L2 + L3 + L4, at least 2 max(L2, L3, L4) - (L2 + L3 + L4)."""
-    chain = np.array([mech.rod_length, mech.link_length, mech.receiving_length])
-    frame = float(np.hypot(*mech.hinge_b))
-    return frame + mech.carrier_length <= chain.sum() and abs(frame - mech.carrier_length) >= 2 * chain.max() - chain.sum()
+    [|L5 - L1|, L5 + L1]: at most L2 + L3 + L4, at least 2 max(L2, L3, L4) - (L2 + L3 + L4).
+    A bool, or one per mechanism of a batch."""
+    chain = np.stack([mech.rod_length, mech.link_length, mech.receiving_length], -1)
+    frame = np.hypot(mech.hinge_b[..., 0], mech.hinge_b[..., 1])
+    length, longest = chain.sum(axis=-1), chain.max(axis=-1)
+    return (frame + mech.carrier_length <= length) & (abs(frame - mech.carrier_length) >= 2 * longest - length)
 
 
 def range_values(problem: FiveBarProblem, mech: FiveBar) -> dict:
-    """The quantities that ``[ranges]`` limit, for this mechanism."""
+    """The quantities that ``[ranges]`` limit (mm), for a mechanism or each of a batch."""
     e, f = mech.plate_points(problem.poses[0])
-    return {"ep": mech.ep, "fp": mech.fp, "x_e": float(e[0]), "x_f": float(f[0])}
+    return {"ep": mech.ep, "fp": mech.fp, "x_e": e[..., 0], "x_f": f[..., 0]}
 
 
-def range_violations(problem: FiveBarProblem, mech: FiveBar) -> list[str]:
-    values = range_values(problem, mech)
-    return [f"ranges.{key} = {values[key]:.2f} outside [{low:g}, {high:g}]"
-            for key, (low, high) in problem.ranges.items() if not low <= values[key] <= high]
-
-
-def whole_turn(mech: FiveBar, relative: RelativeAngle, grid: np.ndarray = GRID) -> tuple[float, np.ndarray]:
-    """Smallest closure margin over the grid, and rho' on it."""
+def whole_turn(mech: FiveBar, relative: RelativeAngle, grid: np.ndarray = GRID) -> tuple:
+    """Smallest closure margin over the grid, and rho' on it (one row per mechanism of a batch)."""
     state = mech.forward(grid, relative.evaluate(grid))
-    return float(np.min(state["margin"])), relative.evaluate(grid, 1)
+    return np.min(state["margin"], axis=-1), relative.evaluate(grid, 1)
+
+
+def range_defect(key: str, value: float, bounds: tuple[float, float]) -> str:
+    return f"ranges.{key} = {value:.2f} outside [{bounds[0]:g}, {bounds[1]:g}]"
+
+
+def order_defect(rho: np.ndarray) -> str:
+    return ("order: the relative angle does not increase through the key poses "
+            f"({', '.join(f'{v:.1f}' for v in np.degrees(rho))} deg)")
+
+
+def monotonic_defect(slope: np.ndarray) -> str:
+    spans = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in negative_intervals(GRID, slope))
+    return f"monotonic: rho' <= 0 (down to {slope.min():.3f}) for carrier turns {spans} deg"
+
+
+def ratio_defect(low: float, high: float, bounds: tuple[float, float]) -> str:
+    return f"ratio: i0 spans [{low:.3f}, {high:.3f}], outside {list(bounds)}"
+
+
+def closure_defect(margin: float, minimum: float) -> str:
+    return f"closure: min sin^2(EBF) = {margin:.4f} < {minimum:g}"
+
+
+def _positions(rows: np.ndarray, count: int) -> np.ndarray:
+    """Where each of ``count`` mechanisms sits in the subset ``rows`` (-1: not in it)."""
+    where = np.full(count, -1)
+    where[rows] = np.arange(len(rows))
+    return where
+
+
+def judge_candidates(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool = True) -> list[Candidate]:
+    """Every mechanism of a batch (``mech`` fields (K, 1)) judged at once: one ``Candidate`` each, in order."""
+    turns = problem.carrier_turns
+    rho = mech.relative_angle_at(problem.poses, turns)
+    rho = rho[..., :1] + np.mod(rho - rho[..., :1], TWO_PI)
+    count = len(rho)
+    values = range_values(problem, mech)
+    ranges = problem.ranges if check_ranges else {}
+    outside = {key: ~((low <= values[key]) & (values[key] <= high))[:, 0] for key, (low, high) in ranges.items()}
+    disorder = np.any(np.diff(rho, axis=-1) <= 0, axis=-1)
+    e, f = mech.plate_points(problem.poses)
+    branch_changes = np.any(assembly_branch(mech.hinge_b, e, f) != mech.branch, axis=-1)
+    no_crank = ~crank_exists(mech)[:, 0]
+    early = disorder | branch_changes | no_crank | np.any([np.zeros(count, bool), *outside.values()], axis=0)
+
+    judged = np.flatnonzero(~early)
+    stroke = solve_return_strokes(mech[judged], problem.return_points, turns[-1], rho[judged, 0], rho[judged, -1],
+                                  problem.poses[-1, 2])
+    fitted = judged[stroke.found]
+    points_c = np.concatenate([np.broadcast_to(turns, (len(fitted), len(turns))),
+                               stroke.carrier_turns[stroke.found]], axis=1)
+    points_rho = np.concatenate([rho[fitted], stroke.relative_angles[stroke.found]], axis=1)
+    relative = fit_relative_angle(points_c, points_rho, problem.spline_count)
+    margin, slope = whole_turn(mech[fitted], relative)
+    lowest = slope.min(axis=-1)
+    low, high = ratio_range(slope)
+
+    at_judged, at_fitted = _positions(judged, count), _positions(fitted, count)
+    candidates = []
+    for k in range(count):
+        one = mech[k, 0]
+        defects = [range_defect(key, values[key][k, 0], ranges[key]) for key, bad in outside.items() if bad[k]]
+        if disorder[k]:
+            defects.append(order_defect(rho[k]))
+        if branch_changes[k]:
+            defects.append(BRANCH)
+        if no_crank[k]:
+            defects.append(CRANK)
+        if defects:
+            candidates.append(Candidate(one, rho[k], defects))
+            continue
+        i = at_fitted[k]
+        if i < 0:
+            candidates.append(Candidate(one, rho[k], [RETURN]))
+            continue
+        if lowest[i] <= 0:
+            defects.append(monotonic_defect(slope[i]))
+        elif low[i] < problem.ratio_bounds[0] or high[i] > problem.ratio_bounds[1]:
+            defects.append(ratio_defect(low[i], high[i], problem.ratio_bounds))
+        if not margin[i] >= problem.min_closure_margin:
+            defects.append(closure_defect(margin[i], problem.min_closure_margin))
+        j = at_judged[k]
+        candidates.append(Candidate(one, rho[k], defects,
+                                    ReturnStroke(stroke.carrier_turns[j], stroke.relative_angles[j], stroke.directions[j]),
+                                    RelativeAngle(relative.rho1[i, 0], relative.coefficients[i]), margin[i],
+                                    (float(low[i]), float(high[i]))))
+    return candidates
 
 
 def evaluate_candidate(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool = True) -> Candidate:
-    turns = problem.carrier_turns
-    rho = mech.relative_angle_at(problem.poses, turns)
-    rho = rho[0] + np.mod(rho - rho[0], TWO_PI)
-    defects = range_violations(problem, mech) if check_ranges else []
-    if np.any(np.diff(rho) <= 0):
-        defects.append("order: the relative angle does not increase through the key poses "
-                       f"({', '.join(f'{v:.1f}' for v in np.degrees(rho))} deg)")
-    e, f = mech.plate_points(problem.poses)
-    if np.any(assembly_branch(mech.hinge_b, e, f) != mech.branch):
-        defects.append("branch: the B-E-F assembly differs between key poses")
-    if not crank_exists(mech):
-        defects.append("crank: the carrier cannot turn fully")
-    if defects:
-        return Candidate(mech, rho, defects)
-    stroke = solve_return_stroke(mech, problem.return_points, turns[-1], rho[0], rho[-1], problem.poses[-1, 2])
-    if stroke is None:
-        return Candidate(mech, rho, ["return: no assembly reaches the return points in order"])
-    relative = fit_relative_angle(np.r_[turns, stroke.carrier_turns], np.r_[rho, stroke.relative_angles],
-                                  problem.spline_count)
-    margin, slope = whole_turn(mech, relative)
-    ratio = ratio_range(slope)
-    if slope.min() <= 0:
-        spans = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in negative_intervals(GRID, slope))
-        defects.append(f"monotonic: rho' <= 0 (down to {slope.min():.3f}) for carrier turns {spans} deg")
-    elif ratio[0] < problem.ratio_bounds[0] or ratio[1] > problem.ratio_bounds[1]:
-        defects.append(f"ratio: i0 spans [{ratio[0]:.3f}, {ratio[1]:.3f}], outside {list(problem.ratio_bounds)}")
-    if not margin >= problem.min_closure_margin:
-        defects.append(f"closure: min sin^2(EBF) = {margin:.4f} < {problem.min_closure_margin:g}")
-    return Candidate(mech, rho, defects, stroke, relative, margin, ratio)
+    """``judge_candidates`` for one mechanism."""
+    return judge_candidates(problem, mech.as_batch(), check_ranges)[0]

@@ -23,7 +23,7 @@ Schema (README, "Five-bar problem files"); the carrier pivot O is the origin:
     [spline]
     control_points = 12           # periodic cubic B-spline of the relative angle
     [region]
-    samples = 2000                # pencil lines tracing each 4-pose curve
+    samples = 1000                # pencil lines per 4-pose curve, 64-20000 (five-bars judged grow as its square)
     radius_mm = 600.0             # hinges within this distance of the poses' centroid
     [gears]
     first_center_distance = 23.7  # sun to intermediate shaft, mm (default: half the carrier)
@@ -53,7 +53,7 @@ class FiveBarProblem:
     min_closure_margin: float = 0.01
     ratio_bounds: tuple[float, float] = (0.25, 4.0)
     spline_count: int = 12
-    samples: int = 2000
+    samples: int = 1000
     radius_mm: float = 600.0
     center_distances: tuple[float, float] | None = None
     source: str = "<problem>"
@@ -122,7 +122,7 @@ def parse_problem(data: dict, source: str = "<problem>") -> FiveBarProblem:
 
     region = data.get("region", {})
     read.keys(region, {"samples", "radius_mm"}, "region")
-    samples = read.integer(region, "samples", "region", 64, 200_000, default=2000)
+    samples = read.integer(region, "samples", "region", 64, 20_000, default=1000)
     radius = read.number(region, "radius_mm", "region") if "radius_mm" in region else 600.0
     if radius <= 0:
         read.fail("region.radius_mm", radius, "a positive distance (mm)")

@@ -5,7 +5,14 @@ dyad of the plate seen from the carrier (phases = the carrier's clockwise turns)
 families are traced completely (``synthesis``). Each chain is first held to its own
 ranges (and the 3R chain to an increasing relative angle: the gears never reverse); the
 survivors are paired into five-bars, and every pair is judged over a whole turn by
-``fivebar_candidate``. The feasible pairs are ranked by their smallest closure margin.
+``judge_candidates``, ``CHUNK`` pairs at a time. The feasible pairs are ranked by their
+smallest closure margin.
+
+The pairs grow as the square of ``[region] samples`` (both families grow linearly), and
+without ``[ranges]`` every dyad within ``radius_mm`` is kept: 2000 samples then pair 3860 B-E
+with 626 A-F dyads of the example, 2.4 million five-bars. Each judged five-bar is a
+``Candidate`` (tens of microseconds and about a kilobyte), so more than ``PAIR_LIMIT`` are
+refused up front with the sampling that would fit.
 """
 from __future__ import annotations
 
@@ -15,13 +22,18 @@ from dataclasses import dataclass
 import numpy as np
 
 from transplanter.geometry.dyad import Link
-from transplanter.fivebar.candidate import Candidate, evaluate_candidate
+from transplanter.fivebar.candidate import Candidate, judge_candidates
 from transplanter.fivebar.linkage import from_hinges
+from transplanter.errors import ProblemError
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.geometry.poses import carry
 from transplanter.burmester.synthesis import DyadProblem, Synthesis, synthesize
 
 TWO_PI = 2 * np.pi
+#: Five-bars judged in one set of arrays (bounds the memory: CHUNK x 720 turns per array).
+CHUNK = 512
+#: Most five-bars the region judges (measured: about 6 s and 300 MB on a loaded 2-core machine).
+PAIR_LIMIT = 200_000
 
 
 @dataclass(frozen=True)
@@ -99,18 +111,35 @@ def _increasing_relative_angle(problem: FiveBarProblem, a1: np.ndarray, f1: np.n
     return np.all(np.diff(steps, axis=1) > 0, axis=1)
 
 
+def _check_pair_count(problem: FiveBarProblem, receiving: ChainFamily, carrier: ChainFamily):
+    kept = int(receiving.kept.sum()), int(carrier.kept.sum())
+    pairs = kept[0] * kept[1]
+    if pairs > PAIR_LIMIT:
+        fitting = int(problem.samples * np.sqrt(PAIR_LIMIT / pairs))
+        unranged = "" if problem.ranges else "; without [ranges] every dyad within region.radius_mm is kept"
+        raise ProblemError(
+            f"{problem.source}: region.samples = {problem.samples}: expected at most about {fitting} here: "
+            f"{kept[0]} B-E x {kept[1]} A-F dyads make {pairs} five-bars to judge, more than the {PAIR_LIMIT} "
+            f"the region judges (they grow as samples^2{unranged}); lower region.samples or give narrower [ranges]")
+
+
 def solution_region(problem: FiveBarProblem) -> Region:
     receiving, carrier = chain_families(problem)
+    _check_pair_count(problem, receiving, carrier)
+    pairs = np.stack(np.meshgrid(np.flatnonzero(receiving.kept), np.flatnonzero(carrier.kept), indexing="ij"),
+                     -1).reshape(-1, 2)
     candidates = []
-    for i in np.flatnonzero(receiving.kept):
-        for j in np.flatnonzero(carrier.kept):
-            mech = from_hinges(problem.poses[0], receiving.fixed[i], receiving.moving[i],
-                               carrier.fixed[j], carrier.moving[j])
-            candidates.append(evaluate_candidate(problem, mech, check_ranges=False))
+    for chunk in np.array_split(pairs, np.arange(CHUNK, len(pairs), CHUNK)):
+        i, j = chunk[:, :1], chunk[:, 1:]
+        mech = from_hinges(problem.poses[0], receiving.fixed[i], receiving.moving[i], carrier.fixed[j],
+                           carrier.moving[j])
+        candidates += judge_candidates(problem, mech, check_ranges=False)
     defects = {}
     for candidate in candidates:
         if candidate.defects:
             name = candidate.defects[0].split(":")[0]
             defects[name] = defects.get(name, 0) + 1
-    candidates.sort(key=lambda c: (not c.feasible, -np.nan_to_num(c.min_margin, nan=-np.inf)))
-    return Region(receiving, carrier, candidates, defects)
+    margins = np.array([candidate.min_margin for candidate in candidates], float)
+    infeasible = np.array([bool(candidate.defects) for candidate in candidates], bool)
+    order = np.lexsort((-np.nan_to_num(margins, nan=-np.inf), infeasible))     # stable: ties keep pair order
+    return Region(receiving, carrier, [candidates[k] for k in order], defects)

@@ -11,6 +11,7 @@ rho is strictly increasing.
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -24,14 +25,18 @@ BENDING_SAMPLES = 720
 
 @dataclass(frozen=True)
 class RelativeAngle:
-    """rho(c) in radians; ``coefficients`` are the spline's control values (radians)."""
+    """rho(c) in radians; ``coefficients`` are the spline's control values (radians).
 
-    rho1: float
+    A batch holds ``rho1`` of shape (K, 1) and ``coefficients`` (K, N): ``evaluate`` on a
+    row of turns then gives (K, len(c)).
+    """
+
+    rho1: float | np.ndarray
     coefficients: np.ndarray
 
     @property
     def count(self) -> int:
-        return len(self.coefficients)
+        return np.shape(self.coefficients)[-1]
 
     @property
     def knots(self) -> np.ndarray:
@@ -42,15 +47,18 @@ class RelativeAngle:
         c = np.asarray(c, float)
         spline = evaluate(c, self.coefficients, order)
         if order == 0:
-            return spline + self.rho1 + c - evaluate(0.0, self.coefficients)
+            return spline + self.rho1 + c - np.reshape(evaluate(0.0, self.coefficients), np.shape(self.rho1))
         return spline + 1.0 if order == 1 else spline
 
 
-def ratio_range(slope: np.ndarray) -> tuple[float, float]:
-    """(min, max) of the total ratio i0 = 1 / rho' (eq 11) from rho' samples; NaN when rho is not increasing."""
-    if slope.min() <= 0:
-        return float("nan"), float("nan")
-    return float(1 / slope.max()), float(1 / slope.min())
+def ratio_range(slope: np.ndarray) -> tuple:
+    """(min, max) of the total ratio i0 = 1 / rho' (eq 11) from rho' samples (last axis); NaN when rho is
+    not increasing. Floats for one row of samples, arrays (K,) for K rows."""
+    lowest = slope.min(axis=-1)
+    with np.errstate(divide="ignore"):
+        low = np.where(lowest > 0, 1 / slope.max(axis=-1), np.nan)
+        high = np.where(lowest > 0, 1 / lowest, np.nan)
+    return (float(low), float(high)) if slope.ndim == 1 else (low, high)
 
 
 def negative_intervals(turns: np.ndarray, values: np.ndarray) -> list[tuple[float, float]]:
@@ -69,28 +77,35 @@ def negative_intervals(turns: np.ndarray, values: np.ndarray) -> list[tuple[floa
     return intervals
 
 
+@functools.lru_cache(maxsize=8)
 def bending_matrix(count: int) -> np.ndarray:
-    """G with q^T G q = int_0^2pi S''(c)^2 dc (midpoint sum; exact for the piecewise-linear S'')."""
+    """G with q^T G q = int_0^2pi S''(c)^2 dc (midpoint sum; exact for the piecewise-linear S'').
+    Computed once per ``count`` (read-only): every fit of the region uses it."""
     grid = (np.arange(BENDING_SAMPLES) + 0.5) * TWO_PI / BENDING_SAMPLES
     second = basis_matrix(grid, count, 2)
-    return second.T @ second * (TWO_PI / BENDING_SAMPLES)
+    matrix = second.T @ second * (TWO_PI / BENDING_SAMPLES)
+    matrix.flags.writeable = False
+    return matrix
 
 
 def fit_relative_angle(carrier_turns: np.ndarray, rho: np.ndarray, count: int) -> RelativeAngle:
     """The least-bending spline through (c_j, rho_j); c_0 = 0 is pose 1.
 
     Interpolation is exact (a linear KKT system); the remaining freedom of the ``count``
-    control values minimises int S''^2. The constant mode is fixed by q_0 = 0.
+    control values minimises int S''^2. The constant mode is fixed by q_0 = 0. Given
+    (K, p) turns and angles, it fits K splines at once (a batch ``RelativeAngle``).
     """
     c, rho = np.asarray(carrier_turns, float), np.asarray(rho, float)
-    if len(c) > count:
-        raise InfeasibleError(f"relative angle: {len(c)} points need at least {len(c)} spline control values, "
-                              f"got {count}")
-    target = rho[1:] - rho[0] - c[1:]
-    rows = (basis_matrix(c[1:], count) - basis_matrix(np.zeros(1), count))[:, 1:]
+    if c.shape[-1] > count:
+        raise InfeasibleError(f"relative angle: {c.shape[-1]} points need at least {c.shape[-1]} spline control "
+                              f"values, got {count}")
+    target = rho[..., 1:] - rho[..., :1] - c[..., 1:]
+    rows = (basis_matrix(c[..., 1:], count) - basis_matrix(np.zeros(1), count))[..., 1:]
     bending = bending_matrix(count)[1:, 1:]
-    n, m = bending.shape[0], len(target)
-    kkt = np.zeros((n + m, n + m))
-    kkt[:n, :n], kkt[:n, n:], kkt[n:, :n] = bending, rows.T, rows
-    solution = np.linalg.solve(kkt, np.r_[np.zeros(n), target])
-    return RelativeAngle(float(rho[0]), np.r_[0.0, solution[:n]])
+    n, m = bending.shape[0], target.shape[-1]
+    kkt = np.zeros(c.shape[:-1] + (n + m, n + m))
+    kkt[..., :n, :n], kkt[..., :n, n:], kkt[..., n:, :n] = bending, np.swapaxes(rows, -1, -2), rows
+    rhs = np.concatenate([np.zeros(target.shape[:-1] + (n,)), target], axis=-1)
+    solution = np.linalg.solve(kkt, rhs[..., None])[..., 0]
+    coefficients = np.concatenate([np.zeros(target.shape[:-1] + (1,)), solution[..., :n]], axis=-1)
+    return RelativeAngle(rho[..., 0] if rho.ndim == 1 else rho[..., :1], coefficients)

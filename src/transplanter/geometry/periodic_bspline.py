@@ -58,8 +58,11 @@ SEGMENT = np.array([[1, -3, 3, -1], [4, 0, -6, 3], [1, 3, 3, -3], [0, 0, 0, 1]])
 
 
 def evaluate(x, coefficients: np.ndarray, order: int = 0) -> np.ndarray:
-    """S or its ``order``-th derivative at x (numpy), from the four control values of each segment."""
-    count = len(coefficients)
+    """S or its ``order``-th derivative at x (numpy), from the four control values of each segment.
+
+    ``coefficients`` (..., N) may hold a batch of splines: the result is batch + x.shape.
+    """
+    count = np.shape(coefficients)[-1]
     u = np.asarray(x, float) * count / TWO_PI
     k = np.floor(u)
     t = u - k
@@ -68,7 +71,7 @@ def evaluate(x, coefficients: np.ndarray, order: int = 0) -> np.ndarray:
         powers = np.stack([0 * t, powers[..., 0], 2 * powers[..., 1], 3 * powers[..., 2]], -1)
     weights = powers @ SEGMENT.T
     index = (k.astype(int)[..., None] + np.arange(-1, 3)) % count
-    return np.sum(weights * coefficients[index], axis=-1) * (count / TWO_PI) ** order
+    return np.sum(weights * coefficients[..., index], axis=-1) * (count / TWO_PI) ** order
 
 
 def knots(count: int) -> np.ndarray:
