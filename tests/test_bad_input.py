@@ -49,6 +49,8 @@ CASES = {
     "three_poses with four": (POSES + "[three_poses]\ncircle_points = [[1.0, 2.0]]\n", ["three_poses", "exactly 3"]),
     "samples": (POSES + "[search]\nsamples = 3\n", ["search.samples", "3", "16 to 200000"]),
     "radius": (POSES + "[search]\nradius_mm = -5.0\n", ["search.radius_mm", "-5.0", "positive"]),
+    "angle beyond a turn": (POSES.replace("angle_deg = 60.0", "angle_deg = 420.0"),
+                            ["poses[].angle_deg", "420.0", "within one turn"]),
     "not toml": ("[[poses]\nx=", ["not valid TOML"]),
 }
 

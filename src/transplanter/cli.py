@@ -1,4 +1,5 @@
-"""``transplanter <command>``: parses arguments and calls the library; no logic of its own."""
+"""``transplanter <command>``: parses arguments, calls the library's API, saves the report and the
+figures; no logic of its own."""
 from __future__ import annotations
 
 import argparse
@@ -7,6 +8,7 @@ import sys
 import warnings
 from pathlib import Path
 
+from transplanter import __version__
 from transplanter.errors import TransplanterError
 
 
@@ -27,75 +29,69 @@ def _publish(args, report: dict, file_text: str, screen_text: str, written: list
             sys.stdout.write(f"wrote {args.out}/" + ", ".join(["report.md", "report.json", *written]) + "\n")
 
 
-def _burmester(args) -> int:
-    from transplanter.burmester.figures import plot_synthesis
-    from transplanter.burmester.problem import load_problem
-    from transplanter.burmester.report import to_json, to_markdown, to_text
-    from transplanter.burmester.synthesis import synthesize
+def _save_figures(figures: dict, out: Path, dpi: int = 120) -> list[str]:
+    """Save each Figure as ``<stem>.png`` in ``out``; the names written."""
+    out.mkdir(parents=True, exist_ok=True)
+    for stem, figure in figures.items():
+        figure.savefig(out / f"{stem}.png", dpi=dpi)
+    return [f"{stem}.png" for stem in figures]
 
-    result = synthesize(load_problem(args.file))
-    if args.plot:
-        plot_synthesis(result, args.plot)
-    if args.out:
-        Path(args.out).mkdir(parents=True, exist_ok=True)
-        plot_synthesis(result, str(Path(args.out) / "burmester.png"))
-    _publish(args, to_json(result), to_markdown(result, "burmester.png"), to_text(result), ["burmester.png"])
+
+def _burmester(args) -> int:
+    from transplanter import burmester
+    from transplanter.burmester.report import to_markdown, to_text
+
+    result = burmester.synthesize(burmester.load_problem(args.file))
+    written = []
+    if args.plot or args.out:
+        figures = burmester.draw_figures(result)
+        if args.plot:
+            figures["burmester"].savefig(args.plot, dpi=130)
+        if args.out:
+            written = _save_figures(figures, Path(args.out), dpi=130)
+    _publish(args, result.to_json(), to_markdown(result, "burmester.png"), to_text(result), written)
     return 0
 
 
 def _gear(args) -> int:
-    from transplanter.gears.drawings import write_drawings
-    from transplanter.gears.figures import plot_gear_figures
-    from transplanter.gears.problem import load_problem
-    from transplanter.gears.report import to_json, to_markdown
-    from transplanter.gears.synthesis import synthesize
+    from transplanter import gears
+    from transplanter.gears.report import to_markdown
 
-    result = synthesize(load_problem(args.file))
-    report = to_json(result)
+    result = gears.synthesize(gears.load_problem(args.file))
+    report = result.to_json()
     drawings, figures = [], []
     if args.out:
-        drawings = [p.name for p in write_drawings(result, Path(args.out))]
-        figures = plot_gear_figures(result, Path(args.out))
+        drawings = [p.name for p in gears.write_drawings(result, Path(args.out))]
+        figures = _save_figures(gears.draw_figures(result), Path(args.out))
     _publish(args, report, to_markdown(report, figures, drawings),
              to_markdown(report, [], []).replace("# ", "", 1), drawings + figures)
     return 0
 
 
 def _fivebar(args) -> int:
-    from transplanter.fivebar.problem import load_problem
+    from transplanter import fivebar
+    from transplanter.fivebar.report import evaluation_markdown, to_markdown
 
-    problem = load_problem(args.file)
+    problem = fivebar.load_problem(args.file)
     if args.design:
-        from transplanter.fivebar.evaluation import evaluate_design, load_design
-        from transplanter.fivebar.report import evaluation_json, evaluation_markdown
-
-        report = evaluation_json(evaluate_design(problem, load_design(args.design)), problem.poses[0])
+        report = fivebar.evaluate_design(problem, fivebar.load_design(args.design)).to_json()
         text, figures = evaluation_markdown(report, problem.labels), []
     else:
-        from transplanter.fivebar.figures import plot_fivebar_figures
-        from transplanter.fivebar.report import to_json, to_markdown
-        from transplanter.fivebar.synthesis import synthesize
-
-        result = synthesize(problem)
-        report = to_json(result)
-        figures = plot_fivebar_figures(result, Path(args.out)) if args.out else []
+        result = fivebar.synthesize(problem)
+        report = result.to_json()
+        figures = _save_figures(fivebar.draw_figures(result), Path(args.out)) if args.out else []
         text = to_markdown(report, problem.labels, figures)
     _publish(args, report, text, text, figures)
     return 0
 
 
 def _reverse(args) -> int:
-    from transplanter.reverse.problem import load_problem
-    from transplanter.reverse.report import to_json, to_markdown
-    from transplanter.reverse.synthesis import synthesize
+    from transplanter import reverse
+    from transplanter.reverse.report import to_markdown
 
-    result = synthesize(load_problem(args.file))
-    report = to_json(result)
-    figures = []
-    if args.out:
-        from transplanter.reverse.figures import plot_reverse_figures
-
-        figures = plot_reverse_figures(result, Path(args.out))
+    result = reverse.synthesize(reverse.load_problem(args.file))
+    report = result.to_json()
+    figures = _save_figures(reverse.draw_figures(result), Path(args.out)) if args.out else []
     _publish(args, report, to_markdown(report, figures), to_markdown(report, []), figures)
     if not result.monotonic:
         print(f"transplanter: error: {result.problem.source}: the path fails the monotonicity criterion: "
@@ -122,6 +118,7 @@ def _command(commands, name: str, run, summary: str, file_help: str, extras: str
 
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="transplanter", description="Synthesis of seedling transplanting mechanisms.")
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     commands = parser.add_subparsers(dest="command", required=True)
     burmester = _command(commands, "burmester", _burmester, "RR dyads that guide a body through 3 or more poses",
                          "problem file (TOML, mm and degrees)", "the figure")

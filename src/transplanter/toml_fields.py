@@ -1,7 +1,15 @@
-"""Reading TOML problem files: every error names the file, the field, the value and what was expected."""
+"""Reading problems from TOML files or from dicts built in Python: every error names the source,
+the field, the value and what was expected.
+
+A dict may hold what TOML would (lists of numbers, tables) or what a script has at hand: a
+tuple or a numpy array wherever a list of numbers goes, numpy integers and floats wherever a
+number goes. The checks and messages are the same either way.
+"""
 from __future__ import annotations
 
 import math
+import numbers
+import os
 import tomllib
 from pathlib import Path
 
@@ -11,13 +19,45 @@ from transplanter.errors import ProblemError
 
 
 def read_toml(path: str | Path) -> dict:
+    """The content of the TOML file at ``path``.
+
+    Raises
+    ------
+    ProblemError
+        When ``path`` is not a file name, the file is missing or unreadable, or not valid TOML.
+    """
+    if not isinstance(path, (str, os.PathLike)) or not str(path):
+        raise ProblemError(f"path = {shown(path)}: expected the name of a TOML problem file (str or Path)")
     path = Path(path)
     try:
         return tomllib.loads(path.read_text())
     except FileNotFoundError:
         raise ProblemError(f"{path}: no such file") from None
+    except OSError as error:
+        raise ProblemError(f"{path}: cannot be read ({error.strerror}): expected a TOML problem file") from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
         raise ProblemError(f"{path}: not valid TOML ({error})") from None
+
+
+def shown(value):
+    """``value`` as a message shows it: numpy arrays and scalars as the plain lists and numbers TOML gives."""
+    if isinstance(value, (np.ndarray, np.generic)):
+        return value.tolist()
+    return value
+
+
+def is_number(value) -> bool:
+    """A real number (Python or numpy, integer or float) that is not a bool."""
+    return isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
+
+
+def is_finite_number(value) -> bool:
+    return is_number(value) and math.isfinite(value)
+
+
+def is_sequence(value) -> bool:
+    """A list, a tuple or a numpy array of at least one dimension."""
+    return isinstance(value, (list, tuple)) or (isinstance(value, np.ndarray) and value.ndim >= 1)
 
 
 class FieldReader:
@@ -27,34 +67,43 @@ class FieldReader:
         self.source = source
 
     def fail(self, field: str, value, expected: str):
-        raise ProblemError(f"{self.source}: {field} = {value!r}: expected {expected}")
+        raise ProblemError(f"{self.source}: {field} = {shown(value)!r}: expected {expected}")
 
     def keys(self, table, allowed: set[str], where: str):
+        """Refuse a ``table`` that is not a dict, or that has a key outside ``allowed``."""
         if not isinstance(table, dict):
-            self.fail(where, table, "a table")
+            if where:
+                self.fail(where, table, "a table")
+            self.fail("problem", table, "a table of fields (a dict, as a TOML file gives)")
         for key in table:
             if key not in allowed:
                 name = f"{where}.{key}" if where else key
                 self.fail(name, table[key], f"no such field here (known: {', '.join(sorted(allowed))})")
+
+    def tables(self, data: dict, key: str, expected: str) -> list[dict]:
+        """The array of tables ``data[key]`` (a list or tuple of dicts)."""
+        rows = data.get(key)
+        if not isinstance(rows, (list, tuple)) or not all(isinstance(r, dict) for r in rows):
+            self.fail(key, rows, expected)
+        return list(rows)
 
     def number(self, table, key: str, where: str) -> float:
         field = f"{where}.{key}"
         if key not in table:
             raise ProblemError(f"{self.source}: {field} is missing: expected a number")
         value = table[key]
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        if not is_finite_number(value):
             self.fail(field, value, "a finite number")
         return float(value)
 
     def point(self, value, field: str) -> np.ndarray:
-        if (not isinstance(value, list) or len(value) != 2
-                or any(isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) for v in value)):
+        if not is_sequence(value) or len(value) != 2 or not all(is_finite_number(v) for v in value):
             self.fail(field, value, "a point [x, y] of two finite numbers (mm)")
         return np.array(value, float)
 
     def points(self, table, key: str, where: str) -> np.ndarray:
         value = table.get(key, [])
-        if not isinstance(value, list):
+        if not is_sequence(value):
             self.fail(f"{where}.{key}", value, "a list of points [[x, y], ...]")
         return np.array([self.point(p, f"{where}.{key}[{k}]") for k, p in enumerate(value)]).reshape(-1, 2)
 
@@ -65,14 +114,61 @@ class FieldReader:
                 raise ProblemError(f"{self.source}: {field} is missing: expected a whole number from {low} to {high}")
             return default
         value = table[key]
-        if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+        if not is_number(value) or not isinstance(value, numbers.Integral) or not low <= value <= high:
             self.fail(field, value, f"a whole number from {low} to {high}")
-        return value
+        return int(value)
 
     def numbers(self, table, key: str, where: str, minimum_count: int = 1) -> np.ndarray:
         field = f"{where}.{key}"
         value = table.get(key)
-        if (not isinstance(value, list) or len(value) < minimum_count
-                or any(isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) for v in value)):
+        if not is_sequence(value) or len(value) < minimum_count or not all(is_finite_number(v) for v in value):
             self.fail(field, value, f"a list of at least {minimum_count} finite numbers")
         return np.array(value, float)
+
+    def flag(self, table, key: str, where: str, default: bool) -> bool:
+        value = table.get(key, default)
+        if not isinstance(value, (bool, np.bool_)):
+            self.fail(f"{where}.{key}", value, "true or false")
+        return bool(value)
+
+
+class ClassFields:
+    """Checks of a problem class built directly in Python (mm, radians): each failure names the
+    class, the field and the value, and says which units the class and ``parse_problem`` take."""
+
+    def __init__(self, problem):
+        self.problem = problem
+        self.owner = type(problem).__name__
+
+    def fail(self, field: str, value, expected: str):
+        raise ProblemError(f"{self.owner}.{field} = {shown(value)!r}: expected {expected} ({self.owner} takes mm "
+                           "and radians; parse_problem and load_problem take the file's mm and degrees)")
+
+    def array(self, field: str, shape: tuple[int | None, ...], minimum: int = 0) -> np.ndarray:
+        """The field as a float array of ``shape`` (None: any length, at least ``minimum``) with
+        finite values; stored back on the (frozen) problem."""
+        value = getattr(self.problem, field)
+        sizes = ", ".join("m" if n is None else str(n) for n in shape) + ("," if len(shape) == 1 else "")
+        expected = f"an array of numbers of shape ({sizes})" + (f" with m >= {minimum}" if minimum else "")
+        try:
+            array = np.array(value, float)
+        except (TypeError, ValueError):
+            self.fail(field, value, expected)
+        if (array.ndim != len(shape) or any(n is not None and n != size for n, size in zip(shape, array.shape))
+                or any(n is None and size < minimum for n, size in zip(shape, array.shape))):
+            self.fail(field, value, expected)
+        if not np.all(np.isfinite(array)):
+            self.fail(field, value, "finite values")
+        object.__setattr__(self.problem, field, array)
+        return array
+
+    def angles_within_a_turn(self, field: str, angles: np.ndarray):
+        if np.any(np.abs(angles) > 2 * np.pi):
+            self.fail(field, getattr(self.problem, field), "angles within one turn of zero (|angle| <= 2 pi rad)")
+
+    def positive(self, field: str, optional: bool = False):
+        value = getattr(self.problem, field)
+        if optional and value is None:
+            return
+        if not is_finite_number(value) or value <= 0:
+            self.fail(field, value, "a positive number" + (" or None" if optional else ""))

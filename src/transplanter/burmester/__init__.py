@@ -1,15 +1,17 @@
 """RR dyads that guide a body through three or more poses (Burmester theory).
 
 Public API: ``load_problem`` / ``parse_problem`` (TOML file or dict, mm and degrees) ->
-``DyadProblem``; ``synthesize(problem)`` -> ``Synthesis``.
+``DyadProblem`` (mm, radians); ``synthesize(problem)`` -> ``Synthesis`` (``to_json()``);
+``draw_figures(result)`` -> matplotlib Figures by file stem.
 """
 from transplanter.lazy_exports import lazy_exports
 
-__all__ = ["DyadProblem", "Synthesis", "load_problem", "parse_problem", "synthesize"]
+__all__ = ["DyadProblem", "Synthesis", "draw_figures", "load_problem", "parse_problem", "synthesize"]
 __getattr__, __dir__ = lazy_exports(__name__, {
+    "draw_figures": "figures",
+    "DyadProblem": "problem",
     "load_problem": "problem",
     "parse_problem": "problem",
-    "DyadProblem": "synthesis",
-    "Synthesis": "synthesis",
+    "Synthesis": "result",
     "synthesize": "synthesis",
 })

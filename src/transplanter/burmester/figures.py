@@ -1,14 +1,13 @@
-"""Figures (matplotlib, no screen needed)."""
+"""The figure of a dyad synthesis as a matplotlib ``Figure`` (no pyplot, no backend chosen:
+a notebook shows it, the command saves it)."""
 from __future__ import annotations
 
-import matplotlib
+import numpy as np
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from transplanter.geometry.curve_trace import CurveTrace  # noqa: E402
-from transplanter.burmester.synthesis import Synthesis  # noqa: E402
+from transplanter.burmester.result import Synthesis
+from transplanter.geometry.curve_trace import CurveTrace
+from transplanter.trains.figures import LEGEND_BESIDE
 
 #: How many dyads of a 4-pose family are drawn as links (all of them would hide the curves).
 FAMILY_LINKS = 12
@@ -32,10 +31,11 @@ def _poses(ax, poses: np.ndarray, labels, size: float):
     ax.plot([], [], "k-", lw=1.2, label="poses (reference point, direction)")
 
 
-def plot_synthesis(result: Synthesis, path: str):
-    """Poses as oriented arrows, the Burmester curves, and the dyads (links) in pose 1."""
+def draw_synthesis(result: Synthesis) -> Figure:
+    """Poses as oriented arrows, the Burmester curves, and the dyads (links) in pose 1 (mm)."""
     problem = result.problem
-    fig, ax = plt.subplots(figsize=(8, 7))
+    fig = Figure(figsize=(9.5, 7), layout="constrained")
+    ax = fig.subplots()
     _curve(ax, result.center_curve, "tab:blue", "center-point curve")
     _curve(ax, result.circle_curve, "tab:orange", "circle-point curve")
     dyads = result.dyads
@@ -58,7 +58,21 @@ def plot_synthesis(result: Synthesis, path: str):
     ax.set_ylabel("y / mm")
     ax.set_title(problem.title or problem.source, fontsize=10)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="best")
-    fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
+    ax.legend(fontsize=8, **LEGEND_BESIDE)
+    return fig
+
+
+def draw_figures(result: Synthesis) -> dict[str, Figure]:
+    """The figures of a synthesis by file stem: ``{"burmester": Figure}``.
+
+    Parameters
+    ----------
+    result : Synthesis
+        From ``synthesize``.
+
+    Returns
+    -------
+    dict of str to matplotlib.figure.Figure
+        Save with ``figure.savefig(f"{stem}.png")`` or show in a notebook.
+    """
+    return {"burmester": draw_synthesis(result)}

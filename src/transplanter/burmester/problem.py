@@ -23,14 +23,14 @@ Every error names the file, the field, the value and what was expected.
 from __future__ import annotations
 
 import warnings
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from transplanter.geometry.dyad import Link
 from transplanter.errors import TransplanterWarning
-from transplanter.toml_fields import FieldReader, read_toml
-from transplanter.burmester.synthesis import DyadProblem
+from transplanter.toml_fields import ClassFields, FieldReader, is_sequence, read_toml
 
 _TOP_KEYS = {"title", "description", "poses", "relative", "three_poses", "search"}
 _POSE_KEYS = {"x", "y", "angle_deg", "label"}
@@ -39,17 +39,92 @@ _THREE_KEYS = {"circle_points", "center_points"}
 _SEARCH_KEYS = {"samples", "radius_mm"}
 
 
+@dataclass(frozen=True)
+class DyadProblem:
+    """Poses an RR dyad must guide a body through, in mm and radians (``parse_problem`` takes degrees).
+
+    Attributes
+    ----------
+    poses : ndarray, shape (n, 3)
+        x, y of the body's reference point (mm) and its direction (rad, counterclockwise from
+        +x, within one turn of zero); n >= 3.
+    link : Link or None
+        The dyad's ground when it is a link turning about ``link.pivot`` (mm) by ``link.phases``
+        (rad, counterclockwise, one per pose).
+    circle_points, center_points : ndarray, shape (k, 2)
+        Three poses only: chosen moving pivots (pose 1) or fixed pivots, mm.
+    samples : int
+        Pencil directions tracing each 4-pose curve.
+    radius_mm : float or None
+        Keep pivots within this distance of the pose centroid (mm); None: ten pose scales.
+    source, title : str
+        Where the problem came from and its title.
+    labels : tuple of str
+        Pose names (may be empty).
+
+    Raises
+    ------
+    ProblemError
+        When a field has the wrong shape, a value that is not finite, or angles that look like degrees.
+    """
+
+    poses: np.ndarray
+    link: Link | None = None
+    circle_points: np.ndarray = field(default_factory=lambda: np.empty((0, 2)))
+    center_points: np.ndarray = field(default_factory=lambda: np.empty((0, 2)))
+    samples: int = 720
+    radius_mm: float | None = None
+    source: str = "<dict>"
+    title: str = ""
+    labels: tuple[str, ...] = ()
+
+    def __post_init__(self):
+        check = ClassFields(self)
+        poses = check.array("poses", (None, 3), minimum=3)
+        check.angles_within_a_turn("poses", poses[:, 2])
+        check.array("circle_points", (None, 2))
+        check.array("center_points", (None, 2))
+        if self.link is not None:
+            phases = np.asarray(self.link.phases, float)
+            if phases.shape != (len(poses),) or not np.all(np.isfinite(phases)):
+                check.fail("link.phases", self.link.phases, f"{len(poses)} finite angles (rad), one per pose")
+        check.positive("radius_mm", optional=True)
+
+
 def load_problem(path: str | Path) -> DyadProblem:
-    """Read and validate a problem file; raises ``ProblemError`` naming what is wrong."""
+    """Read and validate a dyad problem file (TOML, mm and degrees; schema above).
+
+    Raises
+    ------
+    ProblemError
+        Naming the file, the field, the value and what was expected.
+    """
     return parse_problem(read_toml(path), str(path))
 
 
-def parse_problem(data: dict, source: str = "<problem>") -> DyadProblem:
+def parse_problem(data: dict, source: str = "<dict>") -> DyadProblem:
+    """Validate a dyad problem given as a dict with the fields of the file (mm, degrees).
+
+    Parameters
+    ----------
+    data : dict
+        The file's tables as dicts; a list of numbers may be a tuple or a numpy array.
+    source : str
+        Named in error messages (the file name when read from a file).
+
+    Returns
+    -------
+    DyadProblem
+        In mm and radians.
+
+    Raises
+    ------
+    ProblemError
+        Naming the source, the field, the value and what was expected.
+    """
     read = FieldReader(source)
     read.keys(data, _TOP_KEYS, "")
-    poses_table = data.get("poses")
-    if not isinstance(poses_table, list) or not all(isinstance(p, dict) for p in poses_table):
-        read.fail("poses", poses_table, "an array of tables [[poses]] with x, y, angle_deg")
+    poses_table = read.tables(data, "poses", "an array of tables [[poses]] with x, y, angle_deg")
     if len(poses_table) < 3:
         read.fail("poses", f"{len(poses_table)} poses", "at least 3 poses")
     rows, labels = [], []
@@ -59,6 +134,8 @@ def parse_problem(data: dict, source: str = "<problem>") -> DyadProblem:
         rows.append([read.number(pose, "x", where), read.number(pose, "y", where), read.number(pose, "angle_deg", where)])
         labels.append(str(pose.get("label", f"P{k + 1}")))
     degrees = np.array(rows)
+    if np.any(np.abs(degrees[:, 2]) > 360):
+        read.fail("poses[].angle_deg", degrees[:, 2], "directions within one turn of zero (|angle_deg| <= 360)")
     _check_distinct(read, degrees)
     _warn_radians(source, degrees[:, 2])
     poses = degrees.copy()
@@ -71,7 +148,7 @@ def parse_problem(data: dict, source: str = "<problem>") -> DyadProblem:
         if "pivot" not in relative or "phases_deg" not in relative:
             read.fail("relative", relative, "both pivot = [x, y] and phases_deg = [one angle per pose]")
         phases = relative["phases_deg"]
-        if not isinstance(phases, list) or len(phases) != len(poses):
+        if not is_sequence(phases) or len(phases) != len(poses):
             read.fail("relative.phases_deg", phases, f"a list of {len(poses)} angles (one per pose, degrees)")
         values = [read.number({"v": v}, "v", f"relative.phases_deg[{k}]") for k, v in enumerate(phases)]
         link = Link(read.point(relative["pivot"], "relative.pivot"), np.radians(values))
@@ -91,9 +168,7 @@ def parse_problem(data: dict, source: str = "<problem>") -> DyadProblem:
 
     search = data.get("search", {})
     read.keys(search, _SEARCH_KEYS, "search")
-    samples = search.get("samples", 720)
-    if isinstance(samples, bool) or not isinstance(samples, int) or not 16 <= samples <= 200_000:
-        read.fail("search.samples", samples, "a whole number from 16 to 200000")
+    samples = read.integer(search, "samples", "search", 16, 200_000, default=720)
     radius = None
     if "radius_mm" in search:
         radius = read.number(search, "radius_mm", "search")

@@ -1,43 +1,13 @@
-"""A synthesis as JSON (machine), a text table (terminal) and Markdown (report file)."""
+"""A dyad synthesis as a text table (terminal) and Markdown (report file); its JSON is ``Synthesis.to_json``."""
 from __future__ import annotations
 
 import numpy as np
 
 from transplanter.geometry.dyad import Dyad
-from transplanter.burmester.synthesis import Synthesis
+from transplanter.burmester.result import Synthesis
 
 #: Rows a text or Markdown table shows at most; JSON always has every dyad.
 TABLE_ROWS = 24
-
-
-def _dyad_json(dyad: Dyad) -> dict:
-    return {"center": dyad.center.tolist(), "circle": dyad.circle.tolist(), "length": dyad.length,
-            "max_residual": dyad.max_residual, "max_residual_mm": dyad.max_residual_mm,
-            "residuals_mm": dyad.residuals_mm.tolist()}
-
-
-def to_json(result: Synthesis) -> dict:
-    problem = result.problem
-    dyads = result.dyads + result.circle_curve_dyads
-    out = {
-        "source": problem.source,
-        "title": problem.title,
-        "method": result.method,
-        "pose_count": len(problem.poses),
-        "poses": [{"label": label, "x": p[0], "y": p[1], "angle_deg": float(np.degrees(p[2]))}
-                  for label, p in zip(problem.labels or [""] * len(problem.poses), problem.poses.tolist())],
-        "relative": None if problem.link is None else {
-            "pivot": problem.link.pivot.tolist(), "phases_deg": np.degrees(problem.link.phases).tolist()},
-        "pose_scale_mm": dyads[0].scale if dyads else None,
-        "radius_mm": result.radius_mm,
-        "max_residual": max((d.max_residual for d in dyads), default=None),
-        "dyads": [_dyad_json(d) for d in result.dyads],
-    }
-    if result.center_curve is not None:
-        out["circle_curve_dyads"] = [_dyad_json(d) for d in result.circle_curve_dyads]
-    if result.rms_mm:
-        out["rms_mm"] = result.rms_mm
-    return out
 
 
 def _shown(dyads: list[Dyad]) -> list[tuple[int, Dyad]]:

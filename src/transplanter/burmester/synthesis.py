@@ -7,50 +7,21 @@ squares). Every dyad is checked by ``verify_dyad`` on the original poses before 
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 import numpy as np
 
 from transplanter.geometry.curve_trace import CurveTrace
-from transplanter.geometry.dyad import Dyad, Link, verify_dyads
+from transplanter.geometry.dyad import verify_dyads
 from transplanter.errors import ProblemError
 from transplanter.burmester.five_poses import burmester_points
 from transplanter.burmester.four_poses import dyads_of_circle_curve, trace_center_curve, trace_circle_curve, trace_dyads
 from transplanter.burmester.many_poses import least_squares_dyads
+from transplanter.burmester.problem import DyadProblem
+from transplanter.burmester.result import Synthesis
 from transplanter.geometry.pivot_pairing import centers_for_circles, circles_for_centers
 from transplanter.geometry.poses import Frame, relative_to_link
 
 #: Smallest turn between the extreme pose angles that the Burmester construction accepts (rad).
 MIN_ROTATION = 1e-6
-
-
-@dataclass(frozen=True)
-class DyadProblem:
-    """Poses (n, 3) in mm and rad; optional turning ground; 3-pose choices; search settings."""
-
-    poses: np.ndarray
-    link: Link | None = None
-    circle_points: np.ndarray = field(default_factory=lambda: np.empty((0, 2)))
-    center_points: np.ndarray = field(default_factory=lambda: np.empty((0, 2)))
-    samples: int = 720
-    radius_mm: float | None = None
-    source: str = "<problem>"
-    title: str = ""
-    labels: tuple[str, ...] = ()
-
-
-@dataclass(frozen=True)
-class Synthesis:
-    """What the synthesis found; curves are in world mm (4 poses only)."""
-
-    problem: DyadProblem
-    method: str
-    dyads: list[Dyad]
-    radius_mm: float
-    center_curve: CurveTrace | None = None
-    circle_curve: CurveTrace | None = None
-    circle_curve_dyads: list[Dyad] = field(default_factory=list)
-    rms_mm: list[float] = field(default_factory=list)
 
 
 def working_poses(problem: DyadProblem) -> np.ndarray:
@@ -71,6 +42,23 @@ def _check_rotation(poses: np.ndarray, problem: DyadProblem):
 
 
 def synthesize(problem: DyadProblem) -> Synthesis:
+    """RR dyads that guide the body through the problem's poses, each checked by forward kinematics.
+
+    Parameters
+    ----------
+    problem : DyadProblem
+        Poses in mm and radians (from ``load_problem`` / ``parse_problem`` or built directly).
+
+    Returns
+    -------
+    Synthesis
+        The method used, the dyads (mm), and the Burmester curves for four poses.
+
+    Raises
+    ------
+    ProblemError
+        When the poses do not turn (pure translation).
+    """
     poses = working_poses(problem)
     _check_rotation(poses, problem)
     frame = Frame.of(poses)

@@ -1,21 +1,23 @@
 """The five-bar seedling pushing mechanism of seed 000 with its planetary gear train.
 
 Public API: ``load_problem`` / ``parse_problem`` (TOML file or dict, mm and degrees) ->
-``FiveBarProblem``; ``synthesize(problem)`` -> ``FiveBarResult`` (region, design NLP, gears,
-verification); ``load_design`` + ``evaluate_design`` for a given (published) design.
+``FiveBarProblem`` (mm, radians); ``synthesize(problem)`` -> ``FiveBarResult`` (region, design
+NLP, gears, verification; ``to_json()``); ``draw_figures(result)`` -> matplotlib Figures by file
+stem; ``load_design`` + ``evaluate_design`` -> ``DesignEvaluation`` for a given (published) design.
 """
 from transplanter.lazy_exports import lazy_exports
 
-__all__ = ["DesignEvaluation", "FiveBarProblem", "FiveBarResult", "GivenDesign", "evaluate_design",
+__all__ = ["DesignEvaluation", "FiveBarProblem", "FiveBarResult", "GivenDesign", "draw_figures", "evaluate_design",
            "load_design", "load_problem", "parse_problem", "synthesize"]
 __getattr__, __dir__ = lazy_exports(__name__, {
     "DesignEvaluation": "evaluation",
     "GivenDesign": "evaluation",
     "evaluate_design": "evaluation",
     "load_design": "evaluation",
+    "draw_figures": "figures",
     "FiveBarProblem": "problem",
     "load_problem": "problem",
     "parse_problem": "problem",
-    "FiveBarResult": "synthesis",
+    "FiveBarResult": "result",
     "synthesize": "synthesis",
 })

@@ -21,19 +21,43 @@ import numpy as np
 from transplanter.fivebar.candidate import Candidate, evaluate_candidate
 from transplanter.fivebar.linkage import FiveBar, circle_intersection, from_hinges
 from transplanter.fivebar.problem import FiveBarProblem
+from transplanter.fivebar.result import design_json
 from transplanter.toml_fields import FieldReader, read_toml
 
 _FIELDS = ("carrier_length", "carrier_angle_deg", "rod_length", "rod_angle_deg", "push_plate_length",
            "receiving_plate_length")
 
 
+def _finite_or_none(value: float) -> float | None:
+    """JSON has no NaN or infinity: a condition the evaluation did not reach is null."""
+    return float(value) if np.isfinite(value) else None
+
+
 @dataclass(frozen=True)
 class GivenDesign:
+    """A given five-bar design (seed 000 Table 4 style), in mm and radians.
+
+    Attributes
+    ----------
+    carrier_length, rod_length : float
+        |OA| and |AF| (mm).
+    carrier_angle, rod_angle : float
+        Directions of O->A and A->F in pose 1 (rad, counterclockwise from +x).
+    push_plate_length, receiving_plate_length : float
+        |EP| and |BE| (mm).
+    hinge_b : ndarray, shape (2,)
+        Fixed hinge B (mm).
+    hinge_e : ndarray or None
+        Hinge E in pose 1 (mm), picks the assembly; None: the assembly nearest the key poses.
+    source : str
+        The design file.
+    """
+
     carrier_length: float
-    carrier_angle: float       # rad
+    carrier_angle: float
     rod_length: float
-    rod_angle: float           # rad
-    push_plate_length: float   # |EP|
+    rod_angle: float
+    push_plate_length: float
     receiving_plate_length: float
     hinge_b: np.ndarray
     hinge_e: np.ndarray | None
@@ -42,16 +66,67 @@ class GivenDesign:
 
 @dataclass(frozen=True)
 class DesignEvaluation:
+    """How well a given design meets a five-bar problem.
+
+    Attributes
+    ----------
+    problem : FiveBarProblem
+        The problem the design is judged against.
+    design : GivenDesign
+        The design as given.
+    mech : FiveBar
+        The assembled mechanism (the assembly picked).
+    candidate : Candidate
+        Whole-turn conditions with the relative angle fitted through the key and return points.
+    position_errors_mm : ndarray, shape (4,)
+        Closest distance of P to each key pose over the rod's relative angle (mm).
+    angle_errors_deg : ndarray, shape (4,)
+        Plate-angle error there (deg).
+    chain_errors_mm : (ndarray, ndarray)
+        |BE| - L4 and |AF| - L2 at each key pose with the plate placed exactly (mm).
+    alternatives : list of float
+        Worst position error of each assembly tried (mm).
+    """
+
+    problem: FiveBarProblem
     design: GivenDesign
     mech: FiveBar
     candidate: Candidate
     position_errors_mm: np.ndarray
     angle_errors_deg: np.ndarray
-    chain_errors_mm: tuple[np.ndarray, np.ndarray]   # |BE| - L4, |AF| - L2 with the plate placed exactly
-    alternatives: list[float]                        # worst position error of each assembly tried
+    chain_errors_mm: tuple[np.ndarray, np.ndarray]
+    alternatives: list[float]
+
+    def to_json(self) -> dict:
+        """The report as plain JSON types (mm, degrees; null where the whole-turn check was not
+        reached): the content of report.json."""
+        candidate = self.candidate
+        return {
+            "source": self.design.source,
+            "key_pose_position_errors_mm": self.position_errors_mm.tolist(),
+            "key_pose_angle_errors_deg": self.angle_errors_deg.tolist(),
+            "receiving_chain_errors_mm": self.chain_errors_mm[0].tolist(),
+            "carrier_chain_errors_mm": self.chain_errors_mm[1].tolist(),
+            "violations": candidate.defects,
+            "min_closure_margin": _finite_or_none(candidate.min_margin),
+            "relative_angle_monotonic": (candidate.relative_angle is not None
+                                         and "monotonic" not in " ".join(candidate.defects)),
+            "ratio_range": [_finite_or_none(v) for v in candidate.ratio_range],
+            "assemblies_worst_position_error_mm": self.alternatives,
+            "design": design_json(self.mech, self.problem.poses[0]),
+        }
 
 
 def load_design(path: str | Path) -> GivenDesign:
+    """Read a design file (TOML, mm and degrees): a table [design] with carrier_length,
+    carrier_angle_deg, rod_length, rod_angle_deg, push_plate_length, receiving_plate_length,
+    hinge_b = [x, y] and optionally hinge_e = [x, y].
+
+    Raises
+    ------
+    ProblemError
+        Naming the file, the field, the value and what was expected.
+    """
     data = read_toml(path)
     read = FieldReader(str(path))
     read.keys(data, {"design", "title", "description"}, "")
@@ -83,6 +158,25 @@ def _closest_pose(mech: FiveBar, pose: np.ndarray, turn: float) -> tuple[float, 
 
 
 def evaluate_design(problem: FiveBarProblem, design: GivenDesign) -> DesignEvaluation:
+    """Judge a given design against a problem's key poses and whole-turn conditions.
+
+    Parameters
+    ----------
+    problem : FiveBarProblem
+        The problem (mm, radians).
+    design : GivenDesign
+        From ``load_design``.
+
+    Returns
+    -------
+    DesignEvaluation
+        Errors at the key poses (mm, deg), chain errors (mm) and the conditions violated.
+
+    Raises
+    ------
+    ProblemError
+        When the plate cannot reach pose 1 (no assembly).
+    """
     a1 = design.carrier_length * np.array([np.cos(design.carrier_angle), np.sin(design.carrier_angle)])
     f1 = a1 + design.rod_length * np.array([np.cos(design.rod_angle), np.sin(design.rod_angle)])
     options = []
@@ -106,5 +200,5 @@ def evaluate_design(problem: FiveBarProblem, design: GivenDesign) -> DesignEvalu
     else:
         pick = int(np.argmin(worst))
     _, mech, errors = options[pick]
-    return DesignEvaluation(design, mech, evaluate_candidate(problem, mech), errors[:, 0], errors[:, 1],
+    return DesignEvaluation(problem, design, mech, evaluate_candidate(problem, mech), errors[:, 0], errors[:, 1],
                             mech.joint_chain_errors(problem.poses, problem.carrier_turns), worst)

@@ -1,21 +1,19 @@
 """Figures of a five-bar design: solution region (seed 000 Figure 5), relative angle (Figure 9),
-gear train (Figure 10) and trajectory with the plate at the key poses (Figure 15b)."""
+gear train (Figure 10) and trajectory with the plate at the key poses (Figure 15b), as matplotlib
+``Figure`` objects (no pyplot, no backend chosen: a notebook shows them, the command saves them)."""
 from __future__ import annotations
 
-from pathlib import Path
+import numpy as np
+from matplotlib.figure import Figure
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from transplanter.fivebar.synthesis import FiveBarResult  # noqa: E402
-from transplanter.trains.figures import draw_four_gear_train  # noqa: E402
+from transplanter.fivebar.result import FiveBarResult
+from transplanter.trains.figures import LEGEND_BESIDE, draw_four_gear_train
 
 
-def plot_region(result: FiveBarResult, path: str):
-    fig, ax = plt.subplots(figsize=(7.5, 7.5))
+def draw_region(result: FiveBarResult) -> Figure:
+    """Hinge solution curves (mm), those within the ranges, the feasible five-bars and the design."""
+    fig = Figure(figsize=(10, 7.5), layout="constrained")
+    ax = fig.subplots()
     for family, names, colors in ((result.region.receiving, ("B", "E"), ("tab:blue", "tab:cyan")),
                                   (result.region.carrier, ("A", "F"), ("tab:red", "tab:orange"))):
         for points, name, color in ((family.fixed, names[0], colors[0]), (family.moving, names[1], colors[1])):
@@ -35,19 +33,20 @@ def plot_region(result: FiveBarResult, path: str):
     ax.set_aspect("equal")
     ax.set_title("Hinge solution curves; bold: within Table 2 ranges and free of chain defects\n"
                  "stars: refined design in pose 1", fontsize=9)
-    ax.legend(fontsize=7, loc="best")
+    ax.legend(fontsize=7, **LEGEND_BESIDE)
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
     ax.set_xlim(-250, 150)
     ax.set_ylim(-400, 100)
-    fig.savefig(path, dpi=120, bbox_inches="tight")
-    plt.close(fig)
+    return fig
 
 
-def plot_relative_angle(result: FiveBarResult, path: str):
+def draw_relative_angle(result: FiveBarResult) -> Figure:
+    """Relative angle of rod I (deg) and total ratio i0 against the carrier turn (deg)."""
     relative, stroke = result.design.relative_angle, result.design.stroke
     grid = result.verification.carrier_turns
-    fig, ax = plt.subplots(figsize=(8, 4.5))
+    fig = Figure(figsize=(10, 4.5), layout="constrained")
+    ax = fig.subplots()
     ax.plot(np.degrees(grid), np.degrees(relative.evaluate(grid) - relative.rho1), "k-", label="rho - rho1 (B-spline)")
     key = result.problem.carrier_turns
     ax.plot(np.degrees(key), np.degrees(relative.evaluate(key) - relative.rho1), "ro", label="key poses P1-P4")
@@ -57,33 +56,35 @@ def plot_relative_angle(result: FiveBarResult, path: str):
     ax.set_ylabel("rod I relative to carrier (deg)")
     twin = ax.twinx()
     twin.plot(np.degrees(grid), 1 / relative.evaluate(grid, 1), "g--", lw=1, label="total ratio i0 = dc/drho")
-    twin.set_ylabel("i0", color="g")
-    ax.legend(loc="upper left", fontsize=8)
-    twin.legend(loc="lower right", fontsize=8)
-    fig.savefig(path, dpi=120, bbox_inches="tight")
-    plt.close(fig)
+    twin.set_ylabel("total ratio i0 (dimensionless)", color="g")
+    lines = ax.get_lines() + twin.get_lines()
+    fig.legend(lines, [line.get_label() for line in lines], fontsize=8, loc="outside right upper")
+    return fig
 
 
-def plot_gears(result: FiveBarResult, path: str):
+def draw_gears(result: FiveBarResult) -> Figure:
+    """Stage ratios against the carrier turn (deg), and the four pitch curves on the carrier (mm)."""
     train = result.train
     grid = result.verification.carrier_turns
     first, second = train.stage_ratios(grid)
-    fig, (ax, right) = plt.subplots(1, 2, figsize=(12, 5))
+    fig = Figure(figsize=(14, 5), layout="constrained")
+    ax, right = fig.subplots(1, 2)
     for values, label in ((first * second, "i0 (total)"), (first, "I1 corrected (sun : intermediate)"),
                           (second, "I2 corrected (intermediate : planet)")):
         ax.plot(np.degrees(grid), values, label=label)
     ax.set_xlabel("carrier turn c (deg)")
-    ax.set_ylabel("transmission ratio")
-    ax.legend(fontsize=8)
+    ax.set_ylabel("transmission ratio (dimensionless)")
+    ax.legend(fontsize=8, **LEGEND_BESIDE)
     draw_four_gear_train(right, train, result.design.mech.carrier_length)
     right.set_title("pitch curves on the carrier (O left, A right) at pose 1", fontsize=9)
-    fig.savefig(path, dpi=120, bbox_inches="tight")
-    plt.close(fig)
+    return fig
 
 
-def plot_trajectory(result: FiveBarResult, path: str):
+def draw_trajectory(result: FiveBarResult) -> Figure:
+    """P over a turn from the forward simulation, the plate at the key poses, the linkage in pose 1 (mm)."""
     problem, mech, check = result.problem, result.design.mech, result.verification
-    fig, ax = plt.subplots(figsize=(7, 7))
+    fig = Figure(figsize=(9.5, 7), layout="constrained")
+    ax = fig.subplots()
     ax.plot(*check.trajectory.T, "k-", lw=1, label="P over a turn (gears rolling, then linkage)")
     e, f = mech.plate_points(problem.poses)
     for k, pose in enumerate(problem.poses):
@@ -94,17 +95,24 @@ def plot_trajectory(result: FiveBarResult, path: str):
     ax.plot(*np.array([[0, 0], a, f[0]]).T, "r-o", ms=3, label="O-A-F (pose 1)")
     ax.plot(*np.array([mech.hinge_b, e[0]]).T, "b-o", ms=3, label="B-E (pose 1)")
     ax.set_aspect("equal")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, **LEGEND_BESIDE)
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
-    fig.savefig(path, dpi=120, bbox_inches="tight")
-    plt.close(fig)
+    return fig
 
 
-def plot_fivebar_figures(result: FiveBarResult, out: Path) -> list[str]:
-    out.mkdir(parents=True, exist_ok=True)
-    figures = {"region.png": plot_region, "relative_angle.png": plot_relative_angle, "gears.png": plot_gears,
-               "trajectory.png": plot_trajectory}
-    for name, plot in figures.items():
-        plot(result, str(out / name))
-    return list(figures)
+def draw_figures(result: FiveBarResult) -> dict[str, Figure]:
+    """The figures of a five-bar design by file stem: ``region``, ``relative_angle``, ``gears``, ``trajectory``.
+
+    Parameters
+    ----------
+    result : FiveBarResult
+        From ``synthesize``.
+
+    Returns
+    -------
+    dict of str to matplotlib.figure.Figure
+        Save with ``figure.savefig(f"{stem}.png")`` or show in a notebook.
+    """
+    return {"region": draw_region(result), "relative_angle": draw_relative_angle(result),
+            "gears": draw_gears(result), "trajectory": draw_trajectory(result)}

@@ -36,7 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
-from transplanter.toml_fields import FieldReader, read_toml
+from transplanter.toml_fields import ClassFields, FieldReader, read_toml
 
 RANGE_FIELDS = {"ep": "|EP| (mm)", "fp": "|FP| (mm)", "x_e": "x of E in pose 1 (mm)", "x_f": "x of F in pose 1 (mm)"}
 _TOP_KEYS = {"title", "description", "key_poses", "return_points", "ranges", "conditions", "spline", "region", "gears"}
@@ -44,23 +44,85 @@ _TOP_KEYS = {"title", "description", "key_poses", "return_points", "ranges", "co
 
 @dataclass(frozen=True)
 class FiveBarProblem:
-    poses: np.ndarray                # (4, 3): x, y (mm), plate direction (rad)
-    carrier_turns: np.ndarray        # (4,) clockwise turn of the carrier since pose 1 (rad)
-    return_points: np.ndarray        # (m, 2) mm
+    """A validated five-bar problem, in mm and radians (``parse_problem`` takes degrees).
+
+    Attributes
+    ----------
+    poses : ndarray, shape (4, 3)
+        Key poses of the push plate: x, y of P (mm) and the plate direction (rad,
+        counterclockwise from +x, within one turn of zero).
+    carrier_turns : ndarray, shape (4,)
+        Clockwise turn of the carrier since pose 1 (rad): 0 first, strictly increasing, below 2 pi.
+    return_points : ndarray, shape (m, 2)
+        Positions of P on the return stroke (mm), m >= 1.
+    labels, return_labels : tuple of str
+        Names of the key poses (4) and of the return points (m).
+    ranges : dict
+        Optional ``name -> (low, high)`` limits of ``RANGE_FIELDS`` (mm).
+    min_closure_margin : float
+        sin^2 of the smallest angle EBF allowed over the turn, in (0, 1).
+    ratio_bounds : (float, float)
+        Bounds on the total ratio i0 = dc / drho, 0 < low < high.
+    spline_count : int
+        Control points of the periodic B-spline of the relative angle.
+    samples : int
+        Pencil lines tracing each 4-pose curve of the solution region.
+    radius_mm : float
+        Hinges are kept within this distance of the poses' centroid (mm).
+    center_distances : (float, float) or None
+        Sun to intermediate shaft and intermediate shaft to planet (mm); None: half the carrier each.
+    source, title : str
+        Where the problem came from (file name or ``"<dict>"``) and its title.
+
+    Raises
+    ------
+    ProblemError
+        When a field has the wrong shape, a value that is not finite, or angles that look like degrees.
+    """
+
+    poses: np.ndarray
+    carrier_turns: np.ndarray
+    return_points: np.ndarray
     labels: tuple[str, ...]
     return_labels: tuple[str, ...]
-    ranges: dict = field(default_factory=dict)   # name -> (low, high)
+    ranges: dict = field(default_factory=dict)
     min_closure_margin: float = 0.01
     ratio_bounds: tuple[float, float] = (0.25, 4.0)
     spline_count: int = 12
     samples: int = 1000
     radius_mm: float = 600.0
     center_distances: tuple[float, float] | None = None
-    source: str = "<problem>"
+    source: str = "<dict>"
     title: str = ""
+
+    def __post_init__(self):
+        check = ClassFields(self)
+        poses = check.array("poses", (4, 3))
+        check.angles_within_a_turn("poses", poses[:, 2])
+        turns = check.array("carrier_turns", (4,))
+        if turns[0] != 0 or np.any(np.diff(turns) <= 0) or turns[-1] >= 2 * np.pi:
+            check.fail("carrier_turns", turns, "0 at the first pose, then strictly increasing and below 2 pi rad")
+        points = check.array("return_points", (None, 2), minimum=1)
+        if len(self.labels) != 4 or len(self.return_labels) != len(points):
+            check.fail("labels", (self.labels, self.return_labels), "4 key-pose labels and one per return point")
+        if not 0 < self.min_closure_margin < 1:
+            check.fail("min_closure_margin", self.min_closure_margin, "a number in (0, 1)")
+        low, high = self.ratio_bounds
+        if not 0 < low < high:
+            check.fail("ratio_bounds", self.ratio_bounds, "0 < low < high")
+        check.positive("radius_mm")
+        if self.center_distances is not None and min(self.center_distances) <= 0:
+            check.fail("center_distances", self.center_distances, "two positive distances (mm) or None")
 
 
 def load_problem(path: str | Path) -> FiveBarProblem:
+    """Read and validate a five-bar problem file (TOML, mm and degrees; schema above).
+
+    Raises
+    ------
+    ProblemError
+        Naming the file, the field, the value and what was expected.
+    """
     return parse_problem(read_toml(path), str(path))
 
 
@@ -73,9 +135,7 @@ def _pair(read: FieldReader, table: dict, key: str, where: str) -> tuple[float, 
 
 
 def _table_rows(read: FieldReader, data: dict, key: str, fields: tuple[str, ...]):
-    rows = data.get(key)
-    if not isinstance(rows, list) or not all(isinstance(r, dict) for r in rows):
-        read.fail(key, rows, f"an array of tables [[{key}]] with {', '.join(fields)}")
+    rows = read.tables(data, key, f"an array of tables [[{key}]] with {', '.join(fields)}")
     values, labels = [], []
     for k, row in enumerate(rows):
         where = f"{key}[{k}]"
@@ -85,12 +145,33 @@ def _table_rows(read: FieldReader, data: dict, key: str, fields: tuple[str, ...]
     return np.array(values, float).reshape(-1, len(fields)), labels
 
 
-def parse_problem(data: dict, source: str = "<problem>") -> FiveBarProblem:
+def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
+    """Validate a five-bar problem given as a dict with the fields of the file (mm, degrees).
+
+    Parameters
+    ----------
+    data : dict
+        The file's tables as dicts; a list of numbers may be a tuple or a numpy array.
+    source : str
+        Named in error messages (the file name when read from a file).
+
+    Returns
+    -------
+    FiveBarProblem
+        In mm and radians.
+
+    Raises
+    ------
+    ProblemError
+        Naming the source, the field, the value and what was expected.
+    """
     read = FieldReader(source)
     read.keys(data, _TOP_KEYS, "")
     rows, labels = _table_rows(read, data, "key_poses", ("x", "y", "angle_deg", "carrier_turn_deg"))
     if len(rows) != 4:
         read.fail("key_poses", f"{len(rows)} poses", "exactly 4 key poses (the 4-pose solution region of seed 000)")
+    if np.any(np.abs(rows[:, 2]) > 360):
+        read.fail("key_poses[].angle_deg", rows[:, 2], "plate directions within one turn of zero (|angle_deg| <= 360)")
     turns = rows[:, 3]
     if turns[0] != 0 or np.any(np.diff(turns) <= 0) or turns[-1] >= 360:
         read.fail("key_poses[].carrier_turn_deg", turns.tolist(),

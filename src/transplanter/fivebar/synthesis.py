@@ -8,31 +8,19 @@ candidates.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
 
 import numpy as np
 
 from transplanter.errors import InfeasibleError, ProblemError, SolverError
-from transplanter.fivebar.candidate import Candidate
-from transplanter.fivebar.nlp import DesignSolution, refine_design
+from transplanter.fivebar.nlp import refine_design
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import ChainFamily, Region, solution_region
-from transplanter.fivebar.verification import Verification, verify
-from transplanter.trains.planetary import PlanetaryTrain, design_train
+from transplanter.fivebar.result import FiveBarResult
+from transplanter.fivebar.verification import verify
+from transplanter.trains.planetary import design_train
 
 #: Region candidates the NLP is started from, best first, before giving up.
 STARTS = 3
-
-
-@dataclass(frozen=True)
-class FiveBarResult:
-    problem: FiveBarProblem
-    region: Region
-    start: Candidate
-    design: DesignSolution
-    train: PlanetaryTrain
-    verification: Verification
-    timings_s: dict
 
 
 def _empty_family(problem: FiveBarProblem, name: str, family: ChainFamily):

@@ -1,23 +1,23 @@
-"""Figures of a gear pair: meshing at several angles, ratio and kinematics, curvature."""
+"""Figures of a gear pair as matplotlib ``Figure`` objects: meshing at several angles, ratio and
+kinematics, curvature (no pyplot, no backend chosen: a notebook shows them, the command saves them)."""
 from __future__ import annotations
 
-import matplotlib
+import numpy as np
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from transplanter.gears.drawings import outlines  # noqa: E402
-from transplanter.gears.synthesis import GearResult  # noqa: E402
-from transplanter.geometry.poses import rotate_about  # noqa: E402
-from transplanter.gears.rack_teeth import ADDENDUM  # noqa: E402
+from transplanter.gears.drawings import outlines
+from transplanter.gears.rack_teeth import ADDENDUM
+from transplanter.gears.result import GearResult
+from transplanter.geometry.poses import rotate_about
+from transplanter.trains.figures import LEGEND_BESIDE
 
 
-def plot_mesh(result: GearResult, path: str, positions: int = 4):
-    """The pair at ``positions`` driver angles: driver turns clockwise, driven counterclockwise."""
+def draw_mesh(result: GearResult, positions: int = 4) -> Figure:
+    """The pair at ``positions`` driver angles: driver turns clockwise, driven counterclockwise (mm)."""
     d = result.design
     shapes = outlines(result)
-    fig, axes = plt.subplots(1, positions, figsize=(4 * positions, 4.2))
+    fig = Figure(figsize=(4 * positions, 4.4), layout="constrained")
+    axes = fig.subplots(1, positions, sharex=True, sharey=True)
     for ax, k in zip(axes, np.linspace(0, len(d.phi1) - 1, positions, endpoint=False).astype(int)):
         ax.fill(*rotate_about(shapes["driver"], (0.0, 0.0), -d.phi1[k]).T, color="tab:blue", alpha=0.35, lw=0.6, ec="tab:blue")
         driven = rotate_about(shapes["driven"], (0.0, 0.0), d.phi2[k]) + [d.center_distance, 0]
@@ -26,17 +26,18 @@ def plot_mesh(result: GearResult, path: str, positions: int = 4):
         ax.plot(d.radius[0][k], 0, "r.", ms=5)
         ax.set_title(f"phi1 = {np.degrees(d.phi1[k]):.0f} deg", fontsize=9)
         ax.set_aspect("equal")
-        ax.axis("off")
+        ax.set_xlabel("x / mm")
+    axes[0].set_ylabel("y / mm")
     fig.suptitle(result.problem.title or result.problem.source, fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    return fig
 
 
-def plot_kinematics(result: GearResult, path: str):
+def draw_kinematics(result: GearResult) -> Figure:
+    """Ratio i12, driven speed (rad/s) and acceleration (rad/s^2) against the driver angle (deg)."""
     d = result.design
     phi = np.degrees(d.phi1)
-    fig, axes = plt.subplots(3, 1, figsize=(7, 7), sharex=True)
+    fig = Figure(figsize=(7, 7), layout="constrained")
+    axes = fig.subplots(3, 1, sharex=True)
     axes[0].plot(phi, d.ratio)
     axes[0].set_ylabel("ratio i12 = ω1/ω2")
     axes[1].plot(phi, d.driven_speed)
@@ -46,14 +47,14 @@ def plot_kinematics(result: GearResult, path: str):
     axes[2].set_xlabel(f"driver angle φ1 / deg (ω1 = {d.driver_speed:.3f} rad/s)")
     for ax in axes:
         ax.grid(alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    return fig
 
 
-def plot_curvature(result: GearResult, path: str):
+def draw_curvature(result: GearResult) -> Figure:
+    """Curvature radius of each pitch curve (mm, convex parts) against the driver angle (deg)."""
     d = result.design
-    fig, ax = plt.subplots(figsize=(7, 4))
+    fig = Figure(figsize=(9, 4), layout="constrained")
+    ax = fig.subplots()
     for gear, name in enumerate(("driver", "driven")):
         rho = np.where(d.convexity[gear] > 0, d.curvature_radius[gear], np.nan)
         ax.plot(np.degrees(d.phi1), rho, label=f"{name} (convex parts)")
@@ -63,14 +64,22 @@ def plot_curvature(result: GearResult, path: str):
     ax.set_xlabel("driver angle φ1 at the contact point / deg")
     ax.set_ylabel("curvature radius / mm")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    ax.legend(fontsize=8, **LEGEND_BESIDE)
+    return fig
 
 
-def plot_gear_figures(result: GearResult, folder) -> list[str]:
-    names = ["gear_mesh.png", "gear_kinematics.png", "gear_curvature.png"]
-    for name, plot in zip(names, (plot_mesh, plot_kinematics, plot_curvature)):
-        plot(result, str(folder / name))
-    return names
+def draw_figures(result: GearResult) -> dict[str, Figure]:
+    """The figures of a gear pair by file stem: ``gear_mesh``, ``gear_kinematics``, ``gear_curvature``.
+
+    Parameters
+    ----------
+    result : GearResult
+        From ``synthesize``.
+
+    Returns
+    -------
+    dict of str to matplotlib.figure.Figure
+        Save with ``figure.savefig(f"{stem}.png")`` or show in a notebook.
+    """
+    return {"gear_mesh": draw_mesh(result), "gear_kinematics": draw_kinematics(result),
+            "gear_curvature": draw_curvature(result)}

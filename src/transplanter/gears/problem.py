@@ -36,7 +36,7 @@ import numpy as np
 from transplanter.gears.pitch_curves import (PitchCurve, denatured_ellipse, denatured_limacon, denatured_partner, ellipse,
                                        limacon, ratio_formula, ratio_samples, spline)
 from transplanter.gears.ratio_expression import ExpressionError, parse_ratio
-from transplanter.toml_fields import FieldReader, read_toml
+from transplanter.toml_fields import ClassFields, FieldReader, is_finite_number, read_toml, shown
 
 FAMILIES = ("ellipse", "higher_order_ellipse", "denatured_ellipse", "limacon", "denatured_limacon", "spline", "ratio")
 _DRIVER_KEYS = {"family", "semi_major_axis", "eccentricity", "order", "base", "amplitude", "m11", "m12",
@@ -56,23 +56,80 @@ _PAIR_KEYS = {"driven_order", "center_distance", "module", "teeth", "pressure_an
 
 @dataclass(frozen=True)
 class GearProblem:
-    driver: PitchCurve | None          # None for a ratio input: built once the center distance is known
+    """A validated gear-pair problem, in mm, radians and rad/s (``parse_problem`` takes degrees and rpm).
+
+    Attributes
+    ----------
+    driver : PitchCurve or None
+        The driver's pitch curve; None for a ratio input (built once the center distance is known).
+    driven_order : int
+        n2: the driven gear turns n1/n2 per driver turn.
+    center_distance : float or None
+        mm; None: solved for closure.
+    module : float or None
+        mm, for tooth counts and profiles.
+    teeth : int or None
+        Driver teeth: the curve is scaled so its perimeter is pi m Z.
+    pressure_angle : float
+        rad, from 5 to 35 degrees.
+    driver_speed : float
+        rad/s.
+    cutter : str
+        ``"rack"`` or ``"shaper"``.
+    shaper_teeth : int
+        Teeth of the shaper cutter.
+    source, title : str
+        Where the problem came from and its title.
+    ratio : tuple or None
+        (evaluator of i12 and its derivatives, breaks in rad) for a ratio input.
+    correct_ratio : bool
+        Scale a ratio that does not close (seed 000 eq 12).
+    parameters : dict
+        The driver's parameters as given, for the report.
+
+    Raises
+    ------
+    ProblemError
+        When a value is out of range, e.g. a pressure angle given in degrees.
+    """
+
+    driver: PitchCurve | None
     driven_order: int
     center_distance: float | None
     module: float | None
     teeth: int | None
-    pressure_angle: float              # rad
-    driver_speed: float                # rad/s
+    pressure_angle: float
+    driver_speed: float
     cutter: str
     shaper_teeth: int
     source: str
     title: str = ""
-    ratio: tuple | None = None          # (evaluator of i12 and its derivatives, breaks) for a ratio input
+    ratio: tuple | None = None
     correct_ratio: bool = False
     parameters: dict = field(default_factory=dict)
 
+    def __post_init__(self):
+        check = ClassFields(self)
+        if (self.driver is None) == (self.ratio is None):
+            check.fail("driver", self.driver, "a pitch curve, or None with a ratio")
+        if not np.radians(5) - 1e-12 <= self.pressure_angle <= np.radians(35) + 1e-12:
+            check.fail("pressure_angle", self.pressure_angle, "an angle from 5 to 35 degrees, in radians")
+        if not is_finite_number(self.driver_speed):
+            check.fail("driver_speed", self.driver_speed, "a finite speed (rad/s)")
+        for name in ("center_distance", "module"):
+            check.positive(name, optional=True)
+        if self.cutter not in ("rack", "shaper"):
+            check.fail("cutter", self.cutter, '"rack" or "shaper"')
+
 
 def load_problem(path: str | Path) -> GearProblem:
+    """Read and validate a gear-pair file (TOML, mm and degrees; schema above).
+
+    Raises
+    ------
+    ProblemError
+        Naming the file, the field, the value and what was expected.
+    """
     return parse_problem(read_toml(path), str(path))
 
 
@@ -147,7 +204,26 @@ def _driver(read: FieldReader, table: dict):
     return ratio_samples(phi, values), tuple(np.mod(phi, 2 * np.pi))
 
 
-def parse_problem(data: dict, source: str = "<gear>") -> GearProblem:
+def parse_problem(data: dict, source: str = "<dict>") -> GearProblem:
+    """Validate a gear-pair problem given as a dict with the fields of the file (mm, degrees, rpm).
+
+    Parameters
+    ----------
+    data : dict
+        The file's tables as dicts; a list of numbers may be a tuple or a numpy array.
+    source : str
+        Named in error messages (the file name when read from a file).
+
+    Returns
+    -------
+    GearProblem
+        In mm, radians and rad/s.
+
+    Raises
+    ------
+    ProblemError
+        Naming the source, the field, the value and what was expected.
+    """
     read = FieldReader(source)
     read.keys(data, {"title", "description", "driver", "pair"}, "")
     if "driver" not in data:
@@ -173,9 +249,7 @@ def parse_problem(data: dict, source: str = "<gear>") -> GearProblem:
     if is_ratio and center is None and teeth is None:
         read.fail("pair.center_distance", None, "a center distance (or module and teeth): a ratio fixes the "
                                                 "shape of the pitch curves, not their size")
-    correct = data["driver"].get("correct", False)
-    if not isinstance(correct, bool):
-        read.fail("driver.correct", correct, "true or false")
+    correct = read.flag(data["driver"], "correct", "driver", False)
     return GearProblem(
         driver=None if is_ratio else driver,
         driven_order=read.integer(pair, "driven_order", "pair", 1, 12, default=1),
@@ -183,5 +257,5 @@ def parse_problem(data: dict, source: str = "<gear>") -> GearProblem:
         driver_speed=rpm * 2 * np.pi / 60, cutter=cutter,
         shaper_teeth=read.integer(pair, "shaper_teeth", "pair", 8, 200, default=16),
         source=source, title=str(data.get("title", "")), ratio=driver if is_ratio else None,
-        correct_ratio=correct, parameters={k: v for k, v in data["driver"].items()
+        correct_ratio=correct, parameters={k: shown(v) for k, v in data["driver"].items()
                                            if k not in ("family", "phi_deg", "radius", "ratio", "expression")})

@@ -1,50 +1,5 @@
-"""A gear-pair result as JSON and Markdown."""
+"""A gear-pair report (``GearResult.to_json``) as Markdown."""
 from __future__ import annotations
-
-import numpy as np
-
-from transplanter.gears.synthesis import GearResult
-from transplanter.gears.rack_teeth import ADDENDUM
-
-
-def _min_convex(rho, convexity):
-    convex = convexity > 0
-    return float(rho[convex].min()) if convex.any() else None
-
-
-def to_json(result: GearResult) -> dict:
-    d, problem = result.design, result.problem
-    out = {
-        "source": problem.source, "title": problem.title,
-        "driver": {"family": d.driver.family, "parameters": problem.parameters, "scale": d.driver.scale},
-        "center_distance": d.center_distance,
-        "orders": list(d.orders),
-        "closure_error": d.closure_error,
-        "rolling_mismatch_mm": d.rolling_mismatch_mm,
-        "ratio_range": [float(d.ratio.min()), float(d.ratio.max())],
-        "perimeters": list(d.perimeters),
-        "convex": [bool((c > 0).all()) for c in d.convexity],
-        "min_curvature_radius": [_min_convex(r, c) for r, c in zip(d.curvature_radius, d.convexity)],
-        "joints": d.joints,
-        "driver_speed_rad_s": d.driver_speed,
-        "driven_speed_range_rad_s": [float(d.driven_speed.min()), float(d.driven_speed.max())],
-        "driven_acceleration_range_rad_s2": [float(d.driven_acceleration.min()), float(d.driven_acceleration.max())],
-        "ratio_correction_factor": result.ratio_correction,
-        "module": problem.module,
-        "tooth_counts": None, "undercut": None, "contact_ratio_range": None, "self_intersections": None,
-        "timings_s": result.timings_s,
-    }
-    if result.tooth_counts is not None:
-        counts = result.tooth_counts
-        limit = ADDENDUM * counts.module / np.sin(problem.pressure_angle) ** 2
-        out["tooth_counts"] = {"fractional": list(counts.fractional), "nearest": list(counts.counts),
-                               "exact_module": counts.exact_module, "scale_for_module": counts.scale_for_module}
-        out["undercut"] = [bool(v is not None and v < limit) for v in out["min_curvature_radius"]]
-    if result.teeth is not None:
-        out["cutter"] = result.teeth.cutter
-        out["contact_ratio_range"] = None if result.teeth.contact_ratio is None else list(result.teeth.contact_ratio)
-        out["self_intersections"] = list(result.teeth.self_intersections)
-    return out
 
 
 def to_markdown(report: dict, figures: list[str], drawings: list[str]) -> str:

@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -10,29 +9,9 @@ from transplanter.errors import InfeasibleError
 from transplanter.gears.pair import GearPairDesign, arc_length, design_pair
 from transplanter.geometry.turn_quadrature import panels
 from transplanter.gears.problem import GearProblem
-from transplanter.gears.teeth import PairTeeth, generate_teeth
+from transplanter.gears.result import GearResult, ToothCounts
+from transplanter.gears.teeth import generate_teeth
 from transplanter.gears.pitch_curves import from_ratio
-
-
-@dataclass(frozen=True)
-class ToothCounts:
-    """Nearest whole tooth counts with equal teeth per lobe, and what makes them exact."""
-
-    module: float
-    fractional: tuple[float, float]
-    counts: tuple[int, int]
-    exact_module: float            # module that makes ``counts`` exact at this size
-    scale_for_module: float        # scale of the curves that makes ``counts`` exact with ``module``
-
-
-@dataclass(frozen=True)
-class GearResult:
-    problem: GearProblem
-    design: GearPairDesign
-    tooth_counts: ToothCounts | None
-    teeth: PairTeeth | None
-    ratio_correction: float | None
-    timings_s: dict
 
 
 def tooth_counts(design: GearPairDesign, module: float) -> ToothCounts:
@@ -71,6 +50,23 @@ def _ratio_curve(problem: GearProblem, center_distance: float):
 
 
 def synthesize(problem: GearProblem) -> GearResult:
+    """A verified gear pair: driver curve (scaled to the teeth when given), driven curve closed at
+    the center distance, kinematics, tooth counts at the module, and tooth profiles when asked.
+
+    Parameters
+    ----------
+    problem : GearProblem
+        From ``load_problem`` / ``parse_problem`` or built directly (mm, radians).
+
+    Returns
+    -------
+    GearResult
+
+    Raises
+    ------
+    InfeasibleError
+        When the ratio reverses, is not periodic or does not close, or the teeth do not fit the lobes.
+    """
     start = time.perf_counter()
     correction = None
     center = problem.center_distance

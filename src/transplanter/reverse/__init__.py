@@ -2,15 +2,17 @@
 (seeds 002-004): inverse kinematics, the monotonicity criterion, gears, round trip.
 
 Public API: ``load_problem`` / ``parse_problem`` (TOML file or dict, mm and degrees) ->
-``ReverseProblem``; ``synthesize(problem)`` -> ``ReverseResult``.
+``ReverseProblem`` (mm); ``synthesize(problem)`` -> ``ReverseResult`` (``to_json()``);
+``draw_figures(result)`` -> matplotlib Figures by file stem.
 """
 from transplanter.lazy_exports import lazy_exports
 
-__all__ = ["ReverseProblem", "ReverseResult", "load_problem", "parse_problem", "synthesize"]
+__all__ = ["ReverseProblem", "ReverseResult", "draw_figures", "load_problem", "parse_problem", "synthesize"]
 __getattr__, __dir__ = lazy_exports(__name__, {
+    "draw_figures": "figures",
     "ReverseProblem": "problem",
     "load_problem": "problem",
     "parse_problem": "problem",
-    "ReverseResult": "synthesis",
+    "ReverseResult": "result",
     "synthesize": "synthesis",
 })

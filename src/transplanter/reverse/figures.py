@@ -1,26 +1,25 @@
 """Figures of a reverse design: the path with the arm (target against reproduced), the angles and
-ratios along the cycle, and the pitch curves on the carrier."""
+ratios along the cycle, and the pitch curves on the carrier, as matplotlib ``Figure`` objects (no
+pyplot, no backend chosen: a notebook shows them, the command saves them)."""
 from __future__ import annotations
 
-from pathlib import Path
+import numpy as np
+from matplotlib.figure import Figure
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from transplanter.geometry.closed_trajectory import TWO_PI  # noqa: E402
-from transplanter.reverse.idler_train import IdlerTrain  # noqa: E402
-from transplanter.reverse.synthesis import ReverseResult  # noqa: E402
-from transplanter.trains.figures import draw_four_gear_train  # noqa: E402
+from transplanter.geometry.closed_trajectory import TWO_PI
+from transplanter.reverse.idler_train import IdlerTrain
+from transplanter.reverse.result import ReverseResult
+from transplanter.trains.figures import LEGEND_BESIDE, draw_four_gear_train
 
 
-def plot_path(result: ReverseResult, path: str):
+def draw_path(result: ReverseResult) -> Figure:
+    """The target path, reach circles, touches, violations, the arm at eight places and the tip
+    rebuilt from the rolled gears (mm)."""
     motion, pivot = result.motion, result.problem.pivot
     x = np.linspace(0, TWO_PI, 2000)
     curve = result.trajectory.evaluate(x) + pivot
-    fig, ax = plt.subplots(figsize=(7, 7))
+    fig = Figure(figsize=(9.5, 7), layout="constrained")
+    ax = fig.subplots()
     ring = np.linspace(0, TWO_PI, 400)
     for radius, style in ((motion.carrier_length + motion.arm_length, "c--"),
                           (abs(motion.carrier_length - motion.arm_length), "c:")):
@@ -46,21 +45,22 @@ def plot_path(result: ReverseResult, path: str):
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
     ax.set_title("path, reach circles (cyan), touches (magenta), violations (red)", fontsize=9)
-    ax.legend(fontsize=8)
-    fig.savefig(path, dpi=120, bbox_inches="tight")
-    plt.close(fig)
+    ax.legend(fontsize=8, **LEGEND_BESIDE)
+    return fig
 
 
-def plot_motion(result: ReverseResult, path: str):
+def draw_motion(result: ReverseResult) -> Figure:
+    """Carrier and arm angles along the path (deg), and the transmission ratios against the carrier turn."""
     motion = result.motion
     x = motion.grid
     theta, gamma = motion.angles(x)
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 7))
+    fig = Figure(figsize=(10, 7), layout="constrained")
+    top, bottom = fig.subplots(2, 1)
     top.plot(x / TWO_PI, np.degrees(theta - theta[0]), label="carrier theta - theta(0)")
     top.plot(x / TWO_PI, np.degrees(gamma - gamma[0]), label="arm against carrier gamma - gamma(0)")
-    top.set_xlabel("path parameter u")
-    top.set_ylabel("deg")
-    top.legend(fontsize=8)
+    top.set_xlabel("path parameter u (turns)")
+    top.set_ylabel("angle (deg)")
+    top.legend(fontsize=8, **LEGEND_BESIDE)
     if result.train is not None:
         c = result.verification.carrier_turns
         bottom.plot(np.degrees(c), 1 / result.relative.evaluate(c, 1), "k", label="total i0 (sun : planet)")
@@ -69,15 +69,18 @@ def plot_motion(result: ReverseResult, path: str):
             bottom.plot(np.degrees(c), first, label="stage 1 (sun : intermediate)")
             bottom.plot(np.degrees(c), second, label="stage 2 (intermediate : planet)")
         bottom.set_xlabel("carrier turn c (deg)")
-        bottom.set_ylabel("transmission ratio")
-        bottom.legend(fontsize=8)
-    fig.savefig(path, dpi=120, bbox_inches="tight")
-    plt.close(fig)
+        bottom.set_ylabel("transmission ratio (dimensionless)")
+        bottom.legend(fontsize=8, **LEGEND_BESIDE)
+    else:
+        bottom.set_axis_off()
+    return fig
 
 
-def plot_gears(result: ReverseResult, path: str):
+def draw_gears(result: ReverseResult) -> Figure:
+    """The pitch curves where they sit on the carrier (mm)."""
     train = result.train
-    fig, ax = plt.subplots(figsize=(8, 6))
+    fig = Figure(figsize=(10, 6), layout="constrained")
+    ax = fig.subplots()
     if isinstance(train, IdlerTrain):
         a = train.center_distance
         driver, idler = train.stage_one.points
@@ -87,19 +90,29 @@ def plot_gears(result: ReverseResult, path: str):
         for center in (0, a, 2 * a):
             ax.plot(center, 0, "k+")
         ax.set_aspect("equal")
-        ax.legend(fontsize=7)
+        ax.set_xlabel("x along the carrier (mm)")
+        ax.set_ylabel("y (mm)")
+        ax.legend(fontsize=7, **LEGEND_BESIDE)
     else:
         draw_four_gear_train(ax, train, result.motion.carrier_length)
     ax.set_title(f"pitch curves on the carrier: {result.problem.topology}", fontsize=9)
-    fig.savefig(path, dpi=120, bbox_inches="tight")
-    plt.close(fig)
+    return fig
 
 
-def plot_reverse_figures(result: ReverseResult, out: Path) -> list[str]:
-    out.mkdir(parents=True, exist_ok=True)
-    figures = {"path.png": plot_path, "motion.png": plot_motion}
+def draw_figures(result: ReverseResult) -> dict[str, Figure]:
+    """The figures of a reverse design by file stem: ``path``, ``motion``, and ``gears`` when it has a train.
+
+    Parameters
+    ----------
+    result : ReverseResult
+        From ``synthesize``.
+
+    Returns
+    -------
+    dict of str to matplotlib.figure.Figure
+        Save with ``figure.savefig(f"{stem}.png")`` or show in a notebook.
+    """
+    figures = {"path": draw_path(result), "motion": draw_motion(result)}
     if result.train is not None:
-        figures["gears.png"] = plot_gears
-    for name, plot in figures.items():
-        plot(result, str(out / name))
-    return list(figures)
+        figures["gears"] = draw_gears(result)
+    return figures

@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from transplanter.toml_fields import FieldReader, read_toml
+from transplanter.toml_fields import ClassFields, FieldReader, read_toml
 
 TOPOLOGIES = {"sun-intermediate-planet": ("sqrt", "peak_to_valley"),
               "pick-up": ("sqrt", "peak_to_valley"),
@@ -38,28 +38,86 @@ OPEN_GAP_FACTOR = 3.0
 
 @dataclass(frozen=True)
 class ReverseProblem:
-    points: np.ndarray                       # (N, 2) relative to the pivot, mm
+    """A validated reverse-design problem, in mm.
+
+    Attributes
+    ----------
+    points : ndarray, shape (N, 2)
+        The closed path of the arm tip relative to the pivot (mm), N >= 4, in running order.
+    kind : str
+        ``"control_points"`` of a closed B-spline or ``"samples"`` on the curve.
+    pivot : ndarray, shape (2,)
+        The carrier center (mm).
+    lengths : (float, float) or None
+        Carrier and arm lengths (mm); None: from the path's farthest and nearest points.
+    direction : int
+        +1 counterclockwise carrier, -1 clockwise.
+    branch : str
+        Arm branch at the first point: ``"approach"``, ``"retraction"`` or ``"auto"``.
+    topology, split : str
+        Gear train (``TOPOLOGIES``) and how the total ratio is split over its stages.
+    peak_to_valley : float
+        Share of the ratio's swing stage 1 carries, in (0, 1).
+    center_distances : (float, float) or None
+        mm; None: half the carrier each.
+    module : float
+        mm, for the tooth counts.
+    source, title : str
+        Where the problem came from and its title.
+
+    Raises
+    ------
+    ProblemError
+        When a field has the wrong shape or a value out of range.
+    """
+
+    points: np.ndarray
     kind: str
     pivot: np.ndarray
-    lengths: tuple[float, float] | None      # (carrier, arm) or None: from the path's extremes
-    direction: int                           # +1 counterclockwise, -1 clockwise
-    branch: str                              # "approach", "retraction", "auto"
+    lengths: tuple[float, float] | None
+    direction: int
+    branch: str
     topology: str = "sun-intermediate-planet"
     split: str = "sqrt"
     peak_to_valley: float = 0.5
     center_distances: tuple[float, float] | None = None
     module: float = 2.5
-    source: str = "<problem>"
+    source: str = "<dict>"
     title: str = ""
+
+    def __post_init__(self):
+        check = ClassFields(self)
+        check.array("points", (None, 2), minimum=4)
+        check.array("pivot", (2,))
+        if self.kind not in ("control_points", "samples"):
+            check.fail("kind", self.kind, '"control_points" or "samples"')
+        if self.lengths is not None and (len(self.lengths) != 2 or min(self.lengths) <= 0):
+            check.fail("lengths", self.lengths, "two positive lengths (carrier, arm) in mm, or None")
+        if self.direction not in (1, -1):
+            check.fail("direction", self.direction, "+1 (counterclockwise) or -1 (clockwise)")
+        if self.branch not in ("auto", "approach", "retraction"):
+            check.fail("branch", self.branch, '"auto", "approach" or "retraction"')
+        if self.split not in TOPOLOGIES.get(self.topology, ()):
+            check.fail("split", (self.topology, self.split), f"a topology and split of {TOPOLOGIES}")
+        if not 0 < self.peak_to_valley < 1:
+            check.fail("peak_to_valley", self.peak_to_valley, "a number in (0, 1)")
+        check.positive("module")
 
 
 def load_problem(path: str | Path) -> ReverseProblem:
+    """Read and validate a reverse-design file (TOML, mm and degrees; schema above).
+
+    Raises
+    ------
+    ProblemError
+        Naming the file, the field, the value and what was expected.
+    """
     return parse_problem(read_toml(path), str(path))
 
 
 def _choice(read: FieldReader, table: dict, key: str, where: str, options, default=None) -> str:
     value = table.get(key, default)
-    if value not in options:
+    if not isinstance(value, str) or value not in options:
         read.fail(f"{where}.{key}", value, "one of " + ", ".join(f'"{o}"' for o in options))
     return value
 
@@ -126,7 +184,25 @@ def _train(read: FieldReader, table: dict):
     return topology, split, coefficient, centers, module
 
 
-def parse_problem(data: dict, source: str = "<problem>") -> ReverseProblem:
+def parse_problem(data: dict, source: str = "<dict>") -> ReverseProblem:
+    """Validate a reverse-design problem given as a dict with the fields of the file (mm).
+
+    Parameters
+    ----------
+    data : dict
+        The file's tables as dicts; ``trajectory.points`` may be a list, a tuple or an (N, 2) numpy array.
+    source : str
+        Named in error messages (the file name when read from a file).
+
+    Returns
+    -------
+    ReverseProblem
+
+    Raises
+    ------
+    ProblemError
+        Naming the source, the field, the value and what was expected.
+    """
     read = FieldReader(source)
     read.keys(data, _TOP_KEYS, "")
     if "trajectory" not in data:

@@ -8,7 +8,6 @@ the monotonicity criterion comes back with its violations and fix hints and no t
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -17,34 +16,16 @@ from transplanter.reverse.carrier_frame_motion import CarrierFrameMotion
 from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, interpolating_polygon
 from transplanter.errors import InfeasibleError, ProblemError, TransplanterWarning
 from transplanter.generated import numpy_twin
-from transplanter.reverse.idler_train import IdlerTrain, design_idler_train, verify_idler_train
-from transplanter.reverse.monotonicity import Violation, fix_hints, violations
-from transplanter.trains.planetary import PlanetaryTrain, design_train
+from transplanter.reverse.idler_train import design_idler_train, verify_idler_train
+from transplanter.reverse.monotonicity import fix_hints, violations
+from transplanter.trains.planetary import design_train
 from transplanter.reverse.problem import ReverseProblem
-from transplanter.reverse.verification import CarrierGeometry, ReverseVerification, verify_reverse
+from transplanter.reverse.result import ReverseResult
+from transplanter.reverse.verification import CarrierGeometry, verify_reverse
 
 _arm_lengths = numpy_twin("planetary", "arm_lengths_from_extremes")
 #: A train whose rolled tip strays further than this from the path is reported with a warning (mm).
 ROUNDTRIP_TOLERANCE_MM = 1e-6
-
-
-@dataclass(frozen=True)
-class ReverseResult:
-    problem: ReverseProblem
-    trajectory: ClosedTrajectory
-    extremes: tuple[float, float]              # farthest and nearest |P|, mm
-    lengths_derived: bool
-    motion: ArmMotion
-    violations: list[Violation]
-    hints: list[str]
-    relative: CarrierFrameMotion | None = None
-    geometry: CarrierGeometry | None = None
-    train: PlanetaryTrain | IdlerTrain | None = None
-    verification: ReverseVerification | None = None
-
-    @property
-    def monotonic(self) -> bool:
-        return not self.violations
 
 
 def build_trajectory(problem: ReverseProblem) -> ClosedTrajectory:
@@ -114,6 +95,24 @@ def carrier_geometry(problem: ReverseProblem, s: float) -> CarrierGeometry | Non
 
 
 def synthesize(problem: ReverseProblem) -> ReverseResult:
+    """The planetary gear train that makes the arm tip follow the problem's closed path.
+
+    Parameters
+    ----------
+    problem : ReverseProblem
+        From ``load_problem`` / ``parse_problem`` or built directly (mm).
+
+    Returns
+    -------
+    ReverseResult
+        Arm lengths and motion, the monotonicity verdict; when it passes, the train and its
+        round-trip verification (``monotonic`` is False and ``train`` None when it fails).
+
+    Raises
+    ------
+    ProblemError, InfeasibleError
+        For a path that stops, points out of reach, or impossible center distances.
+    """
     trajectory = build_trajectory(problem)
     radii = [e.radius for e in trajectory.radial_extremes()]
     extremes = (max(radii), min(radii))

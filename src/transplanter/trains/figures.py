@@ -1,14 +1,18 @@
-"""Pitch curves of a planetary train drawn where they sit on the carrier (shared by the figures)."""
+"""Pitch curves of a planetary train drawn where they sit on the carrier, and the legend placement
+every figure uses (shared by the figures)."""
 from __future__ import annotations
 
 import numpy as np
 
 from transplanter.geometry.poses import rotate_about
 
+#: ``Axes.legend`` keywords that put the legend beside the axes, off the data (constrained layout makes room).
+LEGEND_BESIDE = {"loc": "upper left", "bbox_to_anchor": (1.02, 1), "borderaxespad": 0}
+
 
 def draw_four_gear_train(ax, train, carrier_length: float, bend_side: float = 1.0):
     """Sun at the pivot, the intermediate shaft at a1 from it, the planet at ``carrier_length``
-    on the +x axis; each pair's curves face each other along their line of centers."""
+    on the +x axis; each pair's curves face each other along their line of centers (mm)."""
     a1, a2 = train.center_distances
     shaft_angle = bend_side * np.arccos(np.clip((a1**2 + carrier_length**2 - a2**2) / (2 * a1 * carrier_length), -1, 1))
     shaft = a1 * np.array([np.cos(shaft_angle), np.sin(shaft_angle)])
@@ -23,4 +27,6 @@ def draw_four_gear_train(ax, train, carrier_length: float, bend_side: float = 1.
         ax.plot(*center, "k+")
     ax.plot([0, shaft[0], carrier_length], [0, shaft[1], 0], "k:", lw=0.8)
     ax.set_aspect("equal")
-    ax.legend(fontsize=7)
+    ax.set_xlabel("x along the carrier (mm)")
+    ax.set_ylabel("y (mm)")
+    ax.legend(fontsize=7, **LEGEND_BESIDE)

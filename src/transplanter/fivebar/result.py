@@ -1,0 +1,108 @@
+"""A designed five-bar mechanism with its gear train, and its JSON (the content of report.json)."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from transplanter.fivebar.candidate import Candidate
+from transplanter.fivebar.linkage import FiveBar
+from transplanter.fivebar.nlp import BENDING_WEIGHT, DesignSolution
+from transplanter.fivebar.problem import FiveBarProblem
+from transplanter.fivebar.region import Region
+from transplanter.fivebar.verification import Verification
+from transplanter.trains.planetary import PlanetaryTrain, printed_correction
+
+
+def design_json(mech: FiveBar, pose1: np.ndarray) -> dict:
+    """Named lengths (mm), hinge coordinates in pose 1 (mm) and angles in pose 1 (deg)."""
+    e, f = mech.plate_points(pose1)
+    a = mech.carrier_point(0.0)
+    return {
+        "carrier_length_OA": mech.carrier_length, "rod_length_AF": mech.rod_length,
+        "plate_link_length_EF": mech.link_length, "receiving_plate_length_BE": mech.receiving_length,
+        "push_plate_EP": mech.ep, "push_plate_FP": mech.fp, "frame_length_OB": float(np.hypot(*mech.hinge_b)),
+        "hinge_O": [0.0, 0.0], "hinge_B": mech.hinge_b.tolist(), "hinge_A": a.tolist(), "hinge_E": e.tolist(),
+        "hinge_F": f.tolist(), "carrier_angle_deg": float(np.degrees(mech.carrier_angle)),
+        "rod_angle_deg": float(np.degrees(np.arctan2(*(f - a)[::-1]))), "assembly_branch": mech.branch,
+    }
+
+
+def _stage_json(stage, name: str) -> dict:
+    return {"pair": name, "center_distance": stage.center_distance, "closure_error_rad": stage.closure_error,
+            "rolling_mismatch_mm": stage.rolling_mismatch_mm,
+            "driver_radius_range": [float(stage.radius[0].min()), float(stage.radius[0].max())],
+            "driven_radius_range": [float(stage.radius[1].min()), float(stage.radius[1].max())],
+            "driver_convex": bool(np.all(stage.convexity[0] > 0)), "driven_convex": bool(np.all(stage.convexity[1] > 0)),
+            "perimeters_mm": list(stage.perimeters)}
+
+
+@dataclass(frozen=True)
+class FiveBarResult:
+    """A five-bar mechanism designed for a ``FiveBarProblem``, with its planetary gear train.
+
+    Attributes
+    ----------
+    problem : FiveBarProblem
+        The problem solved (mm, radians).
+    region : Region
+        The solution region: traced B-E and A-F dyads and the five-bars they pair into.
+    start : Candidate
+        The region candidate the design NLP started from.
+    design : DesignSolution
+        The refined mechanism (mm, rad), the relative angle of rod I as a B-spline of the carrier
+        turn (rad), the return stroke, and the NLP's objective, iterations and status.
+    train : PlanetaryTrain
+        The four pitch curves (mm) of the two gear stages and the correction factor k.
+    verification : Verification
+        The independent forward simulation: errors at the key poses (mm, deg) and return
+        points (mm), trajectory of P over a turn (mm), closure margin, ratio range.
+    timings_s : dict
+        Wall time of each stage (s).
+    """
+
+    problem: FiveBarProblem
+    region: Region
+    start: Candidate
+    design: DesignSolution
+    train: PlanetaryTrain
+    verification: Verification
+    timings_s: dict
+
+    def to_json(self) -> dict:
+        """The report as plain JSON types (mm, degrees): the content of report.json."""
+        problem, design, train, check = self.problem, self.design, self.train, self.verification
+        relative = design.relative_angle
+        k_printed, turn_printed = printed_correction(relative)
+        region = self.region
+        return {
+            "source": problem.source, "title": problem.title,
+            "key_pose_position_errors_mm": check.key_position_errors_mm.tolist(),
+            "key_pose_angle_errors_deg": check.key_angle_errors_deg.tolist(),
+            "return_point_errors_mm": check.return_point_errors_mm.tolist(),
+            "min_discriminant": check.min_discriminant,
+            "min_closure_margin": check.min_closure_margin,
+            "required_closure_margin": problem.min_closure_margin,
+            "relative_angle_monotonic": check.relative_angle_monotonic,
+            "ratio_range": list(check.ratio_range),
+            "design": design_json(design.mech, problem.poses[0]),
+            "relative_angle": {"rho1_deg": float(np.degrees(relative.rho1)),
+                               "control_values_deg": np.degrees(relative.coefficients).tolist(),
+                               "return_point_turns_deg": np.degrees(design.stroke.carrier_turns).tolist()},
+            "gear_closure_errors": [train.stage_one.closure_error, train.stage_two.closure_error],
+            "gears": {"correction_k": train.correction, "printed_eq12_k": k_printed,
+                      "printed_eq12_intermediate_turn_deg": float(np.degrees(turn_printed)),
+                      "stages": [_stage_json(train.stage_one, "sun -> first intermediate"),
+                                 _stage_json(train.stage_two, "second intermediate -> planet")]},
+            "roundtrip_max_error_mm": check.roundtrip_max_error_mm,
+            "contact_gap_mm": check.contact_gap_mm,
+            "region": {"receiving_dyads": len(region.receiving.fixed),
+                       "receiving_kept": int(region.receiving.kept.sum()),
+                       "carrier_dyads": len(region.carrier.fixed), "carrier_kept": int(region.carrier.kept.sum()),
+                       "pairs": len(region.candidates), "feasible_pairs": len(region.feasible),
+                       "removed_by": region.pair_defects,
+                       "start_min_closure_margin": self.start.min_margin},
+            "nlp": {"status": design.status, "iterations": design.iterations, "objective": design.objective,
+                    "bending_weight": BENDING_WEIGHT},
+            "timings_s": self.timings_s,
+        }
