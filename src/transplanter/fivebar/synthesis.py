@@ -14,7 +14,7 @@ import numpy as np
 
 from transplanter.errors import InfeasibleError, ProblemError, SolverError
 from transplanter.fivebar.candidate import Candidate
-from transplanter.fivebar.nlp import DesignSolution, refine_design
+from transplanter.fivebar.nlp import DesignSolution, DesignSolver
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import ChainFamily, Region, solution_region
 from transplanter.fivebar.verification import Verification, verify
@@ -87,10 +87,13 @@ def synthesize(problem: FiveBarProblem) -> FiveBarResult:
         _no_feasible_pair(problem, region)
 
     start = time.perf_counter()
+    solver = DesignSolver(problem)
+    timings["nlp_build"] = time.perf_counter() - start
+    start = time.perf_counter()
     failures = []
     for candidate in region.feasible[:STARTS]:
         try:
-            design = refine_design(problem, candidate)
+            design = solver.refine(candidate)
             break
         except SolverError as error:
             failures.append(error.status)
