@@ -2,6 +2,7 @@
 import json
 from pathlib import Path
 
+import casadi as ca
 import numpy as np
 import pytest
 import sympy as sp
@@ -11,6 +12,7 @@ from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.fivebar.candidate import evaluate_candidate
 from transplanter.fivebar.evaluation import evaluate_design, load_design
 from transplanter.fivebar.linkage import FiveBar
+from transplanter.fivebar.nlp import DesignSolver, build_nlp, decision_vector
 from transplanter.fivebar.problem import load_problem, parse_problem
 from transplanter.fivebar.region import ChainFamily
 from transplanter.fivebar.synthesis import _empty_family, synthesize
@@ -138,6 +140,49 @@ def test_main_job_design_keeps_ranges_and_both_chains_close(result, problem):
     assert not [d for d in candidate.defects if d.startswith(("ranges", "order", "branch", "crank"))]
     receiving, carrier = mech.joint_chain_errors(problem.poses, problem.carrier_turns)
     assert np.abs(receiving).max() < 1e-9 and np.abs(carrier).max() < 1e-9
+
+
+def test_exchange_slots_are_the_closure_margin_and_slope_of_forward_kinematics(result, problem):
+    """A parametric exchange slot at any carrier turn gives the margin sin^2(EBF) and rho' that the
+    independent forward kinematics gives there; an unused slot constrains nothing."""
+    candidate = result.region.feasible[0]
+    nlp = build_nlp(problem, capacity=3)
+    turns = np.radians([14.2, 123.45])
+    g = ca.Function("g", [nlp.x, nlp.p], [nlp.constraints])(
+        decision_vector(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points),
+        nlp.parameters(candidate.mech.branch, turns))
+    g = np.asarray(g).ravel()
+    forward = candidate.mech.forward(turns, candidate.relative_angle.evaluate(turns))["margin"]
+    assert np.abs(g[nlp.slot_rows[0, :2]] - forward).max() < 1e-12
+    assert np.abs(g[nlp.slot_rows[1, :2]] - candidate.relative_angle.evaluate(turns, 1)).max() < 1e-12
+    lbg, ubg = nlp.bounds(len(turns))
+    assert np.isfinite(lbg[nlp.slot_rows[:, :2]]).all() and np.isneginf(lbg[nlp.slot_rows[:, 2]]).all()
+    assert np.isposinf(ubg[nlp.slot_rows[:, 2]]).all()
+
+
+def test_one_solver_serves_every_start_and_round(result, problem):
+    """Two refinements (each with its exchange rounds) run on the solver built once; the second start's
+    design is the one a freshly built solver gives."""
+    first, second = result.region.feasible[:2]
+    solver = DesignSolver(problem)
+    function = solver.function
+    solver.refine(first)
+    reused = solver.refine(second)
+    assert solver.builds == 1 and solver.function is function
+    fresh = DesignSolver(problem).refine(second)
+    assert abs(reused.objective - fresh.objective) <= 1e-12 * fresh.objective
+    for name in ("carrier_length", "rod_length", "receiving_length"):
+        assert abs(getattr(reused.mech, name) - getattr(fresh.mech, name)) < 1e-9
+    for name in ("hinge_b", "e_local", "f_local"):
+        assert np.abs(getattr(reused.mech, name) - getattr(fresh.mech, name)).max() < 1e-9
+
+
+def test_exchange_beyond_the_solver_room_rebuilds_it_larger(result, problem):
+    solver = DesignSolver(problem)
+    capacity = solver.nlp.capacity
+    design = solver.solve(result.region.feasible[0], np.linspace(0.1, 6.0, capacity + 1))
+    assert solver.builds == 2 and solver.nlp.capacity == 2 * capacity
+    assert design.status == "Solve_Succeeded"
 
 
 def test_gear_stages_close_and_printed_eq12_does_not(result):

@@ -1,4 +1,7 @@
 """Ground truth: build a mechanism, take its poses, synthesise, recover it."""
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 from scipy.optimize import least_squares
@@ -14,6 +17,18 @@ from derivations.burmester import circular_cubic
 
 def _has_pair(dyads, center, circle, tol):
     return any(np.linalg.norm(d.center - center) < tol and np.linalg.norm(d.circle - circle) < tol for d in dyads)
+
+
+def test_importing_the_burmester_solvers_builds_no_casadi_function():
+    """The generated Functions are built on first use: a fresh interpreter that imports every
+    Burmester solver has built none, and one 5-pose solve builds the three it needs."""
+    script = ("import numpy as np; import transplanter.burmester.synthesis; "
+              "from transplanter.generated import casadi_function as f; before = f.cache_info().currsize; "
+              "from transplanter.burmester.five_poses import burmester_points; "
+              "burmester_points(np.array([[0, 0, 0], [1, .2, .3], [1.8, .9, .5], [2.2, 1.9, .9], [2, 3, 1.4]])); "
+              "print(before, f.cache_info().currsize)")
+    counts = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True).stdout.split()
+    assert counts == ["0", "3"]
 
 
 def test_three_poses_match_the_circumcircle(rng):

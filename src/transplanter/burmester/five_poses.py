@@ -15,11 +15,6 @@ from transplanter.generated import casadi_function
 from transplanter.geometry.pivot_pairing import circles_for_centers, polish
 from transplanter.geometry.poses import carry, pole
 
-_center_cubic = casadi_function("burmester", "burmester_center_cubic")
-_resultant = casadi_function("burmester", "circular_cubic_pencil_resultant")
-_pencil = casadi_function("burmester", "circular_cubic_pencil")
-
-
 def pencil_pose_order(poses: np.ndarray) -> np.ndarray:
     """Pose 1 first, then the pose turned most against it (its pole is best conditioned)."""
     turn = 1 - np.cos(poses[1:, 2] - poses[0, 2])
@@ -28,7 +23,8 @@ def pencil_pose_order(poses: np.ndarray) -> np.ndarray:
 
 
 def center_cubic(poses: np.ndarray) -> np.ndarray:
-    return np.asarray(_center_cubic(poses[:, 0], poses[:, 1], poses[:, 2])).ravel()
+    cubic = casadi_function("burmester", "burmester_center_cubic")
+    return np.asarray(cubic(poses[:, 0], poses[:, 1], poses[:, 2])).ravel()
 
 
 def _length_error(poses, centers, circles):
@@ -44,15 +40,17 @@ def burmester_points(poses: np.ndarray, tolerance: float = 1e-10):
     pivot = pole(ordered[0], ordered[1])
     first = center_cubic(ordered[[0, 1, 2, 3]])
     second = center_cubic(ordered[[0, 1, 2, 4]])
-    polynomial = np.asarray(_resultant(first, second, pivot)).ravel()
+    resultant = casadi_function("burmester", "circular_cubic_pencil_resultant")
+    polynomial = np.asarray(resultant(first, second, pivot)).ravel()
     taus = np.roots(polynomial / np.abs(polynomial).max())
     real = taus[np.abs(taus.imag) <= 1e-7 * (1 + np.abs(taus))].real
     directions = [np.array([1.0, tau]) / np.hypot(1.0, tau) for tau in real]
     if abs(polynomial[0]) <= 1e-12 * np.abs(polynomial).max():
         directions.append(np.array([0.0, 1.0]))  # a root at tau = infinity
+    pencil = casadi_function("burmester", "circular_cubic_pencil")
     candidates = []
     for direction in directions:
-        alpha, beta, gamma = np.asarray(_pencil(first, pivot, direction)).ravel()
+        alpha, beta, gamma = np.asarray(pencil(first, pivot, direction)).ravel()
         for t in np.roots([alpha, beta, gamma]):
             if abs(t.imag) <= 1e-7 * (1 + abs(t)):
                 candidates.append(pivot + t.real * direction)

@@ -16,11 +16,9 @@ from transplanter.generated import casadi_function
 from transplanter.geometry.pivot_pairing import centers_for_circles, circles_for_centers, polish
 from transplanter.geometry.poses import pole
 
-_circle_cubic = casadi_function("burmester", "burmester_circle_cubic")
-
-
 def circle_cubic(poses: np.ndarray) -> np.ndarray:
-    return np.asarray(_circle_cubic(poses[:, 0], poses[:, 1], poses[:, 2])).ravel()
+    cubic = casadi_function("burmester", "burmester_circle_cubic")
+    return np.asarray(cubic(poses[:, 0], poses[:, 1], poses[:, 2])).ravel()
 
 
 def _pencil_pivot(poses):

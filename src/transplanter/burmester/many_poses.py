@@ -15,13 +15,13 @@ from transplanter.burmester.five_poses import burmester_points
 from transplanter.burmester.four_poses import trace_dyads
 from transplanter.generated import casadi_function
 
-_distance = casadi_function("burmester", "dyad_pivot_distance")
 _ACCEPTED = {"Solve_Succeeded", "Solved_To_Acceptable_Level"}
 
 
 def _solver(poses: np.ndarray):
     z = ca.SX.sym("z", 5)  # center (2), circle (2), length
-    distances = _distance.map(len(poses))(ca.DM(poses[0]), ca.DM(poses.T), z[:2], z[2:4])
+    distance = casadi_function("burmester", "dyad_pivot_distance")
+    distances = distance.map(len(poses))(ca.DM(poses[0]), ca.DM(poses.T), z[:2], z[2:4])
     residual = distances.T - z[4]
     nlp = {"x": z, "f": 0.5 * ca.sumsqr(residual)}
     options = {"print_time": False, "ipopt": {"print_level": 0, "sb": "yes", "tol": 1e-14}}

@@ -16,9 +16,11 @@ Constraints:
 - the B-E-F assembly of the start at all nine positions; c_j increasing between the last
   key pose and a full turn; the ``[ranges]`` limits.
 
-Between grid points the margin and rho' may dip: ``refine_design`` checks both on a grid
-``CHECK_POINTS`` fine by independent forward kinematics and re-solves with the worst
-carrier turns added to the grid (an exchange method), until the fine grid holds.
+Between grid points the margin and rho' may dip: ``DesignSolver.refine`` checks both on a
+grid ``CHECK_POINTS`` fine by independent forward kinematics and re-solves, from the last
+design, with the worst carrier turns added to the grid (an exchange method), until the fine
+grid holds. The added turns, the start's assembly branch and the start itself are inputs of
+the call, not of the NLP's expressions, so one IPOPT solver serves every start and round.
 
 Objective: sum_j |P_j' - P_j|^2 / SCALE^2 (return points in least squares) plus
 ``BENDING_WEIGHT`` times the bending int rho''^2 dc, which picks the smoothest relative
@@ -46,6 +48,14 @@ CHECK_POINTS = 7200
 EXCHANGE_ROUNDS = 4
 BENDING_WEIGHT = 1e-6
 MIN_STEP = np.radians(1.0)   # smallest carrier turn between consecutive positions
+#: Exchange points one solver holds before it is rebuilt larger.
+ADDED_CAPACITY = 16
+#: The objective is ~1e-6 at the optimum, so its multipliers are tiny and IPOPT's stopping test
+#: would accept slacks ~1e-7 on active constraints; scaled by 1e3 it pins them ~100x closer, and
+#: the adaptive barrier update then takes ~25 iterations per candidate instead of ~90.
+IPOPT_OPTIONS = {"ipopt.print_level": 0, "ipopt.sb": "yes", "print_time": False, "ipopt.tol": 1e-12,
+                 "ipopt.constr_viol_tol": 1e-12, "ipopt.max_iter": 1000, "ipopt.obj_scaling_factor": 1e3,
+                 "ipopt.mu_strategy": "adaptive"}
 
 
 @dataclass(frozen=True)
@@ -74,19 +84,43 @@ def _cross(u, v):
 
 @dataclass(frozen=True)
 class DesignNLP:
-    """The NLP in casadi form: decision vector, objective, constraints with bounds, start."""
+    """The NLP in casadi form, for any start and up to ``capacity`` exchange points.
+
+    The parameters ``p`` are the start's assembly branch (+1 or -1) and, per exchange slot,
+    its carrier turn, spline basis row and basis-derivative row (``parameters``). A slot
+    left empty gets unbounded rows (``bounds``), so it constrains nothing.
+    """
 
     x: ca.SX
+    p: ca.SX
     objective: ca.SX
     constraints: ca.SX
-    lbg: np.ndarray
+    lbg: np.ndarray            # every slot active
     ubg: np.ndarray
     lbx: np.ndarray
-    x0: np.ndarray
-    branch: float
+    slot_rows: np.ndarray      # (2, capacity): the margin row and the rho' row of each slot
+    spline_count: int
+
+    @property
+    def capacity(self) -> int:
+        return self.slot_rows.shape[1]
+
+    def bounds(self, added: int) -> tuple[np.ndarray, np.ndarray]:
+        """lbg, ubg with the first ``added`` exchange slots active and the others free."""
+        lbg, ubg = self.lbg.copy(), self.ubg.copy()
+        free = self.slot_rows[:, added:].ravel()
+        lbg[free], ubg[free] = -np.inf, np.inf
+        return lbg, ubg
+
+    def parameters(self, branch: float, added_turns: np.ndarray) -> np.ndarray:
+        """Value of ``p`` for a start's branch and the exchange points' carrier turns (rad)."""
+        turns = np.r_[added_turns, np.zeros(self.capacity - len(added_turns))]
+        n = self.spline_count
+        return np.r_[branch, turns, basis_matrix(turns, n).ravel(), basis_matrix(turns, n, 1).ravel()]
 
 
-def build_nlp(problem: FiveBarProblem, start: Candidate, added_turns=()) -> DesignNLP:
+def build_nlp(problem: FiveBarProblem, capacity: int = ADDED_CAPACITY) -> DesignNLP:
+    """The design NLP of ``problem`` with room for ``capacity`` exchange points."""
     n, m = problem.spline_count, len(problem.return_points)
     poses = problem.poses.copy()
     poses[:, :2] /= SCALE
@@ -100,11 +134,15 @@ def build_nlp(problem: FiveBarProblem, start: Candidate, added_turns=()) -> Desi
     b, e_loc, f_loc = ca.vertcat(bx, by), ca.vertcat(ex, ey), ca.vertcat(fx, fy)
     q0 = basis_matrix(np.zeros(1), n)[0]
 
+    branch = ca.SX.sym("branch")
+    added_turns = ca.SX.sym("added_turns", capacity)
+    added_basis = ca.SX.sym("added_basis", n, capacity)
+    added_slope_basis = ca.SX.sym("added_slope_basis", n, capacity)
+
     def rho(c):
         return rho1 + c + ca.dot(ca.vertcat(*basis(c, n, 0, CASADI)), q) - ca.dot(ca.DM(q0), q)
 
     equalities, inequalities = [], []
-    branch = start.mech.branch
     positions = [(poses[i, :2], poses[i, 2], turns[i], rho1 + ca.dot(ca.DM(basis_matrix(turns[i:i + 1], n)[0] - q0), q)
                   + turns[i]) for i in range(4)]
     positions += [(ret[2:4, j], ret[1, j], ret[0, j], rho(ret[0, j])) for j in range(m)]
@@ -116,10 +154,11 @@ def build_nlp(problem: FiveBarProblem, start: Candidate, added_turns=()) -> Desi
         equalities += [ca.sumsqr(e - b) - l4**2, f - a - l2 * _unit(theta1 + angle)]
         inequalities.append(branch * _cross(f - b, e - b) / (l4 * ca.norm_2(f - b)))
 
-    grid = np.r_[np.linspace(0, TWO_PI, GRID_POINTS, endpoint=False), added_turns]
-    points = len(grid)
-    rho_grid = rho1 + grid + ca.mtimes(ca.DM(basis_matrix(grid, n) - q0), q)
-    slope = 1 + ca.mtimes(ca.DM(basis_matrix(grid, n, 1)), q)
+    fixed = np.linspace(0, TWO_PI, GRID_POINTS, endpoint=False)
+    grid = ca.vertcat(ca.DM(fixed), added_turns)
+    points = GRID_POINTS + capacity
+    rho_grid = rho1 + grid + ca.mtimes(ca.vertcat(ca.DM(basis_matrix(fixed, n)), added_basis.T), q) - ca.dot(ca.DM(q0), q)
+    slope = 1 + ca.mtimes(ca.vertcat(ca.DM(basis_matrix(fixed, n, 1)), added_slope_basis.T), q)
     theta1_grid = theta11 - grid
     lengths = ca.vertcat(l1, l2, ca.norm_2(e_loc - f_loc), l4, ca.norm_2(b))
     crank = ca.horzcat(theta1_grid, theta1_grid + rho_grid, ca.repmat(ca.atan2(by, -bx), points, 1)).T
@@ -139,41 +178,71 @@ def build_nlp(problem: FiveBarProblem, start: Candidate, added_turns=()) -> Desi
     ubg = np.r_[np.zeros(3 * (4 + m)), np.full(4 + m, np.inf), np.full(points, np.inf),
                 np.full(points, 1 / low_ratio), np.full(m + 1, np.inf),
                 [problem.ranges[k][1] for k in problem.ranges]]
+    first_margin_row = 4 * (4 + m) + GRID_POINTS
+    slot_rows = first_margin_row + np.arange(capacity) + np.array([[0], [points]])
     objective = ca.sumsqr(ret[2:4, :] - targets.T) + BENDING_WEIGHT * ca.mtimes([q.T, ca.DM(bending_matrix(n)), q])
 
     lbx = np.r_[1e-3, -np.inf, 1e-3, -np.inf, -np.inf, 1e-3, np.full(5 + (n - 1) + 4 * m, -np.inf)]
-    return DesignNLP(x, objective, g, lbg, ubg, lbx, _start_vector(start, problem), branch)
+    p = ca.vertcat(branch, added_turns, ca.vec(added_basis), ca.vec(added_slope_basis))
+    return DesignNLP(x, p, objective, g, lbg, ubg, lbx, slot_rows, n)
 
 
-def design_nlp(problem: FiveBarProblem, start: Candidate, added_turns=()) -> DesignSolution:
-    nlp = build_nlp(problem, start, added_turns)
-    solver = ca.nlpsol("fivebar_design", "ipopt", {"x": nlp.x, "f": nlp.objective, "g": nlp.constraints},
-                       {"ipopt.print_level": 0, "ipopt.sb": "yes", "print_time": False, "ipopt.tol": 1e-12,
-                        "ipopt.constr_viol_tol": 1e-12, "ipopt.max_iter": 1000})
-    solution = solver(x0=nlp.x0, lbg=nlp.lbg, ubg=nlp.ubg, lbx=nlp.lbx, ubx=np.full(len(nlp.lbx), np.inf))
-    stats = solver.stats()
-    if not stats["success"]:
-        raise SolverError(f"{problem.source}: the design NLP did not converge from the region candidate",
-                          stats["return_status"])
-    return _unpack(np.asarray(solution["x"]).ravel(), problem, nlp.branch, float(solution["f"]), stats)
+class DesignSolver:
+    """The design NLP of one problem as one IPOPT solver, reused for every start and exchange round.
 
+    ``builds`` counts how often the solver was built: once, unless the exchange needs more
+    than ``ADDED_CAPACITY`` points (it is then rebuilt with twice the room).
+    """
 
-def refine_design(problem: FiveBarProblem, start: Candidate) -> DesignSolution:
-    """``design_nlp``, with the carrier turns where a fine check finds the margin or rho' out of
-    bounds added to its grid, until the fine grid holds (or ``EXCHANGE_ROUNDS`` run out)."""
-    fine = np.linspace(0, TWO_PI, CHECK_POINTS, endpoint=False)
-    low, high = 1 / problem.ratio_bounds[1], 1 / problem.ratio_bounds[0]
-    added = np.empty(0)
-    for _ in range(EXCHANGE_ROUNDS):
-        solution = design_nlp(problem, start, added)
-        margin = solution.mech.forward(fine, solution.relative_angle.evaluate(fine))["margin"]
-        slope = solution.relative_angle.evaluate(fine, 1)
-        shortfall = np.fmax(problem.min_closure_margin - margin, np.fmax(low - slope, slope - high))
-        worst = fine[_local_maxima(shortfall)]
-        if not worst.size:
-            break
-        added = np.r_[added, worst]
-    return solution
+    def __init__(self, problem: FiveBarProblem):
+        self.problem = problem
+        self.builds = 0
+        self._build(ADDED_CAPACITY)
+
+    def _build(self, capacity: int):
+        self.nlp = build_nlp(self.problem, capacity)
+        self.function = ca.nlpsol("fivebar_design", "ipopt",
+                                  {"x": self.nlp.x, "p": self.nlp.p, "f": self.nlp.objective, "g": self.nlp.constraints},
+                                  IPOPT_OPTIONS)
+        self.builds += 1
+
+    def solve(self, start: Candidate, added_turns=(), warm: DesignSolution | None = None) -> DesignSolution:
+        """Solve with the start's assembly branch and the exchange points ``added_turns`` (rad),
+        from the start's own dimensions or from the design ``warm`` (a previous round's)."""
+        added_turns = np.asarray(added_turns, float)
+        while len(added_turns) > self.nlp.capacity:
+            self._build(2 * self.nlp.capacity)
+        nlp, branch = self.nlp, start.mech.branch
+        lbg, ubg = nlp.bounds(len(added_turns))
+        if warm is None:
+            x0 = decision_vector(start.mech, start.relative_angle, start.stroke, self.problem.return_points)
+        else:
+            x0 = decision_vector(warm.mech, warm.relative_angle, warm.stroke, warm.reached_return_points)
+        solution = self.function(x0=x0, p=nlp.parameters(branch, added_turns), lbg=lbg, ubg=ubg, lbx=nlp.lbx,
+                                 ubx=np.full(len(nlp.lbx), np.inf))
+        stats = self.function.stats()
+        if not stats["success"]:
+            raise SolverError(f"{self.problem.source}: the design NLP did not converge from the region candidate",
+                              stats["return_status"])
+        return _unpack(np.asarray(solution["x"]).ravel(), self.problem, branch, float(solution["f"]), stats)
+
+    def refine(self, start: Candidate) -> DesignSolution:
+        """``solve``, with the carrier turns where a fine check finds the margin or rho' out of
+        bounds added to its grid, until the fine grid holds (or ``EXCHANGE_ROUNDS`` run out)."""
+        problem = self.problem
+        fine = np.linspace(0, TWO_PI, CHECK_POINTS, endpoint=False)
+        low, high = 1 / problem.ratio_bounds[1], 1 / problem.ratio_bounds[0]
+        added, solution = np.empty(0), None
+        for _ in range(EXCHANGE_ROUNDS):
+            solution = self.solve(start, added, solution)
+            margin = solution.mech.forward(fine, solution.relative_angle.evaluate(fine))["margin"]
+            slope = solution.relative_angle.evaluate(fine, 1)
+            shortfall = np.fmax(problem.min_closure_margin - margin, np.fmax(low - slope, slope - high))
+            worst = fine[_local_maxima(shortfall)]
+            if not worst.size:
+                break
+            added = np.r_[added, worst]
+        return solution
 
 
 def _local_maxima(shortfall: np.ndarray) -> np.ndarray:
@@ -182,11 +251,12 @@ def _local_maxima(shortfall: np.ndarray) -> np.ndarray:
     return np.flatnonzero(peak & (shortfall > 1e-9))
 
 
-def _start_vector(start: Candidate, problem: FiveBarProblem) -> np.ndarray:
-    mech, relative, stroke = start.mech, start.relative_angle, start.stroke
+def decision_vector(mech: FiveBar, relative: RelativeAngle, stroke: ReturnStroke,
+                    return_points: np.ndarray) -> np.ndarray:
+    """The decision vector of a design whose return points stand at ``return_points`` (mm)."""
     head = [mech.carrier_length / SCALE, mech.carrier_angle, mech.rod_length / SCALE, *(mech.hinge_b / SCALE),
             mech.receiving_length / SCALE, *(mech.e_local / SCALE), *(mech.f_local / SCALE), relative.rho1]
-    tail = np.stack([stroke.carrier_turns, stroke.directions, *(problem.return_points.T / SCALE)]).T.ravel()
+    tail = np.stack([stroke.carrier_turns, stroke.directions, *(return_points.T / SCALE)]).T.ravel()
     return np.r_[head, relative.coefficients[1:], tail]
 
 

@@ -12,7 +12,7 @@ import time
 import numpy as np
 
 from transplanter.errors import InfeasibleError, ProblemError, SolverError
-from transplanter.fivebar.nlp import refine_design
+from transplanter.fivebar.nlp import DesignSolver
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import ChainFamily, Region, solution_region
 from transplanter.fivebar.result import FiveBarResult
@@ -78,10 +78,13 @@ def synthesize(problem: FiveBarProblem) -> FiveBarResult:
         _no_feasible_pair(problem, region)
 
     start = time.perf_counter()
+    solver = DesignSolver(problem)
+    timings["nlp_build"] = time.perf_counter() - start
+    start = time.perf_counter()
     failures = []
     for candidate in region.feasible[:STARTS]:
         try:
-            design = refine_design(problem, candidate)
+            design = solver.refine(candidate)
             break
         except SolverError as error:
             failures.append(error.status)
