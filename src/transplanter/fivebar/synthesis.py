@@ -1,7 +1,8 @@
 """The main job: from a five-bar problem to a verified mechanism with its gear train.
 
-Region (``fivebar_region``) -> best feasible candidate -> design NLP (``fivebar_nlp``) ->
-gear train (``planetary_train``) -> independent verification (``fivebar_verification``).
+Region (``fivebar.region``) -> best feasible candidate -> design NLP (``fivebar.nlp``, one
+solver per problem) -> gear train (``trains.planetary``) -> independent verification
+(``fivebar.verification``).
 When the region is empty, the error names the condition that emptied it and the closest
 candidates.
 """
@@ -66,6 +67,28 @@ def center_distances(problem: FiveBarProblem, carrier_length: float) -> tuple[fl
 
 
 def synthesize(problem: FiveBarProblem) -> FiveBarResult:
+    """Design the five-bar and its four-gear planetary train for ``problem``, and verify it.
+
+    Parameters
+    ----------
+    problem : FiveBarProblem
+        Key poses, return points, ranges and conditions (from ``load_problem`` or
+        ``parse_problem``; mm and radians inside).
+
+    Returns
+    -------
+    FiveBarResult
+        The region, the start candidate, the NLP design, the gear train and the forward
+        verification; ``to_json()`` gives the report.
+
+    Raises
+    ------
+    InfeasibleError
+        The region holds no feasible five-bar: the message names the condition and the
+        closest candidates.
+    SolverError
+        IPOPT failed from each of the ``STARTS`` best candidates (the statuses are given).
+    """
     timings = {}
     start = time.perf_counter()
     region = solution_region(problem)
