@@ -217,3 +217,13 @@ def test_fivebar_plate_angle_beyond_a_turn_is_refused_in_degrees():
     with pytest.raises(ProblemError, match=r"<dict>: key_poses\[\]\.angle_deg = \[113\.8, 100\.0, 450\.0, 89\.2\]: "
                                            r"expected plate directions within one turn"):
         fivebar.parse_problem(data)
+
+
+def test_write_drawings_takes_a_folder_name_and_writes_millimetre_dxf(tmp_path):
+    import ezdxf
+
+    result = gears.synthesize(gears.load_problem(EXAMPLES / "gear_ellipse.toml"))
+    written = gears.write_drawings(result, str(tmp_path / "drawings"))
+    assert written and all(path.exists() for path in written)
+    dxf = [path for path in written if path.suffix == ".dxf"]
+    assert dxf and all(ezdxf.readfile(path).header["$INSUNITS"] == 4 for path in dxf)   # 4: millimetres

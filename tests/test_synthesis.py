@@ -11,7 +11,8 @@ from transplanter.geometry.dyad import Link, verify_dyad
 from transplanter.burmester.five_poses import center_cubic
 from transplanter.burmester.four_poses import circle_cubic
 from transplanter.geometry.poses import Frame, carry, relative_to_link, rotate_about
-from transplanter.burmester.synthesis import DyadProblem, synthesize
+from transplanter.burmester.problem import DyadProblem
+from transplanter.burmester.synthesis import synthesize
 from derivations.burmester import circular_cubic
 
 

@@ -27,7 +27,9 @@ from transplanter.fivebar.linkage import from_hinges
 from transplanter.errors import ProblemError
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.geometry.poses import carry
-from transplanter.burmester.synthesis import DyadProblem, Synthesis, synthesize
+from transplanter.burmester.problem import DyadProblem
+from transplanter.burmester.result import Synthesis
+from transplanter.burmester.synthesis import synthesize
 
 TWO_PI = 2 * np.pi
 #: Five-bars judged in one set of arrays (bounds the memory: CHUNK x 720 turns per array).

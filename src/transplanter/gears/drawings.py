@@ -10,7 +10,7 @@ from pathlib import Path
 import ezdxf
 import numpy as np
 
-from transplanter.gears.synthesis import GearResult
+from transplanter.gears.result import GearResult
 from transplanter.gears.teeth import driven_table, driver_table
 
 NAMES = ("driver", "driven")
@@ -74,7 +74,22 @@ def write_dxf(outline: np.ndarray, path: Path):
     document.saveas(path)
 
 
-def write_drawings(result: GearResult, folder: Path) -> list[Path]:
+def write_drawings(result: GearResult, folder: str | Path) -> list[Path]:
+    """Write the pitch curves and tooth outlines of both gears into ``folder`` (made if missing).
+
+    Parameters
+    ----------
+    result : GearResult
+        A designed gear pair (``gears.synthesize``).
+    folder : str or Path
+        Output folder.
+
+    Returns
+    -------
+    list of Path
+        The files written: CSV (pitch curves, outlines; mm), SVG and DXF (mm, INSUNITS set) per gear.
+    """
+    folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     written = write_csv(result, folder)
     for name, outline in outlines(result).items():
