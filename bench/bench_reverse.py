@@ -9,10 +9,10 @@ verified pitch curves of the four-gear train (square-root split with correction 
   third order from the generated derivation, panel polynomials, gear pairs, rolling check).
 - Baseline, the sampled way the papers describe, with scipy: the path from scipy's periodic
   BSpline at N samples, the same closed-form inverse kinematics and branch switches at the
-  sampled extremes, the ratio by finite differences of the sampled angles (seed 002's
+  sampled extremes, the ratio by finite differences of the sampled angles (the rice-transplanter paper's
   "difference method"), the split and correction factor by Simpson's rule, pitch curves
   r = a / (1 + I) on the grid, and the round trip by equal arc lengths with linear
-  interpolation. (Seed 002's point-by-point Newton has the Jacobian determinant s l sin(gamma),
+  interpolation. (The rice-transplanter paper's point-by-point Newton has the Jacobian determinant s l sin(gamma),
   zero where the arm straightens or folds, which these paths must do: both use the closed form.)
 
 The issue's target is under 2 s for the package. The baseline is run at three sample counts:

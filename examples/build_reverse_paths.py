@@ -5,10 +5,10 @@
 Neither paper prints path coordinates, so both paths are made here from a recipe: a loop
 swept by tau in [0, 2 pi) at distance rho(tau) = mid - half cos(tau) from the carrier pivot
 and direction alpha(tau) = heading + sway sin(tau) + lean sin(2 tau), sampled at 19 values
-of tau as the control points of the closed cubic B-spline (seed 003 uses 19). The control
+of tau as the control points of the closed cubic B-spline (the reverse-gear-design paper uses 19). The control
 points are then remapped radially about the pivot, r -> a + b r, with (a, b) found by
-Newton so that the spline's farthest and nearest points are exactly the targets: seed 002's
-Lmax = 254.3 mm and Lmin = 69.7 mm for the rice hoe, and s + l, l - s for seed 003's
+Newton so that the spline's farthest and nearest points are exactly the targets: the rice-transplanter paper's
+Lmax = 254.3 mm and Lmin = 69.7 mm for the rice hoe, and s + l, l - s for the reverse-gear-design paper's
 s = 173.88 mm and l = 207.81 mm for the pick-up arm. The distance from the pivot then rises
 monotonically from the nearest point to the farthest and back, as the monotonicity criterion
 requires (the arm folds at the nearest point and straightens at the farthest).
@@ -52,11 +52,11 @@ def toml_points(points: np.ndarray) -> str:
     return "[\n" + "".join(f"    [{float(x)!r}, {float(y)!r}],\n" for x, y in points) + "]"
 
 
-RICE = '''title = "Rice transplanter hoe path, seed 002 (Lmax 254.3 mm, Lmin 69.7 mm), four-gear train"
+RICE = '''title = "Rice transplanter hoe path, the rice-transplanter paper (Lmax 254.3 mm, Lmin 69.7 mm), four-gear train"
 description = """
-A loop hanging below the gear box, made by examples/build_reverse_paths.py (seed 002 prints
+A loop hanging below the gear box, made by examples/build_reverse_paths.py (the rice-transplanter paper prints
 no coordinates). The arm lengths are left out, so they come from the path's farthest and
-nearest points by seed 002 eq (1-2): s = 92.3 mm, l = 162 mm."""
+nearest points by the rice-transplanter paper eq (1-2): s = 92.3 mm, l = 162 mm."""
 
 [trajectory]
 kind = "control_points"
@@ -72,11 +72,11 @@ split = "sqrt"
 module = 2.0
 '''
 
-PICKUP = '''title = "Seedling pick-up arm, seed 003 (s = 173.88 mm, l = 207.81 mm), bent carrier of seed 004 eq (15)"
+PICKUP = '''title = "Seedling pick-up arm, the reverse-gear-design paper (s = 173.88 mm, l = 207.81 mm), bent carrier of the cusp-pitch-curve paper eq (15)"
 description = """
 A loop reaching from next to the carrier pivot out to s + l, made by
-examples/build_reverse_paths.py (seed 003 prints no coordinates). Four gears on a bent
-carrier (L1 = L2 = 90 mm), split by the peak-to-valley coefficient, module 2.53 mm (seed 003)."""
+examples/build_reverse_paths.py (the reverse-gear-design paper prints no coordinates). Four gears on a bent
+carrier (L1 = L2 = 90 mm), split by the peak-to-valley coefficient, module 2.53 mm (the reverse-gear-design paper)."""
 
 [trajectory]
 kind = "control_points"

@@ -1,4 +1,4 @@
-"""Seed 000 eq (7)-(10): the five-bar closure, its half-angle quadratic and discriminant.
+"""Wang et al. 2025 eq (7)-(10): the five-bar closure, its half-angle quadratic and discriminant.
 
 Eq (8) as printed is the derived closure. The printed A1 of eq (9) is not: it carries
 -2 L1 L4 cos(theta1) - 2 L2 L4 cos(theta2) where the derivation has + (A - A1 = 4 L4 (L1 cos
@@ -20,7 +20,7 @@ closure = casadi_function("fivebar", "fivebar_closure")
 
 
 def _published(l1, l2, l3, l4, l5, t1, t2, t5, lib=sp):
-    """Eq (9) coefficients as printed in seed 000."""
+    """Eq (9) coefficients as printed in Wang et al. 2025."""
     common = (l1**2 + l2**2 - l3**2 + l4**2 + l5**2 + 2 * l1 * l5 * lib.cos(t1 + t5)
               + 2 * l1 * l2 * lib.cos(t1 - t2) + 2 * l2 * l5 * lib.cos(t2 + t5))
     a1 = common - 2 * l1 * l4 * lib.cos(t1) + 2 * l4 * l5 * lib.cos(t5) - 2 * l2 * l4 * lib.cos(t2)

@@ -194,7 +194,7 @@ def test_gear_stages_close_and_printed_eq12_does_not(result):
 
 
 def test_published_table4_design(problem):
-    """Seed 000 Table 4 against Table 1: P is reachable to 0.08 mm, the plate angle is off by 0.6 deg at P2,
+    """Wang et al. 2025 Table 4 against Table 1: P is reachable to 0.08 mm, the plate angle is off by 0.6 deg at P2,
     and the chain comes within sin^2(EBF) = 0.004 of jamming (closes, but below a 0.01 margin)."""
     evaluation = evaluate_design(problem, load_design(ROOT / "examples/vegetable_planting_table4.toml"))
     assert 0.03 < evaluation.position_errors_mm[1:].max() < 0.15

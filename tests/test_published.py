@@ -1,4 +1,4 @@
-"""Seed 000's published design (Table 4) against the exact 4-pose solution set of Table 1.
+"""Wang et al. 2025's published design (Table 4) against the exact 4-pose solution set of Table 1.
 
 Table 4 gives the frame hinge B = (-78.83, -33.37) mm and the receiving plate BE = 227.68 mm;
 Table 2 bounds the push plate EP to [55, 100] mm and Table 4 gives 55.01 mm. An exact 2R

@@ -1,4 +1,5 @@
-"""Reverse design (seeds 002-004): derivation against constructed motions, monotonicity, examples
+"""Reverse design (the rice-transplanter, reverse-gear-design and cusp-pitch-curve papers): derivation
+against constructed motions, monotonicity, examples
 verified by rolling, published numbers and methods."""
 from pathlib import Path
 
@@ -73,7 +74,7 @@ def test_gears_stop_where_the_distance_from_the_pivot_is_stationary():
 
 
 def test_arm_lengths_from_extremes_match_seed_002():
-    """Seed 002 prints Lmax = 254.3, Lmin = 69.7 -> L1 = 92.3, L2 = 162 (eq 1-2)."""
+    """The rice-transplanter paper prints Lmax = 254.3, Lmin = 69.7 -> L1 = 92.3, L2 = 162 (eq 1-2)."""
     lengths = numpy_twin("planetary", "arm_lengths_from_extremes")([254.3, 69.7])[0]
     assert lengths == pytest.approx([92.3, 162.0], abs=1e-12)
 
@@ -115,14 +116,15 @@ def test_pickup_example_on_a_bent_carrier():
 
 
 def test_peak_to_valley_as_printed_does_not_close(rice):
-    """Seed 003's i1 = i25 bs turns the intermediate gear 1/bs turns per cycle (closing only for bs = 1/n)."""
+    """The reverse-gear-design paper's i1 = i25 bs turns the intermediate gear 1/bs turns per cycle
+    (closing only for bs = 1/n)."""
     for bs in (0.6, 0.8):
         assert printed_peak_to_valley_turn(rice.relative, bs) == pytest.approx(TWO_PI / bs, rel=1e-10)
 
 
 def test_seed_002_idler_iteration_cannot_reproduce_the_hoe(rice):
     """Identical sun and planet with one idler realise only ratios with i13(c) i13(c*) = 1: on the
-    rice path seed 002's iteration stalls and the train, rolled as built, misses the path by mm."""
+    rice path the rice-transplanter paper's iteration stalls and the train, rolled as built, misses the path by mm."""
     data = load_problem(ROOT / "examples" / "rice_hoe_reverse.toml")
     from dataclasses import replace
     with pytest.warns(TransplanterWarning, match="misses the path"):

@@ -126,11 +126,12 @@ def _parser() -> argparse.ArgumentParser:
     _command(commands, "gear", _gear, "a pair of non-circular gears: pitch curves, closure, teeth, drawings",
              "gear problem file (TOML, mm and degrees)", "CSV/SVG/DXF drawings and figures")
     fivebar = _command(commands, "fivebar", _fivebar, "five-bar seedling pushing mechanism with its planetary gear "
-                       "train (seed 000): region, precise design, gears, verification",
+                       "train (Wang et al. 2025): region, precise design, gears, verification",
                        "five-bar problem file (TOML, mm and degrees)", "the figures")
     fivebar.add_argument("--design", metavar="DESIGN.toml", help="evaluate this given design instead of designing one")
     _command(commands, "reverse", _reverse, "planetary non-circular gear train that makes the arm tip follow a closed "
-             "path (seeds 002-004): inverse kinematics, monotonicity, gears, round trip",
+             "path (the rice-transplanter, reverse-gear-design and cusp-pitch-curve papers): inverse kinematics, "
+             "monotonicity, gears, round trip",
              "reverse-design problem file (TOML, mm and degrees)", "the figures")
     derive = commands.add_parser("derive", help="regenerate src/transplanter/_generated from derivations/")
     derive.add_argument("--check", action="store_true", help="exit 1 if the generated code is out of step")

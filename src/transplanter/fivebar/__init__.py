@@ -1,4 +1,4 @@
-"""The five-bar seedling pushing mechanism of seed 000 with its planetary gear train.
+"""The five-bar seedling pushing mechanism of Wang et al. 2025 with its planetary gear train.
 
 Public API: ``load_problem`` / ``parse_problem`` (TOML file or dict, mm and degrees) ->
 ``FiveBarProblem`` (mm, radians); ``synthesize(problem)`` -> ``FiveBarResult`` (region, design

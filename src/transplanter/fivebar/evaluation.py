@@ -1,4 +1,4 @@
-"""Evaluating a given five-bar design (seed 000 Table 4 style) against a problem.
+"""Evaluating a given five-bar design (Wang et al. 2025 Table 4 style) against a problem.
 
 A design gives the carrier O-A (length, angle in pose 1), connecting rod I A-F (length,
 angle in pose 1), |EP|, the receiving plate B-E and hinge B. E is where the circles about B
@@ -35,7 +35,7 @@ def _finite_or_none(value: float) -> float | None:
 
 @dataclass(frozen=True)
 class GivenDesign:
-    """A given five-bar design (seed 000 Table 4 style), in mm and radians.
+    """A given five-bar design (Wang et al. 2025 Table 4 style), in mm and radians.
 
     Attributes
     ----------

@@ -1,4 +1,4 @@
-"""Figures of a five-bar design: solution region (seed 000 Figure 5), relative angle (Figure 9),
+"""Figures of a five-bar design: solution region (Wang et al. 2025 Figure 5), relative angle (Figure 9),
 gear train (Figure 10) and trajectory with the plate at the key poses (Figure 15b), as matplotlib
 ``Figure`` objects (no pyplot, no backend chosen: a notebook shows them, the command saves them)."""
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""The five-bar O-A-F-E-B of seed 000 (Figure 8) by plain geometry: circle intersections only.
+"""The five-bar O-A-F-E-B of Wang et al. 2025 (Figure 8) by plain geometry: circle intersections only.
 
 O is the origin. The carrier OA (length L1) stands at theta1 = carrier_angle - c after the
 carrier has turned clockwise by c from pose 1. Connecting rod I (A-F, length L2) stands

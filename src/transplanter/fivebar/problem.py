@@ -12,7 +12,7 @@ Schema (README, "Five-bar problem files"); the carrier pivot O is the origin:
     [[return_points]]             # positions of P on the return stroke (no angle)
     x = -125.0
     y = -287.0
-    [ranges]                      # optional [low, high] limits (seed 000 Table 2)
+    [ranges]                      # optional [low, high] limits (Wang et al. 2025 Table 2)
     ep = [55, 100]                # |EP| mm
     fp = [20, 100]                # |FP| mm
     x_e = [-100, 0]               # x of E in pose 1, mm
@@ -169,7 +169,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
     read.keys(data, _TOP_KEYS, "")
     rows, labels = _table_rows(read, data, "key_poses", ("x", "y", "angle_deg", "carrier_turn_deg"))
     if len(rows) != 4:
-        read.fail("key_poses", f"{len(rows)} poses", "exactly 4 key poses (the 4-pose solution region of seed 000)")
+        read.fail("key_poses", f"{len(rows)} poses", "exactly 4 key poses (the 4-pose solution region of Wang et al. 2025)")
     if np.any(np.abs(rows[:, 2]) > 360):
         read.fail("key_poses[].angle_deg", rows[:, 2], "plate directions within one turn of zero (|angle_deg| <= 360)")
     turns = rows[:, 3]
@@ -178,7 +178,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
                   "0 at the first pose, then strictly increasing and below 360 (clockwise turn since pose 1)")
     points, return_labels = _table_rows(read, data, "return_points", ("x", "y"))
     if len(points) == 0:
-        read.fail("return_points", [], "at least one point of the return stroke (seed 000 Table 3 has five)")
+        read.fail("return_points", [], "at least one point of the return stroke (Wang et al. 2025 Table 3 has five)")
     labels = [label or f"P{k + 1}" for k, label in enumerate(labels)]
     return_labels = [label or f"P{k + 5}" for k, label in enumerate(return_labels)]
 

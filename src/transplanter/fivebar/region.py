@@ -1,4 +1,4 @@
-"""Solution region of the five-bar (seed 000 section 3.2.1, Figure 5).
+"""Solution region of the five-bar (Wang et al. 2025 section 3.2.1, Figure 5).
 
 The 2R chain B-E is a 4-pose Burmester dyad of the plate; the 3R chain O-A-F is a 4-pose
 dyad of the plate seen from the carrier (phases = the carrier's clockwise turns). Both

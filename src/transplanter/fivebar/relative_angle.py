@@ -1,4 +1,4 @@
-"""Angle of connecting rod I relative to the carrier against the carrier's turn (seed 000 Figure 9).
+"""Angle of connecting rod I relative to the carrier against the carrier's turn (Wang et al. 2025 Figure 9).
 
 The carrier turns clockwise by c from pose 1. The rod's angle relative to the carrier,
 rho = theta2 - theta1, must grow by exactly 2 pi per turn for the rod to come back, so

@@ -1,4 +1,4 @@
-"""Inverse kinematics of the return points (seed 000 eq 3-4) with one consistent assembly.
+"""Inverse kinematics of the return points (Wang et al. 2025 eq 3-4) with one consistent assembly.
 
 A return point gives only where P is. E is where the circle of radius L4 about B meets
 the circle of radius |EP| about P (two sides), which fixes the plate and so F; A is where

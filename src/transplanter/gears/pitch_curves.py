@@ -6,11 +6,11 @@ cubic spline with its own exact derivatives. All curves are 2 pi periodic in phi
 (radians, in the gear's own frame) and list the angles where a piecewise definition
 joins (``joints``), so integrals and continuity checks can respect them.
 
-Families (seed 001 eq 1-3; higher-order ellipse: r = a (1 - e^2) / (1 - e cos(n phi))):
+Families (the onion-transplanter paper eq 1-3; higher-order ellipse: r = a (1 - e^2) / (1 - e cos(n phi))):
 - ``ellipse``, ``higher_order_ellipse``: semi-major axis a, eccentricity e, order n;
 - ``denatured_ellipse``: the ellipse with its two half-turns stretched by m11 and m12;
 - ``limacon``: base + amplitude cos(n phi);
-- ``denatured_limacon``: seed 001 eq (3), halves stretched by m11 and m12 with
+- ``denatured_limacon``: the onion-transplanter paper eq (3), halves stretched by m11 and m12 with
   pi/m11 + pi/m12 = 2 pi (eq 2);
 - ``spline``: a periodic cubic spline through sampled (phi, r).
 """
@@ -28,7 +28,7 @@ TWO_PI = 2 * np.pi
 
 
 def denatured_partner(m11: float) -> float:
-    """m12 from seed 001 eq (2): pi/m11 + pi/m12 = 2 pi."""
+    """m12 from the onion-transplanter paper eq (2): pi/m11 + pi/m12 = 2 pi."""
     return 1.0 / (2.0 - 1.0 / m11)
 
 
@@ -104,7 +104,7 @@ def denatured_ellipse(semi_major_axis: float, eccentricity: float, m11: float, m
 
 
 def denatured_limacon(base: float, amplitude: float, m11: float, m12: float) -> PitchCurve:
-    """Seed 001 eq (3) with b = amplitude and l = base."""
+    """The onion-transplanter paper eq (3) with b = amplitude and l = base."""
     return _denatured("denatured_limacon", {"base": base, "amplitude": amplitude},
                       lambda t: base + amplitude * ca.cos(t), m11, m12)
 
@@ -166,8 +166,8 @@ def ratio_formula(expression: ca.SX, phi: ca.SX) -> Callable[[np.ndarray], tuple
 
 def from_ratio(ratio: Callable[[np.ndarray], tuple], factor: float, center_distance: float,
                breaks=()) -> PitchCurve:
-    """Driver pitch curve r1 = a / (1 + k i12) for a ratio i12 = omega1 / omega2 (seed 001 eq 13),
-    scaled by a constant k (seed 000 eq 12)."""
+    """Driver pitch curve r1 = a / (1 + k i12) for a ratio i12 = omega1 / omega2 (the onion-transplanter paper eq 13),
+    scaled by a constant k (Wang et al. 2025 eq 12)."""
 
     def evaluate(phi):
         i, di, ddi = (factor * v for v in ratio(phi))

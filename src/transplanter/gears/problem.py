@@ -9,12 +9,12 @@
     order = 1                     # n1: lobes of the driver (ellipse 1; higher-order ellipse, limacon >= 1)
     base = 53.0                   # limacon families: r = base + amplitude cos(order phi)
     amplitude = 13.0
-    m11 = 1.5                     # denatured families (seed 001 eq 2-3); m12 defaults to 1 / (2 - 1/m11)
+    m11 = 1.5                     # denatured families (the onion-transplanter paper eq 2-3); m12 defaults to 1 / (2 - 1/m11)
     phi_deg = [...]               # spline: samples of the radius; ratio: samples of i12 = omega1/omega2
     radius = [...]                # spline (mm)
     ratio = [...]                 # ratio: samples of i12 (with phi_deg) ...
     expression = "1 + 0.3*cos(phi)"   # ... or a formula of phi (radians): + - * / **, cos sin tan exp sqrt log, pi
-    correct = false               # ratio: scale i12 so that the pair closes (seed 000 eq 12)
+    correct = false               # ratio: scale i12 so that the pair closes (Wang et al. 2025 eq 12)
     [pair]
     driven_order = 1              # n2: the driven gear turns n1/n2 per driver turn
     center_distance = 60.0        # optional: solved for closure when absent (required for ratio)
@@ -83,7 +83,7 @@ class GearProblem:
     ratio : tuple or None
         (evaluator of i12 and its derivatives, breaks in rad) for a ratio input.
     correct_ratio : bool
-        Scale a ratio that does not close (seed 000 eq 12).
+        Scale a ratio that does not close (Wang et al. 2025 eq 12).
     parameters : dict
         The driver's parameters as given, for the report.
 
@@ -150,12 +150,12 @@ def _eccentricity(read, table):
 def _denatured_pair(read, table):
     m11 = read.number(table, "m11", "driver")
     if m11 <= 0.5:
-        read.fail("driver.m11", m11, "more than 1/2 (seed 001 eq 2)")
+        read.fail("driver.m11", m11, "more than 1/2 (the onion-transplanter paper eq 2)")
     m12 = denatured_partner(m11)
     if "m12" in table:
         given = read.number(table, "m12", "driver")
         if abs(given - m12) > 1e-9 * m12:
-            read.fail("driver.m12", given, f"{m12:.12g}, from pi/m11 + pi/m12 = 2 pi (seed 001 eq 2); "
+            read.fail("driver.m12", given, f"{m12:.12g}, from pi/m11 + pi/m12 = 2 pi (the onion-transplanter paper eq 2); "
                                            f"with {given:g} the pitch curve breaks at phi = {180 / m11:.6g} deg")
     return m11, m12
 

@@ -9,7 +9,7 @@ def to_markdown(report: dict, figures: list[str], drawings: list[str]) -> str:
              f"closure error {report['closure_error']:.1e} rad; rolling mismatch {report['rolling_mismatch_mm']:.1e} mm",
              f"- ratio i12 = omega1/omega2 from {report['ratio_range'][0]:.6f} to {report['ratio_range'][1]:.6f}"
              + ("" if report["ratio_correction_factor"] is None else
-                f" (the given ratio times k = {report['ratio_correction_factor']:.9f}, seed 000 eq 12)"),
+                f" (the given ratio times k = {report['ratio_correction_factor']:.9f}, Wang et al. 2025 eq 12)"),
              f"- perimeters {report['perimeters'][0]:.6f} and {report['perimeters'][1]:.6f} mm; convex {report['convex']}; "
              f"smallest convex curvature radius {report['min_curvature_radius']} mm"]
     for joint in report["joints"]:

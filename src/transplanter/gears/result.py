@@ -57,7 +57,7 @@ class GearResult:
     teeth : PairTeeth or None
         Tooth outlines (mm) when teeth are given.
     ratio_correction : float or None
-        Factor k that scaled a given ratio to close (seed 000 eq 12).
+        Factor k that scaled a given ratio to close (Wang et al. 2025 eq 12).
     timings_s : dict
         Wall time of each stage (s).
     """

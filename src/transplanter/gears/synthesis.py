@@ -24,7 +24,7 @@ def tooth_counts(design: GearPairDesign, module: float) -> ToothCounts:
 
 def _ratio_curve(problem: GearProblem, center_distance: float):
     """Driver from a ratio i12: closure does not depend on a (r1 = a / (1 + i12)), so a ratio that does
-    not close is corrected by a constant factor k when asked (seed 000 eq 12), or refused."""
+    not close is corrected by a constant factor k when asked (Wang et al. 2025 eq 12), or refused."""
     ratio, breaks = problem.ratio
     grid = panels(breaks)
     dense = np.linspace(0, 2 * np.pi, 20001)
@@ -45,7 +45,7 @@ def _ratio_curve(problem: GearProblem, center_distance: float):
         raise InfeasibleError(
             f"{problem.source}: driver.ratio closes at no center distance: with r1 = a / (1 + i12) the driven gear "
             f"turns {np.degrees(turn):.6f} deg per driver turn for every a, not {np.degrees(target):.6f}; "
-            f"set driver.correct = true to scale i12 by k = {factor:.9f} (seed 000 eq 12)")
+            f"set driver.correct = true to scale i12 by k = {factor:.9f} (Wang et al. 2025 eq 12)")
     return from_ratio(ratio, factor, center_distance, breaks), (factor if problem.correct_ratio else None)
 
 

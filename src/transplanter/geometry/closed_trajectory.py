@@ -1,4 +1,4 @@
-"""A closed path of the arm tip: a uniform periodic cubic B-spline (seed 003's 19-point curve).
+"""A closed path of the arm tip: a uniform periodic cubic B-spline (the reverse-gear-design paper's 19-point curve).
 
 The path parameter x runs over [0, 2 pi) once around the curve (reports give u = x / 2 pi,
 so point k of the input sits at u = k / N). ``kind = "control_points"`` takes the points as

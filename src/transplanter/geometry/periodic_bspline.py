@@ -1,4 +1,4 @@
-"""Uniform periodic cubic B-spline on one turn (seed 000 eq 5-6).
+"""Uniform periodic cubic B-spline on one turn (Wang et al. 2025 eq 5-6).
 
 With N control values q_i on equally spaced knots (spacing h = 2 pi / N), the Cox-de Boor
 recursion of eq (6) gives the same cubic basis function shifted to every knot, so

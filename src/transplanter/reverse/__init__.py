@@ -1,5 +1,6 @@
 """Reverse design of a planetary non-circular gear train from a closed path of the arm tip
-(seeds 002-004): inverse kinematics, the monotonicity criterion, gears, round trip.
+(the rice-transplanter, reverse-gear-design and cusp-pitch-curve papers): inverse kinematics,
+the monotonicity criterion, gears, round trip.
 
 Public API: ``load_problem`` / ``parse_problem`` (TOML file or dict, mm and degrees) ->
 ``ReverseProblem`` (mm); ``synthesize(problem)`` -> ``ReverseResult`` (``to_json()``);

@@ -1,11 +1,12 @@
-"""Inverse kinematics of the planetary arm along a closed path (seed 003; seed 002 eq 3-4).
+"""Inverse kinematics of the planetary arm along a closed path (the reverse-gear-design paper;
+the rice-transplanter paper eq 3-4).
 
 The carrier (length s) turns about the pivot; the arm (length l) is fixed to the planet.
 At each path point the generated ``two_link_inverse`` gives the carrier direction theta on a
 branch (+1 approach, -1 retraction) and the arm direction psi. The two branches meet only
 where the path touches the circles r = s + l (arm straight) or r = |s - l| (arm folded); a
 path that meets a circle there touches it, and the branch switches at every touch, which is
-the one continuation that keeps theta smooth (seed 002's lengths from Lmax and Lmin make the
+the one continuation that keeps theta smooth (the rice-transplanter paper's lengths from Lmax and Lmin make the
 path touch both circles, so the carrier turns once while the tip runs round a loop that
 need not enclose the pivot).
 

@@ -1,7 +1,7 @@
-"""Sun-idler-planet train with identical sun and planet, by seed 002's iteration (eq 5-12).
+"""Sun-idler-planet train with identical sun and planet, by the rice-transplanter paper's iteration (eq 5-12).
 
 Seen from the carrier the sun turns by c, the idler by psi, the planet by chi (all one turn
-per cycle, equal center distances L = s / 2 on a straight carrier). Seed 002 models the
+per cycle, equal center distances L = s / 2 on a straight carrier). The rice-transplanter paper models the
 planet as the sun's curve turned half a turn, r3(chi) = r1(chi + pi) (eq 8), so that with
 i12 = (L - r1) / r1 (eq 6) and i23 = r3 / (L - r3) (eq 7) the total ratio i13 = i12 i23
 (eq 5, 9; the generated ``idler_total_ratio``) involves r1 alone. The iteration (Figure 5):
@@ -54,7 +54,7 @@ class IdlerTrain:
 
 
 def seed_iteration(relative: RelativeMotion, center_distance: float):
-    """Seed 002's loop. Returns (c grid, r1, iterations run, settled, model residual, x) for the
+    """The rice-transplanter paper's loop. Returns (c grid, r1, iterations run, settled, model residual, x) for the
     iterate whose eq (5) residual max |i12 i23 / i13 - 1| is smallest; the loop stops when i12
     settles or the residual has not improved for STALL iterations."""
     c = np.linspace(0, TWO_PI, GRID, endpoint=False)

@@ -1,4 +1,4 @@
-"""The monotonicity criterion of seed 003, checked along the whole path.
+"""The monotonicity criterion of the reverse-gear-design paper, checked along the whole path.
 
 A planetary train can draw the path only if (i) the carrier, which turns uniformly, advances
 one way: c'(x) > 0; (ii) the planet never turns back against the carrier (the gears never
@@ -87,7 +87,8 @@ def fix_hints(trajectory: ClosedTrajectory, motion: ArmMotion, derived_lengths: 
               (f"turn the carrier {DIRECTION_NAMES[-d]} and start on the {BRANCH_NAMES[-b]} branch", (s, l, -d, -b))]
     if not np.allclose(derived_lengths, (s, l), rtol=0, atol=1e-9):
         trials += [(f"carrier_length = {derived_lengths[0]:.4f} and arm_length = {derived_lengths[1]:.4f} mm "
-                    "(seed 002 eq 1-2: the arm straightens at the farthest point and folds at the nearest), "
+                    "(the rice-transplanter paper eq 1-2: the arm straightens at the farthest point and folds "
+                    "at the nearest), "
                     f"the carrier turning {DIRECTION_NAMES[direction]}, starting on the {BRANCH_NAMES[branch]} branch",
                     (*derived_lengths, direction, branch))
                    for direction in (d, -d) for branch in (b, -b)]

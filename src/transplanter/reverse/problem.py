@@ -8,12 +8,12 @@ Schema (README, "Reverse-design problem files"):
     points = [[x, y], ...]        # mm, in the order the tip runs through them; at least 4
     [arm]
     pivot = [0.0, 0.0]            # carrier center, mm (default the origin)
-    carrier_length = 92.3         # s, mm; give both lengths or neither (then seed 002 eq 1-2)
+    carrier_length = 92.3         # s, mm; give both lengths or neither (then the rice-transplanter paper eq 1-2)
     arm_length = 162.0            # l, mm
     direction = "clockwise"       # carrier rotation, or "counterclockwise" (default)
     branch = "auto"               # at the first point: "approach", "retraction" or "auto"
     [train]
-    topology = "sun-intermediate-planet"   # or "sun-idler-planet" (3 gears), "pick-up" (seed 004 eq 15)
+    topology = "sun-intermediate-planet"   # or "sun-idler-planet" (3 gears), "pick-up" (the cusp-pitch-curve paper eq 15)
     split = "sqrt"                # or "peak_to_valley" (4 gears), "identical_sun_planet" (3 gears)
     peak_to_valley = 0.6          # b of the peak-to-valley split, in (0, 1)
     center_distances = [46.15, 46.15]      # mm; default s/2 each (collinear carrier)
@@ -153,7 +153,7 @@ def _arm(read: FieldReader, table: dict):
     lengths = None
     if len(given) == 1:
         read.fail(f"arm.{given[0]}", table[given[0]], "carrier_length and arm_length together, or neither "
-                  "(then both come from the farthest and nearest path points, seed 002 eq 1-2)")
+                  "(then both come from the farthest and nearest path points, the rice-transplanter paper eq 1-2)")
     if given:
         lengths = tuple(read.number(table, key, "arm") for key in ("carrier_length", "arm_length"))
         for key, value in zip(("carrier_length", "arm_length"), lengths):

@@ -13,7 +13,7 @@ def to_markdown(report: dict, figures: list[str]) -> str:
                                         for s in report["branch_segments"])
              + (f"; switches at u = {', '.join(f'{u:.4f}' for u in report['branch_switches_u'])} (the path touches "
                 "the reach circles there)" if report["branch_switches_u"] else ""),
-             f"- Monotonicity criterion (seed 003): {'met' if report['monotonic'] else 'NOT met'}"]
+             f"- Monotonicity criterion (the reverse-gear-design paper): {'met' if report['monotonic'] else 'NOT met'}"]
     for violation in report["violations"]:
         lines.append(f"  - {violation['condition']}: {violation['message']}")
     for hint in report["fix_hints"]:
@@ -30,11 +30,12 @@ def to_markdown(report: dict, figures: list[str]) -> str:
                   f"{g['perimeter_mm']:.3f} | {g['teeth_at_module']:.2f} |" for g in report["gears"]]
         if "idler_iteration" in report:
             it = report["idler_iteration"]
-            lines += ["", f"Seed 002 iteration: {it['iterations']} iterations, settled: {it['settled']}, eq (5) model "
+            lines += ["", f"The rice-transplanter paper's iteration: {it['iterations']} iterations, "
+                      f"settled: {it['settled']}, eq (5) model "
                       f"residual {it['eq5_model_residual']:.3e}; the train as built misses the path by "
                       f"{report['roundtrip_max_error_mm']:.3f} mm (see README, 'Published methods')."]
         if "printed_peak_to_valley_intermediate_turn_deg" in report:
-            lines += ["", "Seed 003's split as printed (i1 = i25 bs) would turn the intermediate gear "
+            lines += ["", "The reverse-gear-design paper's split as printed (i1 = i25 bs) would turn the intermediate gear "
                       f"{report['printed_peak_to_valley_intermediate_turn_deg']:.3f} deg per cycle (360 closes)."]
     lines += [""] + [f"![{name}]({name})" for name in figures]
     return "\n".join(lines) + "\n"

@@ -35,11 +35,11 @@ class ReverseResult:
     extremes : (float, float)
         Farthest and nearest |P| from the pivot (mm).
     lengths_derived : bool
-        Whether the carrier and arm lengths came from the path's extremes (seed 002 eq 1-2).
+        Whether the carrier and arm lengths came from the path's extremes (the rice-transplanter paper eq 1-2).
     motion : ArmMotion
         Carrier and arm angles along the path (rad), lengths (mm), branch switches.
     violations : list of Violation
-        Where the monotonicity criterion (seed 003) fails; empty when it passes.
+        Where the monotonicity criterion (the reverse-gear-design paper) fails; empty when it passes.
     hints : list of str
         Changes that would pass, when it fails.
     relative : CarrierFrameMotion or None
@@ -97,7 +97,7 @@ class ReverseResult:
             "trajectory": {"kind": problem.kind, "points": len(problem.points), "pivot": problem.pivot.tolist(),
                            "farthest_mm": self.extremes[0], "nearest_mm": self.extremes[1]},
             "carrier_length": motion.carrier_length, "arm_length": motion.arm_length,
-            "lengths_from": "path extremes (seed 002 eq 1-2)" if self.lengths_derived else "problem file",
+            "lengths_from": "path extremes (the rice-transplanter paper eq 1-2)" if self.lengths_derived else "problem file",
             "direction": DIRECTION_NAMES[motion.direction],
             "touches": [{"u": t.parameter / TWO_PI, "circle": t.circle, "gap_mm": t.gap_mm} for t in motion.touches],
             "branch_segments": self.branch_segments(),

@@ -1,5 +1,6 @@
 """Reverse design: closed tip path -> arm lengths -> inverse kinematics -> monotonicity ->
-ratio split -> pitch curves -> verification by rolling (seeds 002, 003, 004).
+ratio split -> pitch curves -> verification by rolling (the rice-transplanter, reverse-gear-design
+and cusp-pitch-curve papers).
 
 ``synthesize`` raises a ``ProblemError`` or ``InfeasibleError`` for a path it cannot use
 (a curve that stops, points out of reach, impossible center distances); a path that fails
@@ -83,8 +84,8 @@ def carrier_geometry(problem: ReverseProblem, s: float) -> CarrierGeometry | Non
                                "\"pick-up\" for a bent one)")
         if problem.topology == "sun-idler-planet" and centers is not None and abs(centers[0] - centers[1]) > 1e-9 * s:
             raise ProblemError(f"{problem.source}: train.center_distances = {list(centers)}: expected two equal "
-                               "distances for sun-idler-planet (seed 002: the idler then makes the sun and the planet "
-                               "the same curve)")
+                               "distances for sun-idler-planet (the rice-transplanter paper: the idler then makes "
+                               "the sun and the planet the same curve)")
         return None
     first, second = centers if centers is not None else (s / 2, s / 2)
     cosine = (s**2 - first**2 - second**2) / (2 * first * second)

@@ -3,7 +3,7 @@
 ``train_rolling.roll_train`` turns the carrier through a whole turn and returns how far the
 planet has turned against it, using nothing but the four pitch curves. The tip is then
 rebuilt by forward kinematics: for a straight carrier P = s e(theta) + l e(psi); for the
-pick-up topology by the generated seed 004 eq (15) with the bent carrier (L1, L2, bend
+pick-up topology by the generated the cusp-pitch-curve paper eq (15) with the bent carrier (L1, L2, bend
 delta0) and the arm's mounting alpha0 on the planet. The target is the path point where the
 carrier has turned as far (the inverse kinematics' timing); the report gives the largest
 distance between them.

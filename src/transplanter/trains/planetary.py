@@ -1,4 +1,4 @@
-"""The planetary train of four non-circular gears that realises rho(c) (seed 000 eq 11-13).
+"""The planetary train of four non-circular gears that realises rho(c) (Wang et al. 2025 eq 11-13).
 
 Seen from the carrier, the fixed sun turns by c while the carrier turns clockwise by c;
 the sun drives the first intermediate gear (stage 1, center distance a1), which shares
@@ -15,10 +15,10 @@ and with it connecting rod I, turns by rho(c) - rho1 relative to the carrier.
   the gear-pair library (``gear_pair.design_pair``), which checks closure, curvature and
   convexity. Stage 2's driver is a function of its own angle psi(c) = int_0^c dc / I1_corr.
 
-- Peak-to-valley split (seed 003's coefficient bs, here the exponent b in (0, 1)):
+- Peak-to-valley split (the reverse-gear-design paper's coefficient bs, here the exponent b in (0, 1)):
   I1 = i0^b / k and I2 = k i0^(1 - b), k = 2 pi / int rho'^b dc, so stage 1 carries the
   fraction b of the total ratio's logarithmic swing (b = 1/2 is the square root above).
-  Seed 003 prints i1 = i25 bs, i2 = i25 / i1, which leaves stage 2 at the constant 1 / bs
+  The reverse-gear-design paper prints i1 = i25 bs, i2 = i25 / i1, which leaves stage 2 at the constant 1 / bs
   and stage 1 closing only for bs = 1/n; ``printed_peak_to_valley_turn`` evaluates it.
 
 Eq (12) as printed integrates 1/I1 over theta1 - theta2 (the rod's relative angle) instead
@@ -92,7 +92,8 @@ def printed_correction(relative: RelativeMotion) -> tuple[float, float]:
 
 
 def printed_peak_to_valley_turn(relative: RelativeMotion, coefficient: float) -> float:
-    """Seed 003's split as printed (I1 = i0 bs): the intermediate gear's turn per sun turn (2 pi closes)."""
+    """The reverse-gear-design paper's split as printed (I1 = i0 bs): the intermediate gear's turn
+    per sun turn (2 pi closes)."""
     return TurnMap(lambda c: relative.evaluate(c, 1) / coefficient, relative.knots).total
 
 
