@@ -156,7 +156,7 @@ def test_idler_rolling_against_the_pitch_point_speeds():
     assert max(np.abs(g).max() for g in gaps) < 1e-9
     assert np.ptp(rate) > 0.05          # the planet really runs unevenly, so the check has teeth
 
-    # the README's claim on this train: it can only produce ratios with i13(c) i13(c*) = 1
+    # the claim of docs/reverse.md on this train: it can only produce ratios with i13(c) i13(c*) = 1
     h, where = 1e-4, np.linspace(0.3, 6.0, 9)
     def rolled_rate(at):
         return (roll_idler_train(stage_one, planet, at + h)[0] - roll_idler_train(stage_one, planet, at - h)[0]) / (2 * h)

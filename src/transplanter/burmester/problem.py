@@ -1,6 +1,6 @@
 """TOML problem files (mm, degrees) -> a validated ``DyadProblem`` (mm, radians).
 
-Schema (README, "Problem files"):
+Schema (docs/burmester.md, "Problem files"):
 
     title = "..."                      # optional
     [[poses]]                          # three or more

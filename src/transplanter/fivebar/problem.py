@@ -1,6 +1,6 @@
 """TOML five-bar problem files (mm, degrees) -> a validated ``FiveBarProblem`` (mm, radians).
 
-Schema (README, "Five-bar problem files"); the carrier pivot O is the origin:
+Schema (docs/fivebar.md, "Problem files"); the carrier pivot O is the origin:
 
     title = "..."
     [[key_poses]]                 # exactly four: P of the push plate and the plate direction

@@ -1,6 +1,6 @@
 """TOML reverse-design problem files (mm, degrees) -> a validated ``ReverseProblem``.
 
-Schema (README, "Reverse-design problem files"):
+Schema (docs/reverse.md, "Problem files"):
 
     title = "..."
     [trajectory]

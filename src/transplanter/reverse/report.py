@@ -33,7 +33,7 @@ def to_markdown(report: dict, figures: list[str]) -> str:
             lines += ["", f"The rice-transplanter paper's iteration: {it['iterations']} iterations, "
                       f"settled: {it['settled']}, eq (5) model "
                       f"residual {it['eq5_model_residual']:.3e}; the train as built misses the path by "
-                      f"{report['roundtrip_max_error_mm']:.3f} mm (see README, 'Published methods')."]
+                      f"{report['roundtrip_max_error_mm']:.3f} mm (see docs/reverse.md, 'Published findings')."]
         if "printed_peak_to_valley_intermediate_turn_deg" in report:
             lines += ["", "The reverse-gear-design paper's split as printed (i1 = i25 bs) would turn the intermediate gear "
                       f"{report['printed_peak_to_valley_intermediate_turn_deg']:.3f} deg per cycle (360 closes)."]
