@@ -176,8 +176,10 @@ def test_teeth_mesh_without_interference(case):
         d = _scaled_pair(ellipse(1.0, 0.3), 30)
         teeth = generate_teeth(d, 2.0, np.radians(20), "test")
     else:
-        d = _scaled_pair(denatured_limacon(1.0, 0.45, 1.2, denatured_partner(1.2)), 60)
-        assert (d.convexity[0] <= 0).any()      # eq (9) < 0: the driver has a concave stretch
+        # eq (9): 1 - (1.2^2 + 1) 0.45 < 0, concave; 52 teeth rather than the example's 60 (at 48 a module 2
+        # would undercut the driven gear)
+        d = _scaled_pair(denatured_limacon(1.0, 0.45, 1.2, denatured_partner(1.2)), 52)
+        assert (d.convexity[0] <= 0).any()      # the driver has a concave stretch
         teeth = generate_teeth(d, 2.0, np.radians(20), "test", cutter="shaper", cutter_teeth=12)
     assert teeth.self_intersections == (0, 0)
     driver, driven = (_counterclockwise(o) for o in teeth.outlines)
