@@ -75,11 +75,8 @@ def _lower_envelope(points: np.ndarray, tip: np.ndarray, chunks: list[np.ndarray
     centers = (bins[:-1] + bins[1:]) / 2
     radius = np.interp(centers, tip_angle[order], np.hypot(*tip[order].T), period=2 * np.pi)
     for cloud in chunks:
-        distance = np.hypot(cloud[:, 0], cloud[:, 1])
-        cutting = distance < radius.max()           # a point no nearer than every bin's radius cuts nothing
-        cloud, distance = cloud[cutting], distance[cutting]
         index = np.minimum(((np.arctan2(cloud[:, 1], cloud[:, 0]) + np.pi) * (BINS / (2 * np.pi))).astype(int), BINS - 1)
-        np.minimum.at(radius, index, distance)
+        np.minimum.at(radius, index, np.hypot(cloud[:, 0], cloud[:, 1]))
     outline = radius[:, None] * np.c_[np.cos(centers), np.sin(centers)]
     return outline if orientation(points) > 0 else outline[::-1]
 
