@@ -13,13 +13,22 @@ ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = sorted((ROOT / "examples").glob("gear_*.toml"))
 
 
+def _command(*args):
+    return [sys.executable, "-m", "transplanter", "gear", *map(str, args)]
+
+
 def _run(*args):
-    return subprocess.run([sys.executable, "-m", "transplanter", "gear", *map(str, args)],
-                          capture_output=True, text=True, cwd=ROOT)
+    return subprocess.run(_command(*args), capture_output=True, text=True, cwd=ROOT)
 
 
 def test_one_example_per_family():
-    families = {json.loads(_run(path, "--json").stdout)["driver"]["family"] for path in EXAMPLES}
+    """Every example runs to the end (the only full run of most); all at once, as the machine has cores."""
+    runs = [subprocess.Popen(_command(path, "--json"), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                             cwd=ROOT) for path in EXAMPLES]
+    outputs = [run.communicate() for run in runs]
+    for path, run, (_, stderr) in zip(EXAMPLES, runs, outputs):
+        assert run.returncode == 0, (path.name, stderr)
+    families = {json.loads(stdout)["driver"]["family"] for stdout, _ in outputs}
     assert families == {"ellipse", "higher_order_ellipse", "denatured_ellipse", "limacon", "denatured_limacon",
                         "spline", "ratio"}
 
@@ -78,13 +87,24 @@ BAD = {
 }
 
 
+@pytest.fixture(scope="module")
+def bad_runs(tmp_path_factory):
+    """The command on every bad file of BAD, all started at once: name -> (exit code, stderr)."""
+    folder = tmp_path_factory.mktemp("bad_gear")
+    runs = {}
+    for name, (text, _) in BAD.items():
+        path = folder / f"{len(runs)}.toml"
+        path.write_text(text)
+        runs[name] = subprocess.Popen(_command(path), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                      cwd=ROOT)
+    stderr = {name: run.communicate()[1] for name, run in runs.items()}
+    return {name: (run.returncode, stderr[name]) for name, run in runs.items()}
+
+
 @pytest.mark.parametrize("name", sorted(BAD))
-def test_bad_gear_input(tmp_path, name):
-    text, fragments = BAD[name]
-    path = tmp_path / "gear.toml"
-    path.write_text(text)
-    run = _run(path)
-    lines = run.stderr.strip().splitlines()
-    assert run.returncode == 2 and len(lines) == 1 and "Traceback" not in run.stderr, run.stderr
-    for fragment in fragments:
+def test_bad_gear_input(bad_runs, name):
+    returncode, stderr = bad_runs[name]
+    lines = stderr.strip().splitlines()
+    assert returncode == 2 and len(lines) == 1 and "Traceback" not in stderr, stderr
+    for fragment in BAD[name][1]:
         assert fragment in lines[0], (fragment, lines[0])

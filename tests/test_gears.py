@@ -176,8 +176,10 @@ def test_teeth_mesh_without_interference(case):
         d = _scaled_pair(ellipse(1.0, 0.3), 30)
         teeth = generate_teeth(d, 2.0, np.radians(20), "test")
     else:
-        d = _scaled_pair(denatured_limacon(1.0, 0.45, 1.2, denatured_partner(1.2)), 60)
-        assert (d.convexity[0] <= 0).any()      # eq (9) < 0: the driver has a concave stretch
+        # eq (9): 1 - (1.2^2 + 1) 0.45 < 0, concave; 52 teeth rather than the example's 60 (at 48 a module 2
+        # would undercut the driven gear)
+        d = _scaled_pair(denatured_limacon(1.0, 0.45, 1.2, denatured_partner(1.2)), 52)
+        assert (d.convexity[0] <= 0).any()      # the driver has a concave stretch
         teeth = generate_teeth(d, 2.0, np.radians(20), "test", cutter="shaper", cutter_teeth=12)
     assert teeth.self_intersections == (0, 0)
     driver, driven = (_counterclockwise(o) for o in teeth.outlines)
@@ -230,6 +232,19 @@ def test_concave_pitch_curve_is_refused_for_the_rack():
         generate_teeth(d, 2.0, np.radians(20), "test")
 
 
+def _brute_force_crossings(outline):
+    """Every pair of non-adjacent segments of the closed outline, each end strictly on both sides."""
+    a, b = outline, np.roll(outline, -1, axis=0)
+    i, j = np.triu_indices(len(a), 2)
+    i, j = i[(j - i) < len(a) - 1], j[(j - i) < len(a) - 1]
+
+    def side(p, q, r):
+        return np.sign((q[:, 0] - p[:, 0]) * (r[:, 1] - p[:, 1]) - (q[:, 1] - p[:, 1]) * (r[:, 0] - p[:, 0]))
+
+    return int(((side(a[i], b[i], a[j]) * side(a[i], b[i], b[j]) < 0)
+                & (side(a[j], b[j], a[i]) * side(a[j], b[j], b[i]) < 0)).sum())
+
+
 def test_self_intersection_count():
     from transplanter.gears.teeth import self_intersections
     t = np.linspace(0, 2 * np.pi, 2000, endpoint=False)
@@ -237,6 +252,33 @@ def test_self_intersection_count():
     assert self_intersections(outline) == 0
     outline[[500, 501]] = outline[[501, 500]]          # two swapped vertices cross once
     assert self_intersections(outline) == 1
+
+
+def test_self_intersections_of_constructed_outlines():
+    """A figure-eight crosses once; a rack-cut gear outline is simple, and crosses itself once
+    one flank is swung over its tooth's tip (counted as the brute force counts)."""
+    from transplanter.gears.teeth import self_intersections
+    t = np.linspace(0, 2 * np.pi, 400, endpoint=False) + np.pi / 400      # no vertex at the crossing
+    assert self_intersections(np.c_[np.sin(t), np.sin(t) * np.cos(t)]) == 1
+    outline = rack_profile(_circle_table(20.0, 801), 20, 2.0, np.radians(20))
+    assert self_intersections(outline) == 0 == _brute_force_crossings(outline)
+    angle = np.arctan2(outline[:, 1], outline[:, 0])
+    flank = np.flatnonzero((np.abs(angle - angle[0]) < 0.05) & (np.hypot(*outline.T) > 18.5))
+    folded = outline.copy()
+    c, s = np.cos(0.12), np.sin(0.12)
+    folded[flank] = outline[flank] @ np.array([[c, s], [-s, c]])     # the flank swung over the tooth's tip
+    assert self_intersections(folded) == _brute_force_crossings(folded) > 0
+
+
+def test_self_intersections_match_brute_force_on_random_polylines(rng):
+    from transplanter.gears.teeth import self_intersections
+    counts = []
+    for size in (3, 4, 5, 8, 20, 60, 200):
+        for _ in range(5):
+            outline = rng.normal(size=(size, 2))
+            counts.append(self_intersections(outline))
+            assert counts[-1] == _brute_force_crossings(outline)
+    assert counts.count(0) > 5 and max(counts) > 1000
 
 
 def test_analytic_ratio_is_corrected_to_close():

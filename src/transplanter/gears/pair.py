@@ -23,7 +23,7 @@ _curvature = numpy_twin("gears", "polar_curvature")
 _kinematics = numpy_twin("gears", "pair_kinematics")
 
 def arc_length(curve: PitchCurve, grid: Panels) -> np.ndarray:
-    """Arc length of the pitch curve from phi = 0 to every panel edge: int sqrt(r^2 + r'^2) dphi."""
+    """Arc length of the pitch curve from phi = 0 to every panel edge: int sqrt(r^2 + r'^2) dphi (mm)."""
     return grid.integrate(np.hypot(*curve.evaluate(grid.nodes)[:2]))
 
 
@@ -33,10 +33,10 @@ def driven_turn(curve: PitchCurve, center_distance: float, grid: Panels) -> floa
     return float(grid.integrate(r / (center_distance - r))[-1])
 
 
-def closing_center_distance(curve: PitchCurve, orders: tuple[int, int], grid: Panels, r_max: float) -> float:
-    """Center distance for the driven gear to turn 2 pi n1 / n2 per driver turn (Newton with bisection)."""
+def closing_center_distance(r: np.ndarray, orders: tuple[int, int], grid: Panels, r_max: float) -> float:
+    """Center distance (mm) for the driven gear to turn 2 pi n1 / n2 per driver turn (Newton with
+    bisection), from the driver radius ``r`` (mm) at the nodes of ``grid``."""
     target = TWO_PI * orders[0] / orders[1]
-    r = curve.evaluate(grid.nodes)[0]
 
     def residual(a):
         gap = a - r
@@ -115,8 +115,9 @@ def design_pair(driver: PitchCurve, driven_order: int, center_distance: float | 
                            f"{np.degrees(dense[k]):.2f} deg: expected a positive radius all round")
     r_max = float(r_dense.max())
     orders = (driver.lobes, driven_order)
+    r_nodes, slope_nodes, _ = driver.evaluate(grid.nodes)
     if center_distance is None:
-        center_distance = closing_center_distance(driver, orders, grid, r_max)
+        center_distance = closing_center_distance(r_nodes, orders, grid, r_max)
     elif center_distance <= r_max:
         raise ProblemError(f"{source}: pair.center_distance = {center_distance:g}: expected more than the largest "
                            f"driver radius {r_max:.6g} mm (the driven radius a - r1 would reach zero)")
@@ -124,7 +125,7 @@ def design_pair(driver: PitchCurve, driven_order: int, center_distance: float | 
     check = panels(driver.breaks, count=2 * PANELS + 17, nodes=NODES + 4)
     closure_error = driven_turn(driver, center_distance, check) - target
     if abs(closure_error) > 1e-6:
-        closing = closing_center_distance(driver, orders, grid, r_max)
+        closing = closing_center_distance(r_nodes, orders, grid, r_max)
         raise InfeasibleError(
             f"{source}: pair.center_distance = {center_distance:g} mm does not close with orders {orders}: the driven "
             f"gear turns {np.degrees(closure_error + target):.6f} deg per driver turn instead of "
@@ -132,7 +133,6 @@ def design_pair(driver: PitchCurve, driven_order: int, center_distance: float | 
 
     phi1 = grid.edges
     r1, slope1, bend1 = driver.evaluate(phi1)
-    r_nodes = driver.evaluate(grid.nodes)[0]
     phi2 = grid.integrate(r_nodes / (center_distance - r_nodes))
     a = np.full_like(r1, center_distance)
     r2, slope2, bend2, _ = (v[0] for v in _conjugate([a], [r1], [slope1], [bend1]))
@@ -141,7 +141,7 @@ def design_pair(driver: PitchCurve, driven_order: int, center_distance: float | 
         rho2, convex2 = (v[0] for v in _curvature([r2], [slope2], [bend2]))
     ratio, speed, acceleration = (v[0] for v in _kinematics([a], [r1], [slope1], [np.full_like(r1, driver_speed)]))
 
-    arc = arc_length(driver, grid)
+    arc = grid.integrate(np.hypot(r_nodes, slope_nodes))     # arc_length without evaluating the nodes again
     driver_perimeter = float(arc[-1])
     driver_points = r1[:, None] * np.c_[np.cos(phi1), np.sin(phi1)]
     driven_points = r2[:, None] * np.c_[-np.cos(phi2), np.sin(phi2)]

@@ -67,14 +67,17 @@ def pitch_table(points: np.ndarray, arc: np.ndarray, tangents: np.ndarray) -> Pi
     return PitchTable(arc, points, tangents, sign * np.stack([tangents[:, 1], -tangents[:, 0]], -1), sign)
 
 
-def _flank(table: PitchTable, s_f: float, side: int, alpha: float, module: float, count: int = 40,
+def _flank(table: PitchTable, s_f, side, alpha: float, module: float, count: int = 40,
            addendum: float = ADDENDUM, dedendum: float = DEDENDUM):
+    """Flank points (mm), tip to root, of the rack flanks with pitch points at arc lengths ``s_f``
+    (mm) on sides ``side`` (+1 or -1); arrays of flanks give an array of point rows, (..., count, 2)."""
+    s_f, side = np.asarray(s_f, float)[..., None], np.asarray(side, float)[..., None]
     sc = np.sin(alpha) * np.cos(alpha)
     # depth v from -h_a (tip) to +h_f (root): delta = side v / sc
     depth = np.linspace(-addendum * module, dedendum * module, count)
     delta = side * depth / sc
     c, t, n = table.at(s_f - delta)
-    return c + (delta * np.cos(alpha) ** 2)[:, None] * t - (side * delta * sc)[:, None] * n
+    return c + (delta * np.cos(alpha) ** 2)[..., None] * t - (side * delta * sc)[..., None] * n
 
 
 class _OffsetCurve:
@@ -86,6 +89,8 @@ class _OffsetCurve:
         self.direction = 1.0 if angle[-1] > angle[0] else -1.0
         self.angle = self.direction * angle            # increases with arc length
         self.radius = np.hypot(self.points[:, 0], self.points[:, 1])
+        self.period = self.angle[-1] - self.angle[0]
+        self._two_turns = np.r_[self.angle, self.angle[1:] + self.period], np.r_[self.points, self.points[1:]]
 
     def unwrap(self, points, near: float):
         """Angles of points on the increasing scale, taken within half a turn of ``near``."""
@@ -93,17 +98,13 @@ class _OffsetCurve:
         return near + np.mod(raw - near + np.pi, 2 * np.pi) - np.pi
 
     def radius_at(self, angle):
-        period = self.angle[-1] - self.angle[0]
-        return np.interp(np.mod(angle - self.angle[0], period) + self.angle[0], self.angle, self.radius)
+        return np.interp(np.mod(angle - self.angle[0], self.period) + self.angle[0], self.angle, self.radius)
 
     def between(self, start: float, end: float):
         """Points of the curve with angles strictly between start and end (increasing scale)."""
-        period = self.angle[-1] - self.angle[0]
-        shift = np.floor((start - self.angle[0]) / period) * period
-        angles = np.r_[self.angle, self.angle[1:] + period] + shift
-        points = np.r_[self.points, self.points[1:]]
-        keep = (angles > start) & (angles < end)
-        return points[keep]
+        angles, points = self._two_turns
+        angles = angles + np.floor((start - self.angle[0]) / self.period) * self.period
+        return points[(angles > start) & (angles < end)]
 
 
 def _clip(flank, tip: _OffsetCurve, root: _OffsetCurve, near: float):
@@ -140,16 +141,15 @@ def rack_profile(table: PitchTable, teeth: int, module: float, alpha: float, fir
     length first_tooth_at + k p; flanks joined along the tip and root offset curves."""
     pitch = table.perimeter / teeth
     tip, root = _OffsetCurve(table, addendum * module), _OffsetCurve(table, -dedendum * module)
-
-    def flank(s_f, side):        # tip -> root
-        return _flank(table, s_f, side, alpha, module, addendum=addendum, dedendum=dedendum)
-
+    centers = first_tooth_at + np.arange(teeth) * pitch
+    sides = np.r_[np.ones(teeth), -np.ones(teeth)]
+    flanks = _flank(table, np.r_[centers - pitch / 4, centers + pitch / 4], sides, alpha, module,
+                    addendum=addendum, dedendum=dedendum)          # tip -> root, left flanks first
+    nears = tip.unwrap(table.at(centers)[0], 0.0)
     outline, previous_end = [], None
-    for k in range(teeth):
-        center = first_tooth_at + k * pitch
-        near = tip.unwrap(table.at(np.array([center]))[0], 0.0)[0]
-        left = _clip(flank(center - pitch / 4, +1)[::-1], tip, root, near)                 # root -> tip
-        right = _clip(flank(center + pitch / 4, -1)[::-1], tip, root, near)[::-1]          # tip -> root
+    for k, near in enumerate(nears):
+        left = _clip(flanks[k][::-1], tip, root, near)                     # root -> tip
+        right = _clip(flanks[teeth + k][::-1], tip, root, near)[::-1]      # tip -> root
         if previous_end is not None:
             outline.append(_root_gap(root, previous_end, left[0]))
         outline.append(left)

@@ -4,6 +4,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import shapely
 
 from transplanter.errors import InfeasibleError
 from transplanter.gears.pair import GearPairDesign
@@ -61,25 +62,24 @@ def local_contact_ratio(rho1, rho2, module: float, alpha: float) -> np.ndarray:
 
 
 def _side(p, q, r):
+    """Sign of the turn p -> q -> r: +1 left, -1 right, 0 collinear."""
     return np.sign((q[..., 0] - p[..., 0]) * (r[..., 1] - p[..., 1]) - (q[..., 1] - p[..., 1]) * (r[..., 0] - p[..., 0]))
 
 
-def self_intersections(outline: np.ndarray, window: int = 400) -> int:
-    """Proper crossings between non-adjacent segments of a closed outline.
+def self_intersections(outline: np.ndarray) -> int:
+    """Proper crossings between segments of a closed outline (points in mm, the last joined to the first).
 
-    Segments are sorted by the polar angle of their midpoints; each is tested against the
-    next ``window`` in that order (crossing segments of a star-shaped outline are neighbours
-    in angle), boxes first, then the orientation test.
+    GEOS (through shapely, in C) decides whether the ring is simple; only a ring that is not is
+    split into segments, whose candidate pairs come from an STR-tree of their boxes and are
+    counted where each segment's ends lie strictly on both sides of the other. Touches, shared
+    ends and collinear overlaps are not crossings.
     """
+    if shapely.is_simple(shapely.linearrings(outline)):
+        return 0
     a, b = outline, np.roll(outline, -1, axis=0)
-    n = len(a)
-    order = np.argsort(np.arctan2(*((a + b) / 2)[:, ::-1].T))
-    i = np.repeat(order, min(window, n) - 1)
-    j = order[(np.arange(n)[:, None] + np.arange(1, min(window, n))[None, :]).ravel() % n]
-    low, high = np.minimum(a, b), np.maximum(a, b)
-    overlap = np.all((low[i] <= high[j]) & (low[j] <= high[i]), axis=1)
-    gap = np.abs(i - j)
-    i, j = i[overlap & (gap > 1) & (gap < n - 1)], j[overlap & (gap > 1) & (gap < n - 1)]
+    segments = shapely.linestrings(np.stack([a, b], axis=1))
+    first, second = shapely.STRtree(segments).query(segments)
+    i, j = first[first < second], second[first < second]
     crossing = (_side(a[i], b[i], a[j]) * _side(a[i], b[i], b[j]) < 0) & (_side(a[j], b[j], a[i]) * _side(a[j], b[j], b[i]) < 0)
     return int(crossing.sum())
 
