@@ -47,8 +47,8 @@ MISS_TIE = 1e-6
 #: The ranking rule in words (the reports state it).
 RANKING_RULE = (f"Ranked by the smallest transmission angle EBF over the turn, largest first; angles within "
                 f"{ANGLE_TIE:.1%} of each other tie, and a tie goes to the smaller largest return-point miss "
-                f"(misses within {MISS_TIE:g} of the reach, the farthest key pose or return point from O, tie), then to the gentler ratio (smaller i0 max / min), "
-                f"then to the earlier start candidate.")
+                f"(misses within {MISS_TIE:g} of the reach, the farthest key pose or return point from O, tie), "
+                f"then to the gentler ratio (smaller i0 max / min), then to the earlier start candidate.")
 
 #: ``progress(step, done, total)``: called with done = 0 when a step starts and after each unit of it.
 Progress = Callable[[str, int, int], None]
@@ -68,7 +68,7 @@ class ActiveBound:
         return f"{self.name} {'>=' if self.side == 'lower' else '<='} {self.limit:g}"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Alternative:
     """A refined design with its independent evaluation (mm, radians).
 
@@ -171,8 +171,8 @@ def _defects(problem: FiveBarProblem, design: DesignSolution, slope: np.ndarray,
     angle = np.abs(np.angle(np.exp(1j * (key["direction"] - problem.poses[:, 2]))))
     defects = []
     if not (np.all(position <= KEY_TOLERANCE * reach(problem)) and np.all(angle <= KEY_TOLERANCE)):
-        defects.append(f"key poses: missed by up to {np.nanmax(position):.3g} mm and "
-                       f"{np.degrees(np.nanmax(angle)):.3g} deg")
+        defects.append(f"key poses: missed by up to {np.max(position):.3g} mm and "
+                       f"{np.degrees(np.max(angle)):.3g} deg")
     floor = problem.min_closure_margin
     if not min_margin >= floor * (1 - ACTIVE_TOLERANCE):      # NaN: the chain does not close somewhere
         defects.append(closure_defect(min_margin, floor))

@@ -56,8 +56,8 @@ def _bound(bound: dict) -> str:
 
 def _alternatives(report: dict) -> list[str]:
     """The table of the ranked alternatives and the list of the candidates that failed."""
-    lines = ["", "## Alternatives", "", f"{report['ranking_rule']} Alternative {report['picked']} is built (`--pick N` builds "
-             "another).", "",
+    lines = ["", "## Alternatives", "",
+             f"{report['ranking_rule']} Alternative {report['picked']} is built (`--pick N` builds another).", "",
              "| # | OA | AF | EF | BE | EP | FP | B (mm) | min EBF (deg) at turn | min angle at E (deg) | i0 range | "
              "largest return miss (mm) | active bounds | from candidates |", "|---" * 14 + "|"]
     for alternative in report["alternatives"]:
