@@ -112,7 +112,8 @@ def check_figures(figures: dict, stems: set[str]):
 
 
 def test_figures_of_each_job(fivebar_results):
-    check_figures(fivebar.draw_figures(fivebar_results[0]), {"region", "relative_angle", "gears", "trajectory"})
+    check_figures(fivebar.draw_figures(fivebar_results[0]),
+                  {"region", "relative_angle", "gears", "trajectory", "tradeoff"})
     check_figures(burmester.draw_figures(burmester.synthesize(burmester.load_problem(EXAMPLES / "burmester_4poses.toml"))),
                   {"burmester"})
     check_figures(gears.draw_figures(gears.synthesize(gears.load_problem(EXAMPLES / "gear_limacon.toml"))),

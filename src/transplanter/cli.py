@@ -77,7 +77,7 @@ def _fivebar(args) -> int:
         report = fivebar.evaluate_design(problem, fivebar.load_design(args.design)).to_json()
         text, figures = evaluation_markdown(report, problem.labels), []
     else:
-        result = fivebar.synthesize(problem)
+        result = fivebar.synthesize(problem, pick=args.pick)
         report = result.to_json()
         figures = _save_figures(fivebar.draw_figures(result), Path(args.out)) if args.out else []
         text = to_markdown(report, problem.labels, figures)
@@ -129,6 +129,8 @@ def _parser() -> argparse.ArgumentParser:
                        "train (Wang et al. 2025): region, precise design, gears, verification",
                        "five-bar problem file (TOML, mm and degrees)", "the figures")
     fivebar.add_argument("--design", metavar="DESIGN.toml", help="evaluate this given design instead of designing one")
+    fivebar.add_argument("--pick", metavar="N", type=int, help="build alternative N of the ranked alternatives "
+                         "(default 1, the best; report.md lists them)")
     _command(commands, "reverse", _reverse, "planetary non-circular gear train that makes the arm tip follow a closed "
              "path (the rice-transplanter, reverse-gear-design and cusp-pitch-curve papers): inverse kinematics, "
              "monotonicity, gears, round trip",

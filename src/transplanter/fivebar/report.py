@@ -20,8 +20,12 @@ def to_markdown(report: dict, labels: tuple[str, ...], figures: list[str]) -> st
              "## Design (pose 1)", "", "| quantity | value |", "|---|---|"]
     lines += [f"| {key} | {value if isinstance(value, (str, list)) else round(value, 4)} |" for key, value in d.items()]
     lines += ["", "## Whole turn", "",
+              f"- smallest transmission angle EBF: {report['transmission_angle_min_deg']:.2f} deg at carrier turn "
+              f"{report['transmission_angle_min_at_deg']:.1f} deg; smallest angle between EF and BE at E: "
+              f"{report['angle_at_e_min_deg']:.2f} deg",
               f"- smallest closure margin sin²(EBF): {report['min_closure_margin']:.5f} "
               f"(required {report['required_closure_margin']}); eq (10) discriminant ≥ {report['min_discriminant']:.4g} mm⁴",
+              "- active bounds: " + (", ".join(_bound(b) for b in report["active_bounds"]) or "none"),
               f"- relative angle strictly increasing: {report['relative_angle_monotonic']}; total ratio i0 in "
               f"[{report['ratio_range'][0]:.4f}, {report['ratio_range'][1]:.4f}]", ""]
     gears = report["gears"]
@@ -35,6 +39,7 @@ def to_markdown(report: dict, labels: tuple[str, ...], figures: list[str]) -> st
                      f"{stage['driver_radius_range'][0]:.3f}-{stage['driver_radius_range'][1]:.3f} | "
                      f"{stage['driven_radius_range'][0]:.3f}-{stage['driven_radius_range'][1]:.3f} | "
                      f"{stage['driver_convex']}/{stage['driven_convex']} |")
+    lines += _alternatives(report)
     region = report["region"]
     lines += ["", "## Solution region", "",
               f"{region['receiving_kept']} of {region['receiving_dyads']} B-E dyads and {region['carrier_kept']} of "
@@ -43,6 +48,35 @@ def to_markdown(report: dict, labels: tuple[str, ...], figures: list[str]) -> st
               f"NLP: {report['nlp']['status']} in {report['nlp']['iterations']} iterations.", ""]
     lines += [f"![{name}]({name})" for name in figures]
     return "\n".join(lines) + "\n"
+
+
+def _bound(bound: dict) -> str:
+    return f"{bound['bound']} {'>=' if bound['side'] == 'lower' else '<='} {bound['limit']:g}"
+
+
+def _alternatives(report: dict) -> list[str]:
+    """The table of the ranked alternatives and the list of the candidates that failed."""
+    lines = ["", "## Alternatives", "",
+             f"{report['ranking_rule']} Alternative {report['picked']} is built (`--pick N` builds another).", "",
+             "| # | OA | AF | EF | BE | EP | FP | B (mm) | min EBF (deg) at turn | min angle at E (deg) | i0 range | "
+             "largest return miss (mm) | active bounds | from candidates |", "|---" * 14 + "|"]
+    for alternative in report["alternatives"]:
+        d = alternative["design"]
+        mark = " (built)" if alternative["rank"] == report["picked"] else ""
+        lines.append(
+            f"| {alternative['rank']}{mark} | {d['carrier_length_OA']:.2f} | {d['rod_length_AF']:.2f} | "
+            f"{d['plate_link_length_EF']:.2f} | {d['receiving_plate_length_BE']:.2f} | {d['push_plate_EP']:.2f} | "
+            f"{d['push_plate_FP']:.2f} | ({d['hinge_B'][0]:.1f}, {d['hinge_B'][1]:.1f}) | "
+            f"{alternative['transmission_angle_min_deg']:.2f} at {alternative['transmission_angle_min_at_deg']:.1f} | "
+            f"{alternative['angle_at_e_min_deg']:.2f} | {alternative['ratio_range'][0]:.3f}-"
+            f"{alternative['ratio_range'][1]:.3f} | {max(alternative['return_point_errors_mm']):.3g} | "
+            f"{', '.join(_bound(b) for b in alternative['active_bounds']) or 'none'} | "
+            f"{', '.join(map(str, alternative['start_candidates']))} |")
+    lines += ["", "Lengths in mm; turns are the carrier's, clockwise from pose 1 (deg)."]
+    if report["failed"]:
+        lines += ["", "Candidates whose refinement failed:", ""]
+        lines += [f"- candidate {failure['candidate']}: {failure['reason']}" for failure in report["failed"]]
+    return lines
 
 
 def evaluation_markdown(report: dict, labels: tuple[str, ...]) -> str:
