@@ -66,3 +66,14 @@ def test_needs_four_poses():
     five = synthesize(load_problem(ROOT / "examples/burmester_5poses.toml"))
     with pytest.raises(ProblemError, match="four poses"):
         nearest_center(five, [0.0, 0.0])
+
+
+def test_given_length_returns_the_dyad_that_has_it(table1):
+    """A traced dyad's own length and a point next to its center give that dyad back."""
+    scale = table1.dyads[0].scale
+    for k in (200, 700):
+        dyad = table1.dyads[k]
+        found = nearest_center(table1, dyad.center + [1e-3 * scale, -2e-3 * scale], length=dyad.length)
+        assert found.dyad.length == pytest.approx(dyad.length, rel=1e-12)
+        assert np.linalg.norm(found.dyad.center - dyad.center) < 1e-6 * scale
+        assert np.linalg.norm(found.dyad.circle - dyad.circle) < 1e-6 * scale

@@ -3,8 +3,9 @@
 A sampled curve only bounds the distance from above (by up to half the sample spacing).
 The true minimum polishes the nearest sample: minimise |G - p|^2 over the center G and the
 circle point M_1 subject to eq (1) for the pose pairs (1, i) (``dyad_constraint``), so that
-G stays on the exact curve (a center belongs to it iff some M_1 satisfies eq 1). IPOPT
-solves it in the unit frame of the synthesis.
+G stays on the exact curve (a center belongs to it iff some M_1 satisfies eq 1). Given a
+link length as well, the constraint |M_1 - G| = length leaves isolated dyads, and the solve
+finds the one nearest ``point``. IPOPT solves it in the unit frame of the synthesis.
 """
 from __future__ import annotations
 
@@ -34,7 +35,8 @@ class NearestCenter:
     distance_mm : float
         True minimum distance from ``point`` to the center-point curve.
     sample_distance_mm : float
-        Distance to the nearest traced sample (an upper bound of ``distance_mm``).
+        Distance to the nearest traced sample (an upper bound of ``distance_mm`` when no length is
+        imposed).
     """
 
     dyad: Dyad
@@ -42,16 +44,18 @@ class NearestCenter:
     sample_distance_mm: float
 
 
-def _solver(poses: np.ndarray):
+def _solver(poses: np.ndarray, length: float | None):
     z, target = ca.SX.sym("z", 4), ca.SX.sym("target", 2)   # center (2), circle point (2)
     constraint = casadi_function("burmester", "dyad_constraint").map(len(poses) - 1)
-    residuals = constraint(ca.DM(poses[0]), ca.DM(poses[1:].T), z[:2], z[2:])
-    nlp = {"x": z, "p": target, "f": 0.5 * ca.sumsqr(z[:2] - target), "g": residuals.T}
+    residuals = constraint(ca.DM(poses[0]), ca.DM(poses[1:].T), z[:2], z[2:]).T
+    if length is not None:
+        residuals = ca.vertcat(residuals, 0.5 * (ca.sumsqr(z[2:] - z[:2]) - length**2))
+    nlp = {"x": z, "p": target, "f": 0.5 * ca.sumsqr(z[:2] - target), "g": residuals}
     options = {"print_time": False, "ipopt": {"print_level": 0, "sb": "yes", "tol": 1e-14}}
     return ca.nlpsol("nearest_center", "ipopt", nlp, options)
 
 
-def nearest_center(result: Synthesis, point) -> NearestCenter:
+def nearest_center(result: Synthesis, point, length: float | None = None) -> NearestCenter:
     """The dyad of a four-pose synthesis whose center is nearest ``point`` on the exact curve.
 
     Parameters
@@ -61,6 +65,8 @@ def nearest_center(result: Synthesis, point) -> NearestCenter:
     point : array_like
         The fixed pivot to measure, (x, y) in mm (in pose-1 coordinates of the ground link
         when the problem has one).
+    length : float, optional
+        Only dyads of this link length (mm): the nearest of the isolated dyads that have it.
 
     Returns
     -------
@@ -74,8 +80,9 @@ def nearest_center(result: Synthesis, point) -> NearestCenter:
     poses = working_poses(problem)
     frame = Frame.of(poses)
     gaps = np.array([np.linalg.norm(d.center - point) for d in result.dyads])
-    start = result.dyads[int(np.argmin(gaps))]
-    solver = _solver(frame.local_poses(poses))
+    misfit = gaps if length is None else gaps + np.abs([d.length - length for d in result.dyads])
+    start = result.dyads[int(np.argmin(misfit))]
+    solver = _solver(frame.local_poses(poses), None if length is None else length / frame.scale)
     solution = solver(x0=[*frame.to_local(start.center), *frame.to_local(start.circle)], p=frame.to_local(point),
                       lbg=0.0, ubg=0.0)
     status = solver.stats()["return_status"]
