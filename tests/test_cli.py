@@ -33,7 +33,8 @@ def test_json_of_five_poses_checks_out_independently():
     are the crank (0, 0)-(39.3923, 6.9459), 40 mm, and the rocker (100, 0)-(92.4502, 79.6430), 80 mm, of the
     crank-rocker the example was made from (poses rounded to 1e-4)."""
     report = _json("burmester_5poses.toml")
-    poses = np.array([[p["x"], p["y"], p["angle_deg"]] for p in read_toml(ROOT / "examples/burmester_5poses.toml")["poses"]])
+    rows = read_toml(ROOT / "examples/burmester_5poses.toml")["poses"]
+    poses = np.array([[p["x"], p["y"], p["angle_deg"]] for p in rows])
     assert len(report["dyads"]) == 4
     for dyad in report["dyads"]:
         assert set(dyad) >= {"center", "circle", "length", "max_residual"}
