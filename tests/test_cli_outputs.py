@@ -1,6 +1,8 @@
 """The command line's output conventions (issue 11 section 5): --out written whole or not at all,
 report.json lists its files, progress on stderr unless --quiet or --json, FAILED results exit 1."""
+import io
 import json
+import sys
 from pathlib import Path
 
 import pytest
@@ -91,19 +93,27 @@ def test_an_out_that_is_not_ours_is_refused_before_the_work(tmp_path, monkeypatc
     assert "keep me" in (out.read_text() if content == "a file" else (out / "notes.txt").read_text())
 
 
+class _Terminal(io.StringIO):
+    def isatty(self):
+        return True
+
+
 @pytest.mark.parametrize("flag", ["--quiet", "--json"])
-def test_quiet_and_json_keep_stderr_silent(tmp_path, capsys, flag):
+def test_quiet_and_json_keep_a_terminal_silent(tmp_path, monkeypatch, flag):
+    monkeypatch.setattr(sys, "stderr", _Terminal())
     assert main(["burmester", PROBLEM, "--out", str(tmp_path / "out"), flag]) == 0
-    assert capsys.readouterr().err == ""
+    assert sys.stderr.getvalue() == ""
 
 
-def test_progress_names_the_steps_on_stderr_only(tmp_path, capsys):
+def test_progress_names_the_steps_on_a_terminal_and_stays_off_pipes(tmp_path, monkeypatch, capsys):
     assert main(["burmester", PROBLEM, "--out", str(tmp_path / "out")]) == 0
-    captured = capsys.readouterr()
-    lines = captured.err.splitlines()
+    assert capsys.readouterr().err == ""                    # stderr is not a terminal here
+    monkeypatch.setattr(sys, "stderr", _Terminal())
+    assert main(["burmester", PROBLEM, "--out", str(tmp_path / "out")]) == 0
+    lines = sys.stderr.getvalue().splitlines()
     assert lines[0] == "transplanter: synthesis ..." and lines[1].startswith("transplanter: synthesis done (")
     assert "transplanter: figures ..." in lines
-    assert "transplanter:" not in captured.out
+    assert "transplanter:" not in capsys.readouterr().out
 
 
 class _Failing:
@@ -136,3 +146,17 @@ def test_a_result_that_fails_a_check_is_marked_and_exits_1(tmp_path, monkeypatch
     monkeypatch.setattr(burmester, "synthesize", real)
     assert main(["burmester", PROBLEM, "--out", str(out), "--quiet"]) == 0
     assert "report.json" in {p.name for p in out.iterdir()}
+
+
+def test_library_progress_is_silent_unless_a_caller_shows_it(capsys):
+    """``progress.report`` has the synthesis callback's signature (step, done, total)."""
+    from transplanter import progress
+
+    progress.report("refinement", 1, 17)
+    shown = io.StringIO()
+    with progress.showing(shown):
+        progress.report("refinement", 2, 17)
+        with progress.showing(shown, enabled=False):
+            progress.report("refinement", 3, 17)
+    assert shown.getvalue() == "transplanter: refinement 2/17\n"
+    assert capsys.readouterr().err == ""

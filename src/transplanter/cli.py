@@ -3,7 +3,8 @@ figures; no logic of its own.
 
 Conventions of every design command: ``--out DIR`` is written whole or not at all
 (``output_folder.staged``) and its report.json lists every file under "files" by kind; progress
-of the longer steps goes to stderr unless ``--quiet`` or ``--json``; exit 0 when the result
+of the longer steps goes to stderr when it is a terminal (as git does; a pipe or a log gets only
+errors), unless ``--quiet`` or ``--json``; exit 0 when the result
 passes its checks, 1 when it fails one (every file name then starts with FAILED- and the reports
 say why), 2 for bad input.
 """
@@ -69,8 +70,9 @@ def _burmester(args) -> int:
     from transplanter import burmester
     from transplanter.burmester.report import to_markdown, to_text
 
+    problem = burmester.load_problem(args.file)
     with progress.step("synthesis"):
-        result = burmester.synthesize(burmester.load_problem(args.file))
+        result = burmester.synthesize(problem)
     if args.plot or args.folder:
         with progress.step("figures"):
             figures = burmester.draw_figures(result)
@@ -85,8 +87,9 @@ def _gear(args) -> int:
     from transplanter import gears
     from transplanter.gears.report import to_markdown
 
+    problem = gears.load_problem(args.file)
     with progress.step("synthesis"):
-        result = gears.synthesize(gears.load_problem(args.file))
+        result = gears.synthesize(problem)
     report = result.to_json()
     drawings, figures = [], []
     if args.folder:
@@ -130,8 +133,9 @@ def _reverse(args) -> int:
     from transplanter import reverse
     from transplanter.reverse.report import to_markdown
 
+    problem = reverse.load_problem(args.file)
     with progress.step("synthesis"):
-        result = reverse.synthesize(reverse.load_problem(args.file))
+        result = reverse.synthesize(problem)
     report = result.to_json()
     figures = []
     if args.folder:
@@ -197,7 +201,8 @@ def main(argv: list[str] | None = None) -> int:
     warnings.formatwarning = _one_line_warning
     out = getattr(args, "out", None)
     try:
-        with progress.showing(sys.stderr, enabled=not (getattr(args, "json", False) or getattr(args, "quiet", False))):
+        quiet = getattr(args, "json", False) or getattr(args, "quiet", False)
+        with progress.showing(sys.stderr, enabled=sys.stderr.isatty() and not quiet):
             with staged(out) as args.folder:
                 return args.run(args)
     except TransplanterError as error:
