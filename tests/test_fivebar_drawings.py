@@ -1,5 +1,6 @@
 """Issue 11 section 5: what a designer takes to CAD (DXF, SVG, CSV) and the animation, read back."""
 import json
+import os
 import xml.etree.ElementTree as ElementTree
 from pathlib import Path
 
@@ -216,3 +217,21 @@ def test_fivebar_out_holds_and_lists_the_drawings_tables_and_animation(quick_com
         expected["animation"] = ["animation.gif"]
     assert report["files"] == expected
     assert {p.name for p in out.iterdir()} == {name for names in expected.values() for name in names}
+
+
+def test_mp4_goes_through_ffmpeg_where_it_exists(result, tmp_path, monkeypatch):
+    """A stand-in ffmpeg on PATH records what it is given: raw RGB frames of the GIF's size."""
+    bin_folder = tmp_path / "bin"
+    bin_folder.mkdir()
+    fake = bin_folder / "ffmpeg"
+    fake.write_text("#!/usr/bin/env python3\nimport json, sys\nframes = sys.stdin.buffer.read()\n"
+                    "open(sys.argv[-1], 'w').write(json.dumps({'args': sys.argv[1:], 'bytes': len(frames)}))\n")
+    fake.chmod(0o755)
+    monkeypatch.setenv("PATH", f"{bin_folder}{os.pathsep}{os.environ['PATH']}")
+    written = write_animation(result, tmp_path, frames=3)
+    assert [p.name for p in written] == ["animation.gif", "animation.mp4"]
+    record = json.loads((tmp_path / "animation.mp4").read_text())
+    with Image.open(tmp_path / "animation.gif") as gif:
+        width, height = gif.size
+    assert record["args"][record["args"].index("-s") + 1] == f"{width}x{height}"
+    assert record["bytes"] == 3 * width * height * 3
