@@ -85,6 +85,7 @@ def test_report_json_written_by_the_command_is_to_json(tmp_path):
     path = EXAMPLES / "burmester_4poses.toml"
     assert main(["burmester", str(path), "--out", str(tmp_path)]) == 0
     written = json.loads((tmp_path / "report.json").read_text())
+    assert written.pop("files") == {"figure": ["burmester.png"], "report": ["report.json", "report.md"]}
     assert written == burmester.synthesize(burmester.load_problem(path)).to_json()
 
 
