@@ -190,7 +190,7 @@ def _carrier_turn_deg(train: PlanetaryTrain, stage: int, phi1: float) -> float:
     return float(np.degrees(c))
 
 
-def _reasons(train: PlanetaryTrain, stage: int, cutter: str, gearing: Gearing, module: float) -> tuple[str, str]:
+def cutting_reasons(train: PlanetaryTrain, stage: int, cutter: str, gearing: Gearing, module: float) -> tuple[str, str]:
     """Why each gear of a stage is cut as it is, with the numbers at the chosen size."""
     design = (train.stage_one, train.stage_two)[stage]
     names = GEAR_NAMES[2 * stage:2 * stage + 2]
@@ -246,12 +246,15 @@ def _straight_module(shapes, module: float, length: float, source: str) -> tuple
         for z2 in {max(z2_min, math.floor(rest)), max(z2_min, math.ceil(rest))}:
             exact = length / (np.pi * (z1 / p1 + z2 / p2))
             found.append((abs(exact - module), z1, z2, exact))
+    def evenness(f):
+        return abs(f[1] / p1 - f[2] / p2), f[1]
+
     exact = [f for f in found if f[0] <= WHOLE * module]
     if exact:
-        _, z1, z2, m = min(exact, key=lambda f: (abs(f[1] / p1 - f[2] / p2), f[1]))
+        _, z1, z2, m = min(exact, key=evenness)
         return z1, z2, m
-    below = max((f for f in found if f[3] < module), key=lambda f: f[3], default=None)
-    above = min((f for f in found if f[3] > module), key=lambda f: f[3], default=None)
+    below = min((f for f in found if f[3] < module), key=lambda f: (-f[3], *evenness(f)), default=None)
+    above = min((f for f in found if f[3] > module), key=lambda f: (f[3], *evenness(f)), default=None)
     offers = "; ".join(f"module = {f[3]:.12g} (Z = {f[1]}, {f[2]})" for f in (below, above) if f)
     raise ProblemError(f"{source}: gears.module = {module:g} with gears.layout = \"straight\": no whole tooth counts "
                        f"without undercut (Z1 >= {z1_min}, Z2 >= {z2_min}) make a1 + a2 = |OA| = {length:.6g} mm; "
@@ -369,7 +372,7 @@ def design_toothed_train(relative: RelativeMotion, carrier_length: float, gearin
     line_one = delta                                                         # O -> shaft
     line_two = float(np.arctan2(-shaft[1], carrier_length - shaft[0]))      # shaft -> A
     centers = (np.zeros(2), shaft, shaft, np.array([carrier_length, 0.0]))
-    reasons = [_reasons(train, stage, shape.cutter, gearing, module) for stage, shape in enumerate(shapes)]
+    reasons = [cutting_reasons(train, stage, shape.cutter, gearing, module) for stage, shape in enumerate(shapes)]
     gears = []
     for k in range(4):
         stage, side = divmod(k, 2)
