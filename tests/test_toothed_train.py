@@ -1,6 +1,7 @@
 """The toothed planetary train: whole counts against hand-computed circles and on a spline, the carrier
 layout, where each gear sits, the rack/shaper choice with its numbers, and bad [gears] input."""
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -178,7 +179,7 @@ def _with_gears(**gears):
 
 
 def test_gears_table_defaults_and_example():
-    gearing = load_problem("examples/vegetable_planting.toml").gearing
+    gearing = load_problem(Path(__file__).parents[1] / "examples/vegetable_planting.toml").gearing
     assert (gearing.module, gearing.cutter, gearing.layout) == (1.5, "rack", "bent")
     assert gearing.pressure_angle == pytest.approx(np.radians(20))
     g = _with_gears(module=2, pressure_angle_deg=25, cutter="shaper", shaper_teeth=20, layout="straight").gearing
