@@ -161,7 +161,8 @@ class ToothedTrain:
 
     @property
     def failures(self) -> list[str]:
-        return [f"stage {k + 1}: {text}" for k, check in enumerate(self.mesh) for text in check.failures]
+        pairs = ("sun -> first intermediate", "second intermediate -> planet")
+        return [f"{pair}: {text}" for pair, check in zip(pairs, self.mesh) for text in check.failures]
 
     @property
     def passed(self) -> bool:
@@ -218,9 +219,10 @@ def cutting_reasons(train: PlanetaryTrain, stage: int, cutter: str, gearing: Gea
 def _bent_counts(shapes, module: float, length: float) -> tuple[int, int]:
     """Least a1 + a2, then least |a1 - a2|, then least Z1, with |a1 - a2| <= |OA| <= a1 + a2."""
     pitch = [np.pi * module / s.perimeter for s in shapes]          # a_j per tooth
-    if 2 * length < min(pitch) * (1 - WHOLE):
-        raise InfeasibleError(f"the carrier |OA| = {length:.4g} mm is shorter than half a tooth step of centre "
-                              f"distance ({min(pitch):.4g} mm at module {module:g}): no whole counts fit; use a finer module")
+    if 2 * length < pitch[1] * (1 - WHOLE):       # then some a1 would leave no whole Z2 within a1 -+ |OA|
+        raise InfeasibleError(f"the carrier |OA| = {length:.4g} mm is shorter than half a tooth step of the second "
+                              f"centre distance ({pitch[1]:.4g} mm at module {module:g}): no whole counts fit; use a "
+                              "finer module")
     found = []
     z1 = shapes[0].min_teeth
     while not found or z1 * pitch[0] + shapes[1].min_teeth * pitch[1] <= min(found)[0] * (1 + WHOLE):
@@ -246,6 +248,7 @@ def _straight_module(shapes, module: float, length: float, source: str) -> tuple
         for z2 in {max(z2_min, math.floor(rest)), max(z2_min, math.ceil(rest))}:
             exact = length / (np.pi * (z1 / p1 + z2 / p2))
             found.append((abs(exact - module), z1, z2, exact))
+
     def evenness(f):
         return abs(f[1] / p1 - f[2] / p2), f[1]
 
