@@ -55,7 +55,8 @@ def test_circles_get_the_hand_counted_teeth(circles):
 
 @pytest.mark.parametrize("carrier,alpha,expected", [(100.0, 20.0, (33, 34)), (20.0, 25.0, (12, 12))])
 def test_circle_counts_on_other_carriers(carrier, alpha, expected):
-    """|OA| = 100: a1 + a2 = 1.5 (Z1 + Z2) >= 100 needs 67 teeth, split most evenly; at 25 deg a circle
+    """|OA| = 100: a1 + a2 = 1.5 (Z1 + Z2) >= 100 needs 67 teeth; the largest gear is least when they are split
+    33 + 34; at 25 deg a circle
     needs 2 / sin^2(25 deg) = 11.2 -> 12 teeth, and 18 mm each spans a 20 mm carrier."""
     unit = design_train(CONSTANT_RATE, (1.0, 1.0))
     gearing = Gearing(pressure_angle=math.radians(alpha))

@@ -15,9 +15,9 @@ sweep the driven gear), and the shaper's pitch circle, radius m N / 2 for N cutt
 the driver's tightest hollow, kappa_j per unit centre distance: Z_j > N P_j / (2 pi kappa_j).
 
 Layout. The planet's turn against the carrier does not depend on where the intermediate shaft sits,
-so a1 and a2 are free within |a1 - a2| <= |OA| <= a1 + a2 (``layout = "bent"``): the search takes
-the smallest gears (least a1 + a2), then the most even pair, then the least Z1, among whole counts at
-or above their minimum. The shaft sits on the counterclockwise side of O->A in the carrier frame, at the
+so a1 and a2 are free within |a1 - a2| <= |OA| <= a1 + a2 (``layout = "bent"``): among whole counts
+at or above their minimum the search takes the least largest centre distance (the gears' reach on the
+carrier), then the least a1 + a2, then the least Z1. The shaft sits on the counterclockwise side of O->A in the carrier frame, at the
 bend angle delta0 = angle(O->A, O->shaft) of the cosine rule. ``layout = "straight"`` keeps the shaft on
 O-A, a1 + a2 = |OA|: whole counts then exist only at the modules |OA| / (pi (Z1 / P1 + Z2 / P2)). A
 cutter of a made-up module does not exist, so the asked module is never changed: it must be one of
@@ -217,7 +217,7 @@ def cutting_reasons(train: PlanetaryTrain, stage: int, cutter: str, gearing: Gea
 
 
 def _bent_counts(shapes, module: float, length: float) -> tuple[int, int]:
-    """Least a1 + a2, then least |a1 - a2|, then least Z1, with |a1 - a2| <= |OA| <= a1 + a2."""
+    """Least max(a1, a2), then least a1 + a2, then least Z1, with |a1 - a2| <= |OA| <= a1 + a2."""
     pitch = [np.pi * module / s.perimeter for s in shapes]          # a_j per tooth
     if 2 * length < pitch[1] * (1 - WHOLE):       # then some a1 would leave no whole Z2 within a1 -+ |OA|
         raise InfeasibleError(f"the carrier |OA| = {length:.4g} mm is shorter than half a tooth step of the second "
@@ -225,16 +225,15 @@ def _bent_counts(shapes, module: float, length: float) -> tuple[int, int]:
                               "finer module")
     found = []
     z1 = shapes[0].min_teeth
-    while not found or z1 * pitch[0] + shapes[1].min_teeth * pitch[1] <= min(found)[0] * (1 + WHOLE):
+    while not found or z1 * pitch[0] <= min(found)[0]:
         a1 = z1 * pitch[0]
+        # for a given Z1 the smallest Z2 that spans the carrier is best on every key
         least = max(shapes[1].min_teeth, math.ceil(abs(length - a1) / pitch[1] * (1 - WHOLE)))
-        most = math.floor((a1 + length) / pitch[1] * (1 + WHOLE))
-        if least <= most:
-            found.append((a1 + least * pitch[1], abs(a1 - least * pitch[1]), z1, least))
+        if least <= math.floor((a1 + length) / pitch[1] * (1 + WHOLE)):
+            a2 = least * pitch[1]
+            found.append((max(a1, a2), a1 + a2, z1, least))
         z1 += 1
-    smallest = min(found)[0]
-    _, _, z1, z2 = min((f for f in found if f[0] <= smallest * (1 + WHOLE)), key=lambda f: f[1:])
-    return z1, z2
+    return min(found)[2:]
 
 
 def _straight_module(shapes, module: float, length: float, source: str) -> tuple[int, int, float]:
