@@ -4,11 +4,11 @@ The driver sits at the origin turned clockwise by phi1, the driven gear at (a, 0
 counterclockwise by phi2(phi1) from the pitch-curve design (``pair.driven_angle``), as
 ``design_pair`` lays a pair out. Driver angles are spread evenly in arc length, several per
 tooth, over one driven turn. At each position every outline vertex near the pitch point is
-measured against the other outline (each outline stays in its own frame, so its segment tree
-is built once):
+measured against the other outline, which stays in its own frame so that its segments are filed
+once, in a grid of square cells (a point's cell lists every segment within the search cap):
 
-- d, the signed distance to the nearest segment of the other outline (shapely, exact; negative
-  inside). The position's clearance is the smallest d: below zero it is an overlap depth, above
+- d, the signed distance to the nearest segment of the other outline (exact point-to-segment
+  distance; the sign from shapely's point-in-polygon test, negative inside). The position's clearance is the smallest d: below zero it is an overlap depth, above
   zero the teeth do not touch;
 - turning the driven gear by delta changes d by delta sigma to first order, sigma being the
   outward normal of the nearest segment dotted with the vertex's velocity per unit turn. The
@@ -39,7 +39,7 @@ SAMPLES_PER_TOOTH = 8
 #: Vertices within this many circular pitches of the pitch point (along each pitch curve) are measured.
 REACH_PITCHES = 1.5
 #: Measured vertices are thinned to about this spacing along their outline (modules); the other outline
-#: keeps every segment.
+#: keeps its segments (simplified as below).
 SPACING_MODULES = 0.05
 #: The measured-against outline is simplified (Douglas-Peucker) within this many modules.
 SIMPLIFY_MODULES = 5e-4
