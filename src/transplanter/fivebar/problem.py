@@ -42,7 +42,8 @@ from pathlib import Path
 import numpy as np
 
 from transplanter.toml_fields import ClassFields, FieldReader, read_toml
-from transplanter.trains.toothed_train import CUTTERS, LAYOUTS, MODULE_RANGE, PRESSURE_ANGLE_RANGE_DEG, SHAPER_TEETH_RANGE, Gearing
+from transplanter.trains.toothed_train import (CUTTERS, LAYOUTS, MODULE_RANGE, PRESSURE_ANGLE_RANGE_DEG,
+                                               SHAPER_TEETH_RANGE, Gearing)
 
 RANGE_FIELDS = {"ep": "|EP| (mm)", "fp": "|FP| (mm)", "x_e": "x of E in pose 1 (mm)", "x_f": "x of F in pose 1 (mm)"}
 _TOP_KEYS = {"title", "description", "key_poses", "return_points", "ranges", "conditions", "spline", "region", "gears"}

@@ -8,8 +8,8 @@ measured against the other outline, which stays in its own frame so that its seg
 once, in a grid of square cells (a point's cell lists every segment within the search cap):
 
 - d, the signed distance to the nearest segment of the other outline (exact point-to-segment
-  distance; the sign from shapely's point-in-polygon test, negative inside). The position's clearance is the smallest d: below zero it is an overlap depth, above
-  zero the teeth do not touch;
+  distance; the sign from shapely's point-in-polygon test, negative inside). The position's
+  clearance is the smallest d: below zero it is an overlap depth, above zero the teeth do not touch;
 - turning the driven gear by delta changes d by delta sigma to first order, sigma being the
   outward normal of the nearest segment dotted with the vertex's velocity per unit turn. The
   driven gear turned back by the largest d / sigma over sigma < 0 rests on the driving flanks:

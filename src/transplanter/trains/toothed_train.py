@@ -17,11 +17,12 @@ the driver's tightest hollow, kappa_j per unit centre distance: Z_j > N P_j / (2
 Layout. The planet's turn against the carrier does not depend on where the intermediate shaft sits,
 so a1 and a2 are free within |a1 - a2| <= |OA| <= a1 + a2 (``layout = "bent"``): among whole counts
 at or above their minimum the search takes the least largest centre distance (the gears' reach on the
-carrier), then the least a1 + a2, then the least Z1. The shaft sits on the counterclockwise side of O->A in the carrier frame, at the
-bend angle delta0 = angle(O->A, O->shaft) of the cosine rule. ``layout = "straight"`` keeps the shaft on
-O-A, a1 + a2 = |OA|: whole counts then exist only at the modules |OA| / (pi (Z1 / P1 + Z2 / P2)). A
-cutter of a made-up module does not exist, so the asked module is never changed: it must be one of
-these (to 1e-9), or it is refused with the nearest ones. Centre distances given in the problem fix a1,
+carrier), then the least a1 + a2, then the least Z1. The shaft sits on the counterclockwise side of
+O->A in the carrier frame, at the bend angle delta0 = angle(O->A, O->shaft) of the cosine rule.
+``layout = "straight"`` keeps the shaft on O-A, a1 + a2 = |OA|: whole counts then exist only at the
+modules |OA| / (pi (Z1 / P1 + Z2 / P2)). A cutter of a made-up module does not exist, so the asked
+module is never changed: it must be one of these (to 1e-9), or it is refused with the nearest ones
+(the most even pair of counts for each). Centre distances given in the problem fix a1,
 a2, and must give whole counts (to 1e-9), clear the undercut and fit the layout, or are refused with
 what would.
 
@@ -93,8 +94,8 @@ class Gearing:
             check.fail("module", self.module, f"a module from {MODULE_RANGE[0]:g} to {MODULE_RANGE[1]:g} mm")
         low, high = np.radians(PRESSURE_ANGLE_RANGE_DEG)
         if not is_finite_number(self.pressure_angle) or not low - 1e-12 <= self.pressure_angle <= high + 1e-12:
-            check.fail("pressure_angle", self.pressure_angle,
-                       f"an angle from {PRESSURE_ANGLE_RANGE_DEG[0]:g} to {PRESSURE_ANGLE_RANGE_DEG[1]:g} deg, in radians")
+            check.fail("pressure_angle", self.pressure_angle, "an angle from {:g} to {:g} deg, in radians".format(
+                *PRESSURE_ANGLE_RANGE_DEG))
         if self.cutter not in CUTTERS:
             check.fail("cutter", self.cutter, " or ".join(f'"{c}"' for c in CUTTERS))
         if self.layout not in LAYOUTS:
@@ -103,8 +104,8 @@ class Gearing:
         if isinstance(self.shaper_teeth, bool) or not isinstance(self.shaper_teeth, (int, np.integer)) \
                 or not low_teeth <= self.shaper_teeth <= high_teeth:
             check.fail("shaper_teeth", self.shaper_teeth, f"a whole number from {low_teeth} to {high_teeth}")
-        if self.center_distances is not None and (
-                len(self.center_distances) != 2 or not all(is_finite_number(v) and v > 0 for v in self.center_distances)):
+        centers = self.center_distances
+        if centers is not None and (len(centers) != 2 or not all(is_finite_number(v) and v > 0 for v in centers)):
             check.fail("center_distances", self.center_distances, "two positive distances (mm) or None")
 
 
@@ -408,7 +409,8 @@ def toothed_train_json(toothed: ToothedTrain) -> dict:
                    "min_curvature_radius_mm": g.min_curvature_radius, "min_concave_radius_mm": g.min_concave_radius,
                    "cutter": g.cutter, "reason": g.reason, "center_mm": g.center.tolist(),
                    "angle_at_turn_zero_deg": float(np.degrees(g.angle_at_turn_zero))} for g in toothed.gears],
-        "mesh_check": {"max_overlap_mm": worst("max_overlap_mm", max), "min_clearance_mm": worst("min_clearance_mm", min),
+        "mesh_check": {"max_overlap_mm": worst("max_overlap_mm", max),
+                       "min_clearance_mm": worst("min_clearance_mm", min),
                        "max_contact_gap_mm": worst("max_contact_gap_mm", max),
                        "transmission_error_deg": worst("transmission_error_deg", max),
                        "passed": toothed.passed, "failures": toothed.failures, "stages": stages},
