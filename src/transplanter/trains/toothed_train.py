@@ -296,7 +296,10 @@ def bend_angle(a1: float, a2: float, length: float) -> float:
 
 
 def gear_angles(toothed: ToothedTrain, carrier_turn) -> np.ndarray:
-    """Angles (rad, carrier frame) of sun, first and second intermediate and planet at carrier turns c: (..., 4)."""
+    """Angles (rad, carrier frame) of sun, first and second intermediate and planet at carrier turns c: (..., 4).
+
+    In the world, with the carrier O->A at angle theta1(0) in pose 1 and turning clockwise, a gear's angle is
+    theta1(0) - c plus this, and its centre is its carrier-frame centre turned by theta1(0) - c about O."""
     c = np.asarray(carrier_turn, float)
     laps = np.floor(c / (2 * np.pi))
     psi = toothed.train.intermediate_turn(c - 2 * np.pi * laps) + 2 * np.pi * laps
