@@ -117,6 +117,7 @@ def _fivebar(args) -> int:
     if args.folder:
         from transplanter.fivebar.animation import write_animation
         from transplanter.fivebar.drawings import write_drawings
+        from transplanter.fivebar.gears_on_carrier import teeth_on_carrier
 
         with progress.step("figures"):
             figures = _save_figures(fivebar.draw_figures(result), args.folder)
@@ -124,9 +125,10 @@ def _fivebar(args) -> int:
             write_drawings(result, args.folder)
         if not args.no_animation:
             with progress.step("animation"):
-                write_animation(result, args.folder)
+                teeth = teeth_on_carrier(result.toothed, result.design.mech.carrier_length)
+                write_animation(result, args.folder, teeth)
     text = to_markdown(report, problem.labels, figures)
-    return _publish(args, report, text, text, _failures(result, result.verification))
+    return _publish(args, report, text, text, _failures(result))
 
 
 def _reverse(args) -> int:

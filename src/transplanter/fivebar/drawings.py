@@ -8,6 +8,8 @@ All in millimetres and degrees (DXF INSUNITS = mm). Files:
 - ``trajectory.csv``: P over a turn from the verification (gears rolling, loop closed): carrier turn
   (clockwise from pose 1) and carrier angle (counterclockwise from +x), x, y, plate angle.
 - ``relative_angle.csv``: rho (rod I against the carrier), rho' = drho/dc and the total ratio i0 = 1 / rho'.
+- ``<gear>.dxf`` and ``<gear>.svg`` per gear (``gears.drawings.write_gear_drawings``): the cut tooth
+  outline, the pitch curve, the bore and the assembly mark towards the mate at pose 1.
 - ``pitch_curve_<gear>.csv`` per gear: polar angle, radius, x, y in the gear's own frame, as drawn on
   the carrier (``gears_on_carrier``).
 """
@@ -18,9 +20,9 @@ from pathlib import Path
 import ezdxf
 import numpy as np
 
-from transplanter.fivebar.gears_on_carrier import gears_on_carrier
+from transplanter.fivebar.gears_on_carrier import gears_on_carrier, tooth_outlines
 from transplanter.fivebar.result import FiveBarResult
-from transplanter.gears.drawings import GearDrawing, default_bore_radius
+from transplanter.gears.drawings import GearDrawing, default_bore_radius, write_gear_drawings
 
 #: Hinge circle radius and label height as fractions of the largest distance between two hinges in pose 1.
 HINGE_FRACTION = 0.01
@@ -89,10 +91,12 @@ def write_tables(result: FiveBarResult, folder: Path) -> list[Path]:
 
 
 def write_drawings(result: FiveBarResult, folder: str | Path) -> list[Path]:
-    """The linkage DXF and the CSV tables of a five-bar design in ``folder`` (made if missing); the files written."""
+    """The linkage DXF, the CSV tables and each gear's DXF and SVG (teeth, pitch curve, bore, assembly mark)
+    of a five-bar design in ``folder`` (made if missing); the files written."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
-    return [write_linkage_dxf(result, folder / "linkage.dxf"), *write_tables(result, folder)]
+    gears = write_gear_drawings(gear_drawings(result, tooth_outlines(result.toothed)), folder)
+    return [write_linkage_dxf(result, folder / "linkage.dxf"), *write_tables(result, folder), *gears]
 
 
 def gear_drawings(result: FiveBarResult, outlines: dict[str, np.ndarray]) -> list[GearDrawing]:

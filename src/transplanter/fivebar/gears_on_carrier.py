@@ -19,6 +19,7 @@ import numpy as np
 from transplanter.fivebar.linkage import FiveBar
 from transplanter.geometry.poses import rotate_about, rotation
 from transplanter.trains.planetary import PlanetaryTrain
+from transplanter.trains.toothed_train import ToothedTrain
 
 MIRROR = np.array([1.0, -1.0])
 
@@ -78,3 +79,16 @@ def gears_on_carrier(train: PlanetaryTrain, carrier_length: float) -> list[GearO
 def carrier_to_world(mech: FiveBar, points: np.ndarray, c) -> np.ndarray:
     """Carrier-frame points (..., 2) in the ground frame at carrier turn(s) c (the carrier at carrier_angle - c)."""
     return rotate_about(points, (0.0, 0.0), np.asarray(mech.carrier_angle - np.asarray(c, float))[..., None])
+
+
+def tooth_outlines(toothed: ToothedTrain) -> dict[str, np.ndarray]:
+    """The cut outline (N, 2) mm of each gear of a toothed train, by the names of ``gears_on_carrier``
+    (both place stage 1 mirrored and give each gear the same frame, so the outlines fit the pitch curves)."""
+    return {gear.name.replace(" ", "_"): gear.outline for gear in toothed.gears}
+
+
+def teeth_on_carrier(toothed: ToothedTrain, carrier_length: float) -> dict:
+    """Tooth outlines with their centres and turns on the carrier, as ``animation.Teeth`` takes them."""
+    outlines = tooth_outlines(toothed)
+    return {gear.name: (outlines[gear.name], gear.center, gear.angle)
+            for gear in gears_on_carrier(toothed.train, carrier_length)}

@@ -28,17 +28,23 @@ def to_markdown(report: dict, labels: tuple[str, ...], figures: list[str]) -> st
               "- active bounds: " + (", ".join(_bound(b) for b in report["active_bounds"]) or "none"),
               f"- relative angle strictly increasing: {report['relative_angle_monotonic']}; total ratio i0 in "
               f"[{report['ratio_range'][0]:.4f}, {report['ratio_range'][1]:.4f}]", ""]
-    gears = report["gears"]
+    train, mesh = report["gear_train"], report["mesh_check"]
+    a1, a2 = train["center_distances_mm"]
     lines += ["## Gears (eq 11-13)", "",
-              f"Correction factor k = {gears['correction_k']:.6f}. Eq (12) as printed (integrating over the relative "
-              f"angle) gives k = {gears['printed_eq12_k']:.6f}, with which the first intermediate gear turns "
-              f"{gears['printed_eq12_intermediate_turn_deg']:.3f} deg per sun turn instead of 360.", "",
-              "| pair | a (mm) | closure error (rad) | driver r (mm) | driven r (mm) | convex |", "|---|---|---|---|---|---|"]
-    for stage in gears["stages"]:
-        lines.append(f"| {stage['pair']} | {stage['center_distance']:.3f} | {stage['closure_error_rad']:.2g} | "
-                     f"{stage['driver_radius_range'][0]:.3f}-{stage['driver_radius_range'][1]:.3f} | "
-                     f"{stage['driven_radius_range'][0]:.3f}-{stage['driven_radius_range'][1]:.3f} | "
-                     f"{stage['driver_convex']}/{stage['driven_convex']} |")
+              f"Correction factor k = {train['correction_k']:.6f}. Eq (12) as printed (integrating over the relative "
+              f"angle) gives k = {train['printed_eq12_k']:.6f}, with which the first intermediate gear turns "
+              f"{train['printed_eq12_intermediate_turn_deg']:.3f} deg per sun turn instead of 360.", "",
+              f"Module {train['module']:g} mm, pressure angle {train['pressure_angle_deg']:g} deg, {train['layout']} "
+              f"carrier: a1 = {a1:.4f} mm, a2 = {a2:.4f} mm, the intermediate shaft at "
+              f"({train['shaft_mm'][0]:.3f}, {train['shaft_mm'][1]:.3f}) mm, bent {train['bend_angle_deg']:.2f} deg "
+              "from O-A.", "",
+              "| gear | role | teeth | convex | smallest convex curvature radius (mm) | cutter | why |",
+              "|---|---|---|---|---|---|---|"]
+    lines += [f"| {g['name']} | {g['role']} | {g['teeth']} | {g['convex']} | {g['min_curvature_radius_mm']:.3f} | "
+              f"{g['cutter']} | {g['reason']} |" for g in report["gears"]]
+    lines += ["", f"Tooth mesh over a turn (teeth turned by the designed motion): largest overlap "
+              f"{mesh['max_overlap_mm']:.4f} mm, smallest clearance {mesh['min_clearance_mm']:.4f} mm, transmission "
+              f"error {mesh['transmission_error_deg']:.4f} deg: {'passed' if mesh['passed'] else 'FAILED'}.", ""]
     lines += _alternatives(report)
     region = report["region"]
     lines += ["", "## Solution region", "",

@@ -13,6 +13,7 @@ from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import Region
 from transplanter.fivebar.verification import Verification
 from transplanter.trains.planetary import PlanetaryTrain, printed_correction
+from transplanter.trains.toothed_train import ToothedTrain, toothed_train_json
 
 
 def design_json(mech: FiveBar, pose1: np.ndarray) -> dict:
@@ -74,8 +75,9 @@ class FiveBarResult:
     design : DesignSolution
         The picked refined mechanism (mm, rad), the relative angle of rod I as a B-spline of the
         carrier turn (rad), the return stroke, and the NLP's objective, iterations and status.
-    train : PlanetaryTrain
-        The four pitch curves (mm) of the two gear stages and the correction factor k.
+    toothed : ToothedTrain
+        The four gears with whole teeth on the carrier: pitch curves (mm), counts, cutters, tooth
+        outlines and the mesh check of each stage; ``train`` is its ``PlanetaryTrain``.
     verification : Verification
         The independent forward simulation: errors at the key poses (mm, deg) and return
         points (mm), trajectory of P over a turn (mm), closure margin, ratio range.
@@ -93,12 +95,26 @@ class FiveBarResult:
     region: Region
     start: Candidate
     design: DesignSolution
-    train: PlanetaryTrain
+    toothed: ToothedTrain
     verification: Verification
     timings_s: dict
     alternatives: tuple[Alternative, ...]
     failed: tuple[Failure, ...]
     picked: int
+
+    @property
+    def train(self) -> PlanetaryTrain:
+        """The pitch curves of the two gear stages and the correction factor k."""
+        return self.toothed.train
+
+    @property
+    def failures(self) -> list[str]:
+        """Every check of the built mechanism it fails: verification, then the gears' mesh."""
+        return [*self.verification.failures, *self.toothed.failures]
+
+    @property
+    def passed(self) -> bool:
+        return not self.failures
 
     @property
     def chosen(self) -> Alternative:
@@ -108,6 +124,7 @@ class FiveBarResult:
     def to_json(self) -> dict:
         """The report as plain JSON types (mm, degrees): the content of report.json."""
         problem, design, train, check = self.problem, self.design, self.train, self.verification
+        toothed = toothed_train_json(self.toothed)
         relative = design.relative_angle
         k_printed, turn_printed = printed_correction(relative)
         region, chosen = self.region, self.chosen
@@ -133,10 +150,14 @@ class FiveBarResult:
                                "control_values_deg": np.degrees(relative.coefficients).tolist(),
                                "return_point_turns_deg": np.degrees(design.stroke.carrier_turns).tolist()},
             "gear_closure_errors": [train.stage_one.closure_error, train.stage_two.closure_error],
-            "gears": {"correction_k": train.correction, "printed_eq12_k": k_printed,
-                      "printed_eq12_intermediate_turn_deg": float(np.degrees(turn_printed)),
-                      "stages": [_stage_json(train.stage_one, "sun -> first intermediate"),
-                                 _stage_json(train.stage_two, "second intermediate -> planet")]},
+            "gears": toothed["gears"], "mesh_check": toothed["mesh_check"],
+            "gear_train": {"correction_k": train.correction, "printed_eq12_k": k_printed,
+                           "printed_eq12_intermediate_turn_deg": float(np.degrees(turn_printed)),
+                           **{key: toothed[key] for key in ("layout", "module", "pressure_angle_deg",
+                                                            "center_distances_mm", "teeth", "bend_angle_deg",
+                                                            "shaft_mm")},
+                           "stages": [_stage_json(train.stage_one, "sun -> first intermediate"),
+                                      _stage_json(train.stage_two, "second intermediate -> planet")]},
             "roundtrip_max_error_mm": check.roundtrip_max_error_mm,
             "contact_gap_mm": check.contact_gap_mm,
             "region": {"receiving_dyads": len(region.receiving.fixed),

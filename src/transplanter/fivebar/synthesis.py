@@ -2,7 +2,8 @@
 
 Region (``fivebar.region``) -> every feasible candidate refined by the design NLP (one solver
 per problem), judged, merged and ranked (``fivebar.alternatives``) -> the picked alternative's
-gear train (``trains.planetary``) -> independent verification (``fivebar.verification``).
+gear train with whole teeth, cut and mesh-checked (``trains.toothed_train``) -> independent
+verification (``fivebar.verification``).
 When the region is empty, the error names the condition that emptied it and the closest
 candidates.
 """
@@ -20,7 +21,7 @@ from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import ChainFamily, Region, solution_region
 from transplanter.fivebar.result import FiveBarResult
 from transplanter.fivebar.verification import verify
-from transplanter.trains.planetary import design_train
+from transplanter.trains.toothed_train import design_toothed_train
 
 
 def _empty_family(problem: FiveBarProblem, name: str, family: ChainFamily):
@@ -53,16 +54,6 @@ def _no_feasible_pair(problem: FiveBarProblem, region: Region):
                       f"{' / '.join(c.defects)}]" for c in closest)
     raise InfeasibleError(f"{problem.source}: none of the {len(region.candidates)} five-bars of the region is "
                           f"feasible (first failing condition per pair: {counts}); closest: {lines}")
-
-
-def center_distances(problem: FiveBarProblem, carrier_length: float) -> tuple[float, float]:
-    if problem.center_distances is None:
-        return carrier_length / 2, carrier_length / 2
-    a1, a2 = problem.center_distances
-    if a1 + a2 < carrier_length or abs(a1 - a2) > carrier_length:
-        raise ProblemError(f"{problem.source}: gears = [{a1:g}, {a2:g}] mm: expected center distances that can span "
-                           f"the carrier O-A = {carrier_length:.3f} mm (a1 + a2 >= OA >= |a1 - a2|)")
-    return a1, a2
 
 
 def _checked_pick(pick) -> int:
@@ -147,12 +138,13 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
     design = chosen.design
 
     start = _step(progress, "gears")
-    train = design_train(design.relative_angle, center_distances(problem, design.mech.carrier_length), problem.source)
+    toothed = design_toothed_train(design.relative_angle, design.mech.carrier_length, problem.gearing, problem.source)
     timings["gears"] = _done(progress, "gears", start)
+    timings.update((f"gears_{step}", seconds) for step, seconds in toothed.timings_s.items())
     start = _step(progress, "verification")
-    verification = verify(problem, design.mech, design.relative_angle, train, design.stroke.carrier_turns)
+    verification = verify(problem, design.mech, design.relative_angle, toothed.train, design.stroke.carrier_turns)
     timings["verification"] = _done(progress, "verification", start)
-    return FiveBarResult(problem, region, region.feasible[chosen.starts[0]], design, train, verification, timings,
+    return FiveBarResult(problem, region, region.feasible[chosen.starts[0]], design, toothed, verification, timings,
                          tuple(alternatives), tuple(failed), pick)
 
 
