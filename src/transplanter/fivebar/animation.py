@@ -44,6 +44,10 @@ def _placed(outline: np.ndarray, center: np.ndarray, angle: Callable, c: float) 
     return center + outline @ rotation(float(np.asarray(angle(np.array([c])))[0])).T
 
 
+def _clock_text(c: float) -> str:
+    return f"carrier turn {np.degrees(c):5.1f} deg (clockwise from pose 1)"
+
+
 def _draw_frames(result: FiveBarResult, teeth: Teeth | None, frames: int):
     """The Figure and a function that draws frame k."""
     mech, problem, check = result.design.mech, result.problem, result.verification
@@ -74,7 +78,8 @@ def _draw_frames(result: FiveBarResult, teeth: Teeth | None, frames: int):
 
     carrier_curves = [carrier.plot([], [], lw=1, label=name, animated=True)[0] for *_, name in outlines]
     carrier_teeth = [carrier.plot([], [], "k-", lw=0.6, animated=True)[0] for _ in toothed]
-    clock = fig.text(0.5, 0.99, "", ha="center", va="top", fontsize=9, animated=True)
+    clock = carrier.text(0.0, -0.22, _clock_text(0.0), transform=carrier.transAxes, ha="left", va="top", fontsize=9,
+                         animated=True)      # below the axis label, where constrained layout keeps room for it
     centers = np.array([g.center for g in gears])
     carrier.plot(*centers.T, "k+")
     carrier.plot(*centers[[0, 1, 3]].T, "k:", lw=0.8)
@@ -98,7 +103,7 @@ def _draw_frames(result: FiveBarResult, teeth: Teeth | None, frames: int):
             line.set_data(*carrier_to_world(mech, _placed(outline, center, angle, c), c).T)
         for line, (outline, center, angle, _) in zip(carrier_teeth, toothed):
             line.set_data(*_placed(outline, center, angle, c).T)
-        clock.set_text(f"carrier turn {np.degrees(c):5.1f} deg (clockwise from pose 1)")
+        clock.set_text(_clock_text(c))
         return [trace, chain, plate, clock, *world_gears, *carrier_curves, *carrier_teeth]
 
     return fig, draw
