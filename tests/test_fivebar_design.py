@@ -36,8 +36,8 @@ def problem():
 
 
 @pytest.fixture(scope="module")
-def result(problem):
-    return synthesize(problem)
+def result(example_result):
+    return example_result
 
 
 def test_kernel_is_the_cox_de_boor_cubic_basis():

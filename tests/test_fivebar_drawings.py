@@ -25,8 +25,8 @@ DXF_MM = 4          # $INSUNITS code of millimetres
 
 
 @pytest.fixture(scope="module")
-def result():
-    return fivebar.synthesize(fivebar.load_problem(EXAMPLE))
+def result(example_result):
+    return example_result
 
 
 @pytest.fixture(scope="module")

@@ -1,24 +1,20 @@
 """Issue 11 section 4: the verification closes the loop by its own route (eq 8-9 by Newton) and
 reports a mechanism built wrong."""
 import dataclasses
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from transplanter.fivebar.loop_closure import close_loop
-from transplanter.fivebar.problem import load_problem
-from transplanter.fivebar.synthesis import synthesize
 from transplanter.fivebar.verification import verify
 from transplanter.trains.planetary import design_train
 
-EXAMPLE = Path(__file__).resolve().parents[1] / "examples/vegetable_planting.toml"
 TURN = np.linspace(0, 2 * np.pi, 3600, endpoint=False)
 
 
 @pytest.fixture(scope="module")
-def result():
-    return synthesize(load_problem(EXAMPLE))
+def result(example_result):
+    return example_result
 
 
 def _wrapped(angle):
