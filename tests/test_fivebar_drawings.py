@@ -195,10 +195,10 @@ def quick_command(result, monkeypatch):
     tested above or elsewhere; here only what the command writes and lists)."""
     from transplanter.fivebar import animation
 
-    def stand_in(result, folder):
+    def stand_in(result, folder, teeth=None):
         (folder / "animation.gif").write_bytes(b"GIF89a")
         return [folder / "animation.gif"]
-    monkeypatch.setattr(fivebar, "synthesize", lambda problem: result)
+    monkeypatch.setattr(fivebar, "synthesize", lambda problem, **options: result)
     monkeypatch.setattr(fivebar, "draw_figures", lambda result: {"trajectory": Figure(figsize=(1, 1))})
     monkeypatch.setattr(animation, "write_animation", stand_in)
 
@@ -209,7 +209,9 @@ def test_fivebar_out_holds_and_lists_the_drawings_tables_and_animation(quick_com
     assert main(["fivebar", str(EXAMPLE), "--out", str(out), "--json", *([] if animation else ["--no-animation"])]) == 0
     report = json.loads(capsys.readouterr().out)
     assert report == json.loads((out / "report.json").read_text())
-    expected = {"drawing": ["linkage.dxf"], "figure": ["trajectory.png"], "report": ["report.json", "report.md"],
+    gears = [f"{gear}.{kind}" for gear in ("first_intermediate", "planet", "second_intermediate", "sun")
+             for kind in ("dxf", "svg")]
+    expected = {"drawing": sorted(["linkage.dxf", *gears]), "figure": ["trajectory.png"], "report": ["report.json", "report.md"],
                 "table": ["pitch_curve_first_intermediate.csv", "pitch_curve_planet.csv",
                           "pitch_curve_second_intermediate.csv", "pitch_curve_sun.csv", "relative_angle.csv",
                           "trajectory.csv"]}
