@@ -19,6 +19,7 @@ Two uses:
 from __future__ import annotations
 
 import numpy as np
+import shapely
 
 from transplanter.gears.pair import GearPairDesign, driven_angle
 from transplanter.geometry.poses import rotate_about
@@ -28,6 +29,8 @@ ORIGIN = (0.0, 0.0)
 
 #: Polar bins per turn: about 0.01 deg, a few micrometres of arc at gear sizes.
 BINS = 36000
+#: A cut outline that cuts its mate is first simplified (Douglas-Peucker) within this many modules.
+SIMPLIFY_MODULES = 1e-4
 
 
 def shaper_cutter(module: float, alpha: float, teeth: int) -> np.ndarray:
@@ -44,7 +47,7 @@ def _polar(points: np.ndarray):
     return np.arctan2(points[..., 1], points[..., 0]), points[..., 0] ** 2 + points[..., 1] ** 2
 
 
-def _segments(points: np.ndarray, facing: np.ndarray, reach: float, place, chunk: int = 48):
+def _segments(points: np.ndarray, facing: np.ndarray, reach: float, place, chunk: int = 24):
     """Points and the segments between them (index pairs) bounding the region that ``points``, a closed outline, sweeps through
     its positions (``place(points, rows) -> (rows, W, 2)``), a chunk of positions at a time.
 
@@ -160,5 +163,7 @@ def mate_profile(design: GearPairDesign, driver_outline: np.ndarray, driven: Pit
         world = rotate_about(points[None], ORIGIN, -phi1[rows, None])            # driver points near the line of centres
         return rotate_about(world - [design.center_distance, 0.0], ORIGIN, -phi2[rows, None])
 
+    # the driver's one-per-bin vertices, thinned where they stay within a hair of their chords
+    cutter = shapely.get_coordinates(shapely.simplify(shapely.linearrings(driver_outline), SIMPLIFY_MODULES * module))[:-1]
     tip = driven.points + ADDENDUM * module * driven.normals
-    return _lower_envelope(driven.points, tip, _segments(driver_outline, phi1, reach, place))
+    return _lower_envelope(driven.points, tip, _segments(cutter, phi1, reach, place))
