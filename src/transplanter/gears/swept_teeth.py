@@ -48,8 +48,8 @@ def _polar(points: np.ndarray):
 
 
 def _segments(points: np.ndarray, facing: np.ndarray, reach: float, place, chunk: int = 24):
-    """Points and the segments between them (index pairs) bounding the region that ``points``, a closed outline, sweeps through
-    its positions (``place(points, rows) -> (rows, W, 2)``), a chunk of positions at a time.
+    """Points and the segments between them (index pairs) bounding the region that ``points``, a closed
+    outline, sweeps through its positions (``place(points, rows) -> (rows, W, 2)``), a chunk at a time.
 
     Between positions k and k + 1 that region is the outline at k together with the quadrilaterals
     its edges sweep: its boundary lies on the edges at k and on each vertex's chord from k to k + 1
@@ -126,7 +126,11 @@ def _lower_envelope(points: np.ndarray, tip: np.ndarray, segments) -> np.ndarray
 
 def shaper_profile(table: PitchTable, module: float, alpha: float, cutter_teeth: int,
                    first_tooth_at: float = 0.0, step: float | None = None) -> np.ndarray:
-    """Outline cut by a shaper rolling on the pitch curve; gear tooth k centered at first_tooth_at + k p."""
+    """Outline cut by a shaper rolling on the pitch curve; gear tooth k centered at first_tooth_at + k p.
+
+    ``step`` (mm, default module / 10) spaces the cutter's positions along the pitch curve, shortened
+    so that a whole number of them fills a pitch.
+    """
     step = step or module / 10
     radius = module * cutter_teeth / 2
     cutter = shaper_cutter(module, alpha, cutter_teeth)
@@ -152,7 +156,10 @@ def shaper_profile(table: PitchTable, module: float, alpha: float, cutter_teeth:
 
 def mate_profile(design: GearPairDesign, driver_outline: np.ndarray, driven: PitchTable, module: float,
                  step: float | None = None) -> np.ndarray:
-    """Driven outline left by the driver's teeth in the pair's relative motion (conjugate by construction)."""
+    """Driven outline left by the driver's teeth in the pair's relative motion (conjugate by construction).
+
+    ``step`` (mm, default module / 10) is the most driver pitch arc between two positions.
+    """
     step = step or module / 10
     n1, n2 = design.orders
     phi1 = np.r_[np.arange(0.0, 2 * np.pi * n2 / n1, step / design.radius[0].max()), 2 * np.pi * n2 / n1]
@@ -164,6 +171,7 @@ def mate_profile(design: GearPairDesign, driver_outline: np.ndarray, driven: Pit
         return rotate_about(world - [design.center_distance, 0.0], ORIGIN, -phi2[rows, None])
 
     # the driver's one-per-bin vertices, thinned where they stay within a hair of their chords
-    cutter = shapely.get_coordinates(shapely.simplify(shapely.linearrings(driver_outline), SIMPLIFY_MODULES * module))[:-1]
+    ring = shapely.simplify(shapely.linearrings(driver_outline), SIMPLIFY_MODULES * module)
+    cutter = shapely.get_coordinates(ring)[:-1]
     tip = driven.points + ADDENDUM * module * driven.normals
     return _lower_envelope(driven.points, tip, _segments(cutter, phi1, reach, place))
