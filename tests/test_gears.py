@@ -1,4 +1,6 @@
 """Gear pairs against closed forms derived here, against seed 001, and by independent checks."""
+import functools
+
 import numpy as np
 import pytest
 import sympy as sp
@@ -8,7 +10,8 @@ from scipy.spatial import cKDTree
 from derivations import gears as derivation
 from transplanter.errors import InfeasibleError
 from transplanter.gears.pair import design_pair
-from transplanter.gears.teeth import generate_teeth
+from transplanter.gears.mesh_check import check_mesh
+from transplanter.gears.teeth import driven_table, generate_teeth
 from transplanter.generated import casadi_function, numpy_twin
 from transplanter.gears.pitch_curves import denatured_limacon, denatured_partner, ellipse, limacon
 from transplanter.gears.rack_teeth import pitch_table, rack_profile, _flank
@@ -169,6 +172,13 @@ def _scaled_pair(curve, teeth, module=2.0):
     return design_pair(curve.scaled(teeth * np.pi * module / design_pair(curve, 1).perimeters[0]), 1)
 
 
+@functools.lru_cache(maxsize=1)
+def _shaper_pair():
+    """The shaper test pair, cut once for the tests that share it."""
+    d = _scaled_pair(denatured_limacon(1.0, 0.45, 1.2, denatured_partner(1.2)), 52)
+    return d, generate_teeth(d, 2.0, np.radians(20), "test", cutter="shaper", cutter_teeth=12)
+
+
 @pytest.mark.parametrize("case", ["ellipse, rack", "concave denatured limacon, shaper"])
 def test_teeth_mesh_without_interference(case):
     """Placed at many driver angles, neither gear enters the other by more than 0.02 mm, and they touch."""
@@ -178,9 +188,8 @@ def test_teeth_mesh_without_interference(case):
     else:
         # eq (9): 1 - (1.2^2 + 1) 0.45 < 0, concave; 52 teeth rather than the example's 60 (at 48 a module 2
         # would undercut the driven gear)
-        d = _scaled_pair(denatured_limacon(1.0, 0.45, 1.2, denatured_partner(1.2)), 52)
+        d, teeth = _shaper_pair()
         assert (d.convexity[0] <= 0).any()      # the driver has a concave stretch
-        teeth = generate_teeth(d, 2.0, np.radians(20), "test", cutter="shaper", cutter_teeth=12)
     assert teeth.self_intersections == (0, 0)
     driver, driven = (_counterclockwise(o) for o in teeth.outlines)
     for k in range(0, len(d.phi1) - 1, 45):
@@ -210,6 +219,19 @@ def test_shaper_on_a_circle_cuts_the_involute():
     gap = cKDTree(exact).query(band)[0]
     assert gap.max() < 0.005
     assert radius.min() == pytest.approx(27.5, abs=1e-9) and radius.max() == pytest.approx(32.0, abs=1e-9)
+
+
+def test_shaper_pair_has_no_sampling_sliver():
+    """On the shaper test pair the mesh check finds no overlap beyond 0.005 module: every polar bin
+    of the mate holds the swept driver's exact lowest radius (a binned point cloud left one bin
+    standing 0.028 mm into the driver near driver angle 4 deg). A driver cut without its teeth's
+    sweep (the mate left as its bare blank) must fail the same check: the negative control."""
+    d, teeth = _shaper_pair()
+    driver, mate = teeth.outlines
+    assert check_mesh(d, (driver, mate), 2.0).max_overlap_mm <= 0.005 * 2.0
+    driven = driven_table(d)
+    blank = driven.points + 2.0 * driven.normals
+    assert check_mesh(d, (driver, blank), 2.0).max_overlap_mm > 0.005 * 2.0
 
 
 def test_shaper_too_large_for_the_concave_stretch():

@@ -4,8 +4,11 @@ The gear blank is bounded by its tip curve (the pitch curve offset by one module
 outline is carried through its rolling positions; on every ray from the gear's center, the
 gear keeps material only below the smallest radius any cutter point reaches on that ray.
 Flanks, root fillets (the trochoids of the cutter's tip corners) and undercut all follow,
-with no case analysis. Rays are binned finely in polar angle, so the outline is star-shaped
-about the gear center by construction.
+with no case analysis. Polar angle is cut into fine bins, each keeping the smallest radius the
+swept cutter reaches in its wedge, so the outline is star-shaped about the gear center by
+construction. That radius is computed exactly on the segments that bound the swept region (the
+cutter's edges at each position and its vertices' chords between positions), so positions can be
+a tenth of a module apart and no bin is missed between sample points.
 
 Two uses:
 - a shaper cutter (an involute pinion, here a rack-cut circular gear with a 1.25-module
@@ -16,6 +19,7 @@ Two uses:
 from __future__ import annotations
 
 import numpy as np
+import shapely
 
 from transplanter.gears.pair import GearPairDesign, driven_angle
 from transplanter.geometry.poses import rotate_about
@@ -25,6 +29,8 @@ ORIGIN = (0.0, 0.0)
 
 #: Polar bins per turn: about 0.01 deg, a few micrometres of arc at gear sizes.
 BINS = 36000
+#: A cut outline that cuts its mate is first simplified (Douglas-Peucker) within this many modules.
+SIMPLIFY_MODULES = 1e-4
 
 
 def shaper_cutter(module: float, alpha: float, teeth: int) -> np.ndarray:
@@ -36,69 +42,103 @@ def shaper_cutter(module: float, alpha: float, teeth: int) -> np.ndarray:
     return rack_profile(table, teeth, module, alpha, addendum=DEDENDUM, dedendum=DEDENDUM)
 
 
-def _by_angle(points: np.ndarray):
-    """Sort points by polar angle, for picking those facing a direction."""
-    angle = np.arctan2(points[:, 1], points[:, 0])
-    order = np.argsort(angle)
-    return points[order], angle[order]
+def _polar(points: np.ndarray):
+    """Polar angle (rad, -pi to pi) and squared radius of points (..., 2)."""
+    return np.arctan2(points[..., 1], points[..., 0]), points[..., 0] ** 2 + points[..., 1] ** 2
 
 
-def _facing(sorted_angle, low: float, high: float):
-    """Indices of points whose polar angle lies in [low, high] (cyclic, radians)."""
-    n = len(sorted_angle)
-    start = np.searchsorted(sorted_angle, np.mod(low + np.pi, 2 * np.pi) - np.pi)
-    width = int(np.ceil(n * (high - low) / (2 * np.pi))) + 2
-    return (start + np.arange(width)) % n
+def _segments(points: np.ndarray, facing: np.ndarray, reach: float, place, chunk: int = 24):
+    """Points and the segments between them (index pairs) bounding the region that ``points``, a closed
+    outline, sweeps through its positions (``place(points, rows) -> (rows, W, 2)``), a chunk at a time.
 
-
-def _swept(points: np.ndarray, sorted_angle, facing: np.ndarray, reach: float, place, refine: int = 4):
-    """Point clouds of ``points`` placed at every position (``place(points, rows) -> (rows, W, 2)``).
-
-    Positions go in chunks that share the same material points, so each point's path between
-    two positions can be filled in by ``refine`` linear steps (a chord of a short arc).
+    Between positions k and k + 1 that region is the outline at k together with the quadrilaterals
+    its edges sweep: its boundary lies on the edges at k and on each vertex's chord from k to k + 1
+    (the fold inside a swept edge, where the envelope touches, is met to second order in the step).
+    Only the vertices whose polar angle (own frame) is within ``reach`` of ``facing`` take part.
     """
-    chunk = 64
-    for start in range(0, len(facing) - 1, chunk):
-        rows = np.arange(start, min(start + chunk + 1, len(facing)))
-        index = _facing(sorted_angle, facing[rows].min() - reach, facing[rows].max() + reach)
-        cloud = place(points[index], rows)                      # (rows, W, 2)
-        steps = np.linspace(0, 1, refine, endpoint=False)[None, :, None, None]
-        between = cloud[:-1, None] + steps * (cloud[1:, None] - cloud[:-1, None])
-        yield between.reshape(-1, 2)
+    angle, _ = _polar(points)
+    last = len(facing) - 1
+    for first in range(0, last, chunk):
+        rows = np.arange(first, min(first + chunk, last) + 1)
+        middle = (facing[rows].max() + facing[rows].min()) / 2
+        half = (facing[rows].max() - facing[rows].min()) / 2 + reach
+        near = np.abs(np.mod(angle - middle + np.pi, 2 * np.pi) - np.pi) <= half
+        index = np.flatnonzero(near)
+        edge = np.flatnonzero(near & np.roll(near, -1))
+        cloud = place(points[index], rows)                          # (rows, W, 2)
+        width = len(index)
+        row = width * np.arange(len(rows) - (rows[-1] != last))[:, None]  # the last position also keeps its edges
+        at = np.searchsorted(index, edge)
+        after = np.searchsorted(index, (edge + 1) % len(points))
+        still = np.arange(width * (len(rows) - 1))
+        yield cloud.reshape(-1, 2), np.r_[(row + at).ravel(), still], np.r_[(row + after).ravel(), still + width]
 
 
-def _lower_envelope(points: np.ndarray, tip: np.ndarray, chunks: list[np.ndarray]) -> np.ndarray:
-    """Blank tip curve cut down by every point cloud in ``chunks`` (all in the gear frame)."""
-    bins = np.linspace(-np.pi, np.pi, BINS + 1)
-    tip_angle = np.arctan2(tip[:, 1], tip[:, 0])
+def _lower_envelope(points: np.ndarray, tip: np.ndarray, segments) -> np.ndarray:
+    """Blank tip curve cut down by every segment in ``segments`` (all in the gear frame).
+
+    Each bin keeps the smallest radius any segment reaches within its wedge, computed exactly: at
+    the segment's ends, where it crosses the wedge's edge rays, and at its point nearest the center.
+    """
+    width = 2 * np.pi / BINS
+    edges = -np.pi + width * np.arange(BINS)
+    edge_rays = np.c_[np.cos(edges), np.sin(edges)]
+    centers = edges + width / 2
+    tip_angle, tip_squared = _polar(tip)
     order = np.argsort(tip_angle)
-    centers = (bins[:-1] + bins[1:]) / 2
-    radius = np.interp(centers, tip_angle[order], np.hypot(*tip[order].T), period=2 * np.pi)
-    for cloud in chunks:
-        index = np.minimum(((np.arctan2(cloud[:, 1], cloud[:, 0]) + np.pi) * (BINS / (2 * np.pi))).astype(int), BINS - 1)
-        np.minimum.at(radius, index, np.hypot(cloud[:, 0], cloud[:, 1]))
+    radius = np.interp(centers, tip_angle[order], np.sqrt(tip_squared[order]), period=2 * np.pi)
+    block = 60                                              # bins per block of the coarse maximum
+    for points_at, a, b in segments:
+        angle, squared = _polar(points_at)
+        start = points_at[a]
+        direction = points_at[b] - start
+        length = np.maximum(direction[:, 0] ** 2 + direction[:, 1] ** 2, 1e-300)
+        along = -(start[:, 0] * direction[:, 0] + start[:, 1] * direction[:, 1]) / length
+        foot = start + np.clip(along, 0.0, 1.0)[:, None] * direction
+        nearest = foot[:, 0] ** 2 + foot[:, 1] ** 2
+        turn = np.mod(angle[b] - angle[a] + np.pi, 2 * np.pi) - np.pi
+        low = np.minimum(angle[a], angle[a] + turn)
+        first = np.floor((low + np.pi) / width).astype(int)
+        count = np.floor((low + np.abs(turn) + np.pi) / width).astype(int) - first     # edge rays crossed
+        # a segment that nowhere comes nearer the center than the highest bin where it lies cuts nothing
+        highest = radius.reshape(-1, block).max(axis=1)
+        blocks = len(highest)
+        reach = np.maximum(highest[(first // block) % blocks], highest[((first + count) // block) % blocks])
+        keep = (nearest < reach ** 2) | (count >= block)
+        a, b, start, direction, first, count = a[keep], b[keep], start[keep], direction[keep], first[keep], count[keep]
+        ends = np.r_[a, b]
+        np.minimum.at(radius, np.minimum(((angle[ends] + np.pi) / width).astype(int), BINS - 1), np.sqrt(squared[ends]))
+        inner = (along[keep] > 0) & (along[keep] < 1)
+        foot_angle, foot_squared = _polar(foot[keep][inner])
+        np.minimum.at(radius, np.minimum(((foot_angle + np.pi) / width).astype(int), BINS - 1), np.sqrt(foot_squared))
+        segment = np.repeat(np.arange(len(first)), count)
+        index = (first[segment] + 1 + np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)) % BINS
+        d, p = direction[segment], start[segment]
+        # r e x d = p x d at the crossing r e = p + u d of the edge ray e with the segment p + u d
+        across = edge_rays[index, 0] * d[:, 1] - edge_rays[index, 1] * d[:, 0]
+        moment = p[:, 0] * d[:, 1] - p[:, 1] * d[:, 0]
+        crossing = moment / np.where(across == 0, 1.0, across)
+        valid = across != 0
+        np.minimum.at(radius, np.r_[index[valid], (index[valid] - 1) % BINS], np.r_[crossing[valid], crossing[valid]])
     outline = radius[:, None] * np.c_[np.cos(centers), np.sin(centers)]
     return outline if orientation(points) > 0 else outline[::-1]
 
 
-def _densify(outline: np.ndarray, step: float) -> np.ndarray:
-    """Points along a closed outline no farther apart than ``step``."""
-    edges = np.roll(outline, -1, axis=0) - outline
-    counts = np.maximum(1, np.ceil(np.linalg.norm(edges, axis=1) / step).astype(int))
-    segment = np.repeat(np.arange(len(outline)), counts)
-    fraction = (np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts, counts)) / counts[segment]
-    return outline[segment] + fraction[:, None] * edges[segment]
-
-
 def shaper_profile(table: PitchTable, module: float, alpha: float, cutter_teeth: int,
                    first_tooth_at: float = 0.0, step: float | None = None) -> np.ndarray:
-    """Outline cut by a shaper rolling on the pitch curve; gear tooth k centered at first_tooth_at + k p."""
-    step = step or module / 40
+    """Outline cut by a shaper rolling on the pitch curve; gear tooth k centered at first_tooth_at + k p.
+
+    ``step`` (mm, default module / 10) spaces the cutter's positions along the pitch curve, shortened
+    so that a whole number of them fills a pitch.
+    """
+    step = step or module / 10
     radius = module * cutter_teeth / 2
-    cutter, cutter_angle = _by_angle(_densify(shaper_cutter(module, alpha, cutter_teeth), step / 2))
+    cutter = shaper_cutter(module, alpha, cutter_teeth)
     o = table.orientation
     pitch = np.pi * module
-    s = np.r_[np.arange(0.0, table.perimeter, step), table.perimeter]
+    # whole positions per pitch, one with the cutter centred in every tooth space (the root's deepest point)
+    spacing = pitch / np.ceil(pitch / step)
+    s = first_tooth_at + pitch / 2 + np.r_[np.arange(0.0, table.perimeter - spacing / 2, spacing), table.perimeter]
     contact, _, normal = table.at(s)
     center = contact + radius * normal
     psi = np.arctan2(-normal[:, 1], -normal[:, 0])
@@ -111,15 +151,17 @@ def shaper_profile(table: PitchTable, module: float, alpha: float, cutter_teeth:
         return center[rows, None, :] + rotate_about(points[None], ORIGIN, turn[rows, None])
 
     tip = table.points + ADDENDUM * module * table.normals
-    return _lower_envelope(table.points, tip, _swept(cutter, cutter_angle, local_facing, reach, place))
+    return _lower_envelope(table.points, tip, _segments(cutter, local_facing, reach, place))
 
 
 def mate_profile(design: GearPairDesign, driver_outline: np.ndarray, driven: PitchTable, module: float,
                  step: float | None = None) -> np.ndarray:
-    """Driven outline left by the driver's teeth in the pair's relative motion (conjugate by construction)."""
-    step = step or module / 40
+    """Driven outline left by the driver's teeth in the pair's relative motion (conjugate by construction).
+
+    ``step`` (mm, default module / 10) is the most driver pitch arc between two positions.
+    """
+    step = step or module / 10
     n1, n2 = design.orders
-    outline, outline_angle = _by_angle(_densify(driver_outline, step / 2))
     phi1 = np.r_[np.arange(0.0, 2 * np.pi * n2 / n1, step / design.radius[0].max()), 2 * np.pi * n2 / n1]
     reach = 2.5 * (ADDENDUM + DEDENDUM) * module / design.radius[0].min()
     phi2 = driven_angle(design, phi1)
@@ -128,5 +170,8 @@ def mate_profile(design: GearPairDesign, driver_outline: np.ndarray, driven: Pit
         world = rotate_about(points[None], ORIGIN, -phi1[rows, None])            # driver points near the line of centres
         return rotate_about(world - [design.center_distance, 0.0], ORIGIN, -phi2[rows, None])
 
+    # the driver's one-per-bin vertices, thinned where they stay within a hair of their chords
+    ring = shapely.simplify(shapely.linearrings(driver_outline), SIMPLIFY_MODULES * module)
+    cutter = shapely.get_coordinates(ring)[:-1]
     tip = driven.points + ADDENDUM * module * driven.normals
-    return _lower_envelope(driven.points, tip, _swept(outline, outline_angle, phi1, reach, place))
+    return _lower_envelope(driven.points, tip, _segments(cutter, phi1, reach, place))
