@@ -171,7 +171,7 @@ def test_one_solver_serves_every_start_and_round(result, problem):
     reused = solver.refine(second)
     assert solver.builds == 1 and solver.function is function
     fresh = DesignSolver(problem).refine(second)
-    assert abs(reused.objective - fresh.objective) <= 1e-12 * fresh.objective
+    assert abs(reused.objective - fresh.objective) <= 1e-12 * abs(fresh.objective)
     for name in ("carrier_length", "rod_length", "receiving_length"):
         assert abs(getattr(reused.mech, name) - getattr(fresh.mech, name)) < 1e-9
     for name in ("hinge_b", "e_local", "f_local"):
@@ -181,7 +181,8 @@ def test_one_solver_serves_every_start_and_round(result, problem):
 def test_exchange_beyond_the_solver_room_rebuilds_it_larger(result, problem):
     solver = DesignSolver(problem)
     capacity = solver.nlp.capacity
-    design = solver.solve(result.region.feasible[0], np.linspace(0.1, 6.0, capacity + 1))
+    # without the convexity rows: the example's requirements force concave pitch curves
+    design = solver.solve(result.region.feasible[0], np.linspace(0.1, 6.0, capacity + 1), convex=False)
     assert solver.builds == 2 and solver.nlp.capacity == 2 * capacity
     assert design.status == "Solve_Succeeded"
 
