@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from transplanter.errors import ProblemError
-from transplanter.fivebar.nlp import CHECK_POINTS, CURVATURE_FLOOR, DesignSolver, build_nlp, decision_vector
+from transplanter.fivebar.nlp import (CHECK_POINTS, CURVATURE_FLOOR, SLOT_ROWS, DesignSolver, build_nlp,
+                                      decision_vector)
 from transplanter.fivebar.problem import FiveBarProblem, load_problem, parse_problem
 from transplanter.fivebar.region import solution_region
 from transplanter.toml_fields import read_toml
@@ -102,8 +103,9 @@ def test_convexity_is_asked_and_its_absence_told_with_the_gear_library_numbers(d
 
 
 def test_quadrature_of_k_and_the_convexity_switch(problem, start):
-    """The NLP's row k int sqrt(rho') dc = 2 pi holds at the library's k (turn_map quadrature); the
-    convexity rows are on by default and free when switched off, with no rebuild."""
+    """The NLP's row k int sqrt(rho') dc = 2 pi holds at the library's k (turn_map quadrature); an exchange
+    slot's BEF row is sin^2 of the angle BEF by plain geometry, less t; the convexity rows are on by
+    default and free when switched off, with no rebuild."""
     nlp = build_nlp(problem, capacity=2)
     x0 = decision_vector(start.mech, start.relative_angle, start.stroke, problem.return_points)
     assert x0[-2] == correction_factor(start.relative_angle)
@@ -111,6 +113,12 @@ def test_quadrature_of_k_and_the_convexity_switch(problem, start):
         x0, nlp.parameters(start.mech.branch, []))).ravel()
     quadrature_row = np.flatnonzero((nlp.lbg == 0) & (nlp.ubg == 0))[-1]
     assert abs(g[quadrature_row]) < 1e-12
+    turns = np.radians([33.3, 251.7])
+    g = np.asarray(ca.Function("g", [nlp.x, nlp.p], [nlp.constraints])(
+        x0, nlp.parameters(start.mech.branch, turns))).ravel()
+    state = start.mech.forward(turns, start.relative_angle.evaluate(turns))
+    bef = _angle(start.mech.hinge_b - state["e"], state["f"] - state["e"])
+    assert np.abs(g[nlp.slot_rows[SLOT_ROWS.index("angle BEF"), :2]] + x0[-3] - np.sin(bef) ** 2).max() < 1e-12
     on, _ = nlp.bounds(0, convex=True)
     off, _ = nlp.bounds(0, convex=False)
     grid_rows = nlp.curvature_rows[np.isin(nlp.curvature_rows, nlp.slot_rows, invert=True)]
