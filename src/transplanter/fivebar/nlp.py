@@ -36,8 +36,10 @@ Constraints:
 - the B-E-F assembly of the start at all nine positions; c_j increasing between the last
   key pose and a full turn; the ``[ranges]`` limits.
 
-The convexity rows are switched off by their bounds (no rebuild): when IPOPT fails with them,
-the design is solved without and says so (``convex_enforced``, ``convexity_note``).
+The convexity rows are switched off by their bounds (no rebuild). ``refine`` designs without
+them first; when a curve is not convex, it maximises the least a kappa u instead (at most
+``CONVEXITY_SEARCH_ITERATIONS``) and designs again with the rows on only when u reaches the
+floor; otherwise the design says why (``convex_enforced``, ``convexity_note``).
 
 Between grid points the quality, rho' and the curvatures may dip: ``DesignSolver.refine``
 checks them on a grid ``CHECK_POINTS`` fine, by independent forward kinematics
@@ -92,6 +94,9 @@ MULTIPLIER_FLOOR = 1e-6
 MIN_STEP = np.radians(1.0)   # smallest carrier turn between consecutive positions
 #: Exchange points one solver holds before it is rebuilt larger.
 ADDED_CAPACITY = 16
+#: Iterations the search for convex pitch curves may take (it converged in 81 to 405 on the example's
+#: 17 starts; a design solve takes 40-50).
+CONVEXITY_SEARCH_ITERATIONS = 100
 CURVES = ("sun", "first intermediate", "second intermediate", "planet")
 #: The rows each exchange slot holds, in order (``DesignNLP.slot_rows``).
 SLOT_ROWS = ("angle EBF", "angle BEF", "ratio", *(f"convexity {curve}" for curve in CURVES))
@@ -149,6 +154,42 @@ class DesignSolution:
     active_bounds: tuple
     convex_enforced: bool = True
     convexity_note: str = ""
+
+
+class _IterationCap(ca.Callback):
+    """IPOPT's iteration callback: stops the solve after ``limit`` iterations (None: never)."""
+
+    def __init__(self, variables: int, rows: int):
+        ca.Callback.__init__(self)
+        self.variables, self.rows = variables, rows
+        self.limit, self.count = None, 0
+        self.construct("iteration_cap", {})
+
+    def get_n_in(self):
+        return ca.nlpsol_n_out()
+
+    def get_n_out(self):
+        return 1
+
+    def get_name_in(self, i):
+        return ca.nlpsol_out(i)
+
+    def get_name_out(self, i):
+        return "stop"
+
+    def get_sparsity_in(self, i):
+        name = ca.nlpsol_out(i)
+        if name == "f":
+            return ca.Sparsity.scalar()
+        if name in ("x", "lam_x"):
+            return ca.Sparsity.dense(self.variables)
+        if name in ("g", "lam_g"):
+            return ca.Sparsity.dense(self.rows)
+        return ca.Sparsity(0, 0)
+
+    def eval(self, arg):
+        self.count += 1
+        return [int(self.limit is not None and self.count > self.limit)]
 
 
 def _unit(angle):
@@ -340,17 +381,18 @@ class DesignSolver:
 
     def _build(self, capacity: int):
         self.nlp = build_nlp(self.problem, capacity)
+        self.cap = _IterationCap(self.nlp.x.shape[0], self.nlp.constraints.shape[0])
         self.function = ca.nlpsol("fivebar_design", "ipopt",
                                   {"x": self.nlp.x, "p": self.nlp.p, "f": self.nlp.objective, "g": self.nlp.constraints},
-                                  IPOPT_OPTIONS)
+                                  {**IPOPT_OPTIONS, "iteration_callback": self.cap})
         self.builds += 1
 
     def solve(self, start: Candidate, added_turns=(), warm: DesignSolution | None = None, convex: bool = True,
-              curvature_mode: bool = False) -> DesignSolution:
+              curvature_mode: bool = False, iteration_limit: int | None = None) -> DesignSolution:
         """Solve with the start's assembly branch and the exchange points ``added_turns`` (rad),
         from the start's own dimensions or from the design ``warm`` (a previous round's), with the
         convexity rows on or off; ``curvature_mode`` maximises the least a kappa of the four pitch
-        curves instead of t (every other constraint kept)."""
+        curves instead of t (every other constraint kept); ``iteration_limit`` stops IPOPT early."""
         added_turns = np.asarray(added_turns, float)
         while len(added_turns) > self.nlp.capacity:
             self._build(2 * self.nlp.capacity)
@@ -361,6 +403,7 @@ class DesignSolver:
             x0 = decision_vector(warm.mech, warm.relative_angle, warm.stroke, warm.reached_return_points)
         lbg, ubg = nlp.bounds(len(added_turns), convex or curvature_mode)
         lbx, ubx = nlp.variable_bounds(x0, convex, curvature_mode)
+        self.cap.limit, self.cap.count = iteration_limit, 0
         solution = self.function(x0=x0, p=nlp.parameters(branch, added_turns, curvature_mode), lbg=lbg, ubg=ubg,
                                  lbx=lbx, ubx=ubx)
         stats = self.function.stats()
@@ -384,10 +427,11 @@ class DesignSolver:
         if min(design.min_curvature) >= CURVATURE_FLOOR:
             return dataclasses.replace(design, convex_enforced=True, convexity_note="")
         try:
-            best = self.solve(start, warm=design, curvature_mode=True)
+            best = self.solve(start, warm=design, curvature_mode=True, iteration_limit=CONVEXITY_SEARCH_ITERATIONS)
         except SolverError as error:
-            return dataclasses.replace(design, convexity_note=f"the search for convex pitch curves failed "
-                                                              f"({error.status}); {_curvature_text(design)}")
+            return dataclasses.replace(design, convexity_note=(
+                f"the search for convex pitch curves ended with {error.status} (at most "
+                f"{CONVEXITY_SEARCH_ITERATIONS} iterations); designed without: {_curvature_text(design)}"))
         reach = min(best.min_curvature)
         if reach >= CURVATURE_FLOOR:
             try:
