@@ -156,7 +156,7 @@ def test_exchange_slots_are_the_closure_margin_and_slope_of_forward_kinematics(r
     margin_row, slope_row = nlp.slot_rows[SLOT_ROWS.index("angle EBF")], nlp.slot_rows[SLOT_ROWS.index("ratio")]
     assert np.abs(g[margin_row[:2]] + x0[-3] - forward).max() < 1e-12
     assert np.abs(g[slope_row[:2]] - candidate.relative_angle.evaluate(turns, 1)).max() < 1e-12
-    lbg, ubg = nlp.bounds(len(turns))
+    lbg, ubg = nlp.bounds(len(turns), convex=True)
     assert np.isfinite(lbg[nlp.slot_rows[:, :2]]).all() and np.isneginf(lbg[nlp.slot_rows[:, 2]]).all()
     assert np.isposinf(ubg[nlp.slot_rows[:, 2]]).all()
 
@@ -181,8 +181,7 @@ def test_one_solver_serves_every_start_and_round(result, problem):
 def test_exchange_beyond_the_solver_room_rebuilds_it_larger(result, problem):
     solver = DesignSolver(problem)
     capacity = solver.nlp.capacity
-    # without the convexity rows: the example's requirements force concave pitch curves
-    design = solver.solve(result.region.feasible[0], np.linspace(0.1, 6.0, capacity + 1), convex=False)
+    design = solver.solve(result.region.feasible[0], np.linspace(0.1, 6.0, capacity + 1))
     assert solver.builds == 2 and solver.nlp.capacity == 2 * capacity
     assert design.status == "Solve_Succeeded"
 

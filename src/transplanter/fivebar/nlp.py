@@ -219,7 +219,7 @@ class DesignNLP:
     p: ca.SX
     objective: ca.SX
     constraints: ca.SX
-    lbg: np.ndarray            # every slot active, convexity on
+    lbg: np.ndarray            # every slot active, convexity rows on
     ubg: np.ndarray
     lbx: np.ndarray
     ubx: np.ndarray
@@ -234,7 +234,7 @@ class DesignNLP:
     def capacity(self) -> int:
         return self.slot_rows.shape[1]
 
-    def bounds(self, added: int, convex: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    def bounds(self, added: int, convex: bool = False) -> tuple[np.ndarray, np.ndarray]:
         """lbg, ubg with the first ``added`` exchange slots active and the others free, and the
         convexity rows (a kappa >= u) on or off."""
         lbg, ubg = self.lbg.copy(), self.ubg.copy()
@@ -387,7 +387,7 @@ class DesignSolver:
                                   {**IPOPT_OPTIONS, "iteration_callback": self.cap})
         self.builds += 1
 
-    def solve(self, start: Candidate, added_turns=(), warm: DesignSolution | None = None, convex: bool = True,
+    def solve(self, start: Candidate, added_turns=(), warm: DesignSolution | None = None, convex: bool = False,
               curvature_mode: bool = False, iteration_limit: int | None = None) -> DesignSolution:
         """Solve with the start's assembly branch and the exchange points ``added_turns`` (rad),
         from the start's own dimensions or from the design ``warm`` (a previous round's), with the
