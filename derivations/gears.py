@@ -17,6 +17,10 @@ and the transmission ratio i12 = omega1 / omega2 = (a - r1) / r1 (seed 001 eq 13
   r1 = b + c cos(n phi), the integral is elementary (int dphi / (u - v cos(n phi)) =
   2 pi / sqrt(u^2 - v^2) over a period), and closure becomes a quadratic in a whose larger
   root is the center distance (``*_center_distance``).
+- A pair given by its ratio i12 (Wang et al. 2025 eq 13): r1 = a / (1 + i12) solves
+  i12 = (a - r1) / r1, and pure rolling then turns the driven gear by dphi2/dphi1 = 1 / i12
+  (``ratio_pair_pitch``). Eq (13) prints phi2 = int I1 dphi1, the ratio itself, which
+  contradicts its own first line; ``driven_rate_for_ratio`` shows the reciprocal.
 - Limacon convexity (seed 001 eq 9-10): with r1 = l (1 + k cos(m phi)) and C = cos(m phi),
   the driver's and the driven curve's convexity as polynomials in C (``limacon_*_convexity``).
 """
@@ -87,6 +91,31 @@ def _kinematics() -> Derived:
         inputs=(("center_distance", (a,)), ("radius", (r,)), ("slope", (slope,)), ("driver_speed", (speed,))),
         outputs=(("ratio", ((a - r) / r,)), ("driven_speed", (driven_speed.subs(r1, r),)),
                  ("driven_acceleration", (_replace_derivatives(acceleration, r1, r, slope, 0),))),
+    )
+
+
+def driver_radius_for_ratio(center_distance, ratio):
+    """r1 for which the pair's ratio i12 = (a - r1) / r1 equals ``ratio``: a / (1 + i12)."""
+    r1 = sp.Symbol("r1", positive=True)
+    (root,) = sp.solve(sp.Eq((center_distance - r1) / r1, ratio), r1)
+    return root
+
+
+def driven_rate_for_ratio(center_distance, ratio):
+    """dphi2/dphi1 of pure rolling (``conjugate_derivatives``) at the r1 of ``driver_radius_for_ratio``."""
+    *_, speed = conjugate_derivatives(center_distance, driver_radius_for_ratio(center_distance, ratio))
+    return sp.simplify(speed)
+
+
+def _ratio_pair() -> Derived:
+    a, ratio = symbol_group("center_distance", 1)[0], symbol_group("ratio", 1)[0]
+    return Derived(
+        name="ratio_pair_pitch",
+        doc=("Driver pitch radius and the driven gear's turn per driver turn dphi2/dphi1 for a pair "
+             "with ratio i12 = omega1/omega2 (Wang et al. 2025 eq 13; the rate is 1/i12, not i12)."),
+        inputs=(("center_distance", (a,)), ("ratio", (ratio,))),
+        outputs=(("driver_radius", (driver_radius_for_ratio(a, ratio),)),
+                 ("driven_rate", (driven_rate_for_ratio(a, ratio),))),
     )
 
 
@@ -163,4 +192,4 @@ def _limacon_convexity() -> list[Derived]:
 
 
 def derive() -> list[Derived]:
-    return [_curvature(), _conjugate(), _kinematics(), *_closed_forms(), *_limacon_convexity()]
+    return [_curvature(), _conjugate(), _kinematics(), _ratio_pair(), *_closed_forms(), *_limacon_convexity()]

@@ -85,6 +85,7 @@ def test_report_json_written_by_the_command_is_to_json(tmp_path):
     path = EXAMPLES / "burmester_4poses.toml"
     assert main(["burmester", str(path), "--out", str(tmp_path)]) == 0
     written = json.loads((tmp_path / "report.json").read_text())
+    assert written.pop("files") == {"figure": ["burmester.png"], "report": ["report.json", "report.md"]}
     assert written == burmester.synthesize(burmester.load_problem(path)).to_json()
 
 
@@ -112,7 +113,8 @@ def check_figures(figures: dict, stems: set[str]):
 
 
 def test_figures_of_each_job(fivebar_results):
-    check_figures(fivebar.draw_figures(fivebar_results[0]), {"region", "relative_angle", "gears", "trajectory"})
+    check_figures(fivebar.draw_figures(fivebar_results[0]),
+                  {"region", "relative_angle", "gears", "trajectory", "tradeoff"})
     check_figures(burmester.draw_figures(burmester.synthesize(burmester.load_problem(EXAMPLES / "burmester_4poses.toml"))),
                   {"burmester"})
     check_figures(gears.draw_figures(gears.synthesize(gears.load_problem(EXAMPLES / "gear_limacon.toml"))),

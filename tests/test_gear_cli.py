@@ -8,6 +8,7 @@ from pathlib import Path
 import ezdxf
 import numpy as np
 import pytest
+from scipy.special import ellipe
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = sorted((ROOT / "examples").glob("gear_*.toml"))
@@ -52,7 +53,10 @@ def test_json_fields_and_drawings(tmp_path):
     assert pitch.shape[1] == 13
     for name in ("gear_mesh.png", "gear_kinematics.png", "gear_curvature.png"):
         assert (tmp_path / name).read_bytes()[:4] == b"\x89PNG"
+    # focal ellipses scaled to a perimeter of pi m Z = 60 pi: 4 A E(e^2) = 60 pi, center distance 2 A
+    assert report["center_distance"] == pytest.approx(30 * np.pi / ellipe(0.3**2), rel=1e-12)
     markdown = (tmp_path / "report.md").read_text()
+    # regression pin of the report's wording; the number is checked against the closed form just above
     assert "center distance 61.40586" in markdown and "![gear_mesh.png](gear_mesh.png)" in markdown
 
 

@@ -1,5 +1,13 @@
 """``transplanter <command>``: parses arguments, calls the library's API, saves the report and the
-figures; no logic of its own."""
+figures; no logic of its own.
+
+Conventions of every design command: ``--out DIR`` is written whole or not at all
+(``output_folder.staged``) and its report.json lists every file under "files" by kind; progress
+of the longer steps goes to stderr when it is a terminal (as git does; a pipe or a log gets only
+errors), unless ``--quiet`` or ``--json``; exit 0 when the result
+passes its checks, 1 when it fails one (every file name then starts with FAILED- and the reports
+say why), 2 for bad input.
+"""
 from __future__ import annotations
 
 import argparse
@@ -8,25 +16,46 @@ import sys
 import warnings
 from pathlib import Path
 
-from transplanter import __version__
+from transplanter import __version__, progress
 from transplanter.errors import TransplanterError
+from transplanter.output_folder import FAILED_PREFIX, files_by_kind, staged
 
 
-def _publish(args, report: dict, file_text: str, screen_text: str, written: list[str]):
-    """Write report.json and report.md (next to ``written``, already in --out) and print the
-    JSON (--json) or the screen text, the same way for every command."""
-    if args.out:
-        out = Path(args.out)
-        out.mkdir(parents=True, exist_ok=True)
-        (out / "report.json").write_text(json.dumps(report, indent=2) + "\n")
-        (out / "report.md").write_text(file_text)
+def _failures(*checked) -> tuple[str, ...]:
+    """Why the result fails: the ``failures`` of every object whose ``passed`` is False."""
+    return tuple(reason for item in checked if getattr(item, "passed", True) is False
+                 for reason in (getattr(item, "failures", None) or [f"{type(item).__name__} failed its checks"]))
+
+
+def _publish(args, report: dict, file_text: str, screen_text: str, failures: tuple[str, ...] = ()) -> int:
+    """Write report.md and report.json beside the files already in the output folder (listed in the
+    report under "files"), print the JSON (--json) or the screen text, the same way for every command.
+    A result that failed a check is marked FAILED (report status, file names) and exits 1."""
+    if failures:
+        report = {"status": "FAILED", "failures": list(failures), **report}
+        file_text = "# FAILED: " + "; ".join(failures) + "\n\n" + file_text
+        screen_text = "FAILED: " + "; ".join(failures) + "\n" + screen_text
+    folder, prefix = args.folder, FAILED_PREFIX if failures else ""
+    report["files"] = {}
+    if folder:
+        (folder / "report.md").write_text(file_text)
+        names = sorted(path.name for path in folder.iterdir())
+        report["files"] = files_by_kind(prefix + name for name in [*names, "report.json"])
+        (folder / f"{prefix}report.json").write_text(json.dumps(report, indent=2) + "\n")
+        for name in names if prefix else ():
+            (folder / name).rename(folder / (prefix + name))
     if args.json:
         json.dump(report, sys.stdout)
         sys.stdout.write("\n")
     else:
         sys.stdout.write(screen_text)
-        if args.out:
-            sys.stdout.write(f"wrote {args.out}/" + ", ".join(["report.md", "report.json", *written]) + "\n")
+        if folder:
+            sys.stdout.write(f"wrote {args.out}/: " + ", ".join(n for names in report["files"].values() for n in names)
+                             + "\n")
+    if failures:
+        print(f"transplanter: failed: {report.get('source', args.file)}: " + "; ".join(failures), file=sys.stderr)
+        return 1
+    return 0
 
 
 def _save_figures(figures: dict, out: Path, dpi: int = 120) -> list[str]:
@@ -41,31 +70,35 @@ def _burmester(args) -> int:
     from transplanter import burmester
     from transplanter.burmester.report import to_markdown, to_text
 
-    result = burmester.synthesize(burmester.load_problem(args.file))
-    written = []
-    if args.plot or args.out:
-        figures = burmester.draw_figures(result)
-        if args.plot:
-            figures["burmester"].savefig(args.plot, dpi=130)
-        if args.out:
-            written = _save_figures(figures, Path(args.out), dpi=130)
-    _publish(args, result.to_json(), to_markdown(result, "burmester.png"), to_text(result), written)
-    return 0
+    problem = burmester.load_problem(args.file)
+    with progress.step("synthesis"):
+        result = burmester.synthesize(problem)
+    if args.plot or args.folder:
+        with progress.step("figures"):
+            figures = burmester.draw_figures(result)
+            if args.plot:
+                figures["burmester"].savefig(args.plot, dpi=130)
+            if args.folder:
+                _save_figures(figures, args.folder, dpi=130)
+    return _publish(args, result.to_json(), to_markdown(result, "burmester.png"), to_text(result), _failures(result))
 
 
 def _gear(args) -> int:
     from transplanter import gears
     from transplanter.gears.report import to_markdown
 
-    result = gears.synthesize(gears.load_problem(args.file))
+    problem = gears.load_problem(args.file)
+    with progress.step("synthesis"):
+        result = gears.synthesize(problem)
     report = result.to_json()
     drawings, figures = [], []
-    if args.out:
-        drawings = [p.name for p in gears.write_drawings(result, Path(args.out))]
-        figures = _save_figures(gears.draw_figures(result), Path(args.out))
-    _publish(args, report, to_markdown(report, figures, drawings),
-             to_markdown(report, [], []).replace("# ", "", 1), drawings + figures)
-    return 0
+    if args.folder:
+        with progress.step("drawings"):
+            drawings = [p.name for p in gears.write_drawings(result, args.folder)]
+        with progress.step("figures"):
+            figures = _save_figures(gears.draw_figures(result), args.folder)
+    return _publish(args, report, to_markdown(report, figures, drawings),
+                    to_markdown(report, [], []).replace("# ", "", 1), _failures(result))
 
 
 def _fivebar(args) -> int:
@@ -75,29 +108,47 @@ def _fivebar(args) -> int:
     problem = fivebar.load_problem(args.file)
     if args.design:
         report = fivebar.evaluate_design(problem, fivebar.load_design(args.design)).to_json()
-        text, figures = evaluation_markdown(report, problem.labels), []
-    else:
-        result = fivebar.synthesize(problem)
-        report = result.to_json()
-        figures = _save_figures(fivebar.draw_figures(result), Path(args.out)) if args.out else []
-        text = to_markdown(report, problem.labels, figures)
-    _publish(args, report, text, text, figures)
-    return 0
+        return _publish(args, report, evaluation_markdown(report, problem.labels),
+                        evaluation_markdown(report, problem.labels))
+    with progress.step("synthesis"):
+        result = fivebar.synthesize(problem, pick=args.pick, progress=progress.report)
+    report = result.to_json()
+    figures = []
+    if args.folder:
+        from transplanter.fivebar.animation import write_animation
+        from transplanter.fivebar.drawings import write_drawings
+        from transplanter.fivebar.gears_on_carrier import teeth_on_carrier
+
+        with progress.step("figures"):
+            figures = _save_figures(fivebar.draw_figures(result), args.folder)
+        with progress.step("drawings"):
+            write_drawings(result, args.folder)
+        if not args.no_animation:
+            with progress.step("animation"):
+                teeth = teeth_on_carrier(result.toothed, result.design.mech.carrier_length)
+                write_animation(result, args.folder, teeth)
+    text = to_markdown(report, problem.labels, figures)
+    return _publish(args, report, text, text, _failures(result))
 
 
 def _reverse(args) -> int:
     from transplanter import reverse
     from transplanter.reverse.report import to_markdown
 
-    result = reverse.synthesize(reverse.load_problem(args.file))
+    problem = reverse.load_problem(args.file)
+    with progress.step("synthesis"):
+        result = reverse.synthesize(problem)
     report = result.to_json()
-    figures = _save_figures(reverse.draw_figures(result), Path(args.out)) if args.out else []
-    _publish(args, report, to_markdown(report, figures), to_markdown(report, []), figures)
+    figures = []
+    if args.folder:
+        with progress.step("figures"):
+            figures = _save_figures(reverse.draw_figures(result), args.folder)
+    code = _publish(args, report, to_markdown(report, figures), to_markdown(report, []), _failures(result))
     if not result.monotonic:
         print(f"transplanter: error: {result.problem.source}: the path fails the monotonicity criterion: "
               + "; ".join(v.message for v in result.violations), file=sys.stderr)
         return 2
-    return 0
+    return code
 
 
 def _derive(args) -> int:
@@ -107,11 +158,13 @@ def _derive(args) -> int:
 
 
 def _command(commands, name: str, run, summary: str, file_help: str, extras: str):
-    """A subcommand with the arguments every design command takes: FILE, --json, --out DIR."""
+    """A subcommand with the arguments every design command takes: FILE, --json, --out DIR, --quiet."""
     command = commands.add_parser(name, help=summary)
     command.add_argument("file", help=file_help)
-    command.add_argument("--json", action="store_true", help="print the report as one JSON object")
-    command.add_argument("--out", metavar="DIR", help=f"write report.md, report.json and {extras} here")
+    command.add_argument("--json", action="store_true", help="print the report as one JSON object (no progress)")
+    command.add_argument("--out", metavar="DIR", help=f"write report.md, report.json and {extras} here (the "
+                         "folder is replaced only when the run succeeds)")
+    command.add_argument("--quiet", action="store_true", help="no progress on stderr")
     command.set_defaults(run=run)
     return command
 
@@ -127,8 +180,12 @@ def _parser() -> argparse.ArgumentParser:
              "gear problem file (TOML, mm and degrees)", "CSV/SVG/DXF drawings and figures")
     fivebar = _command(commands, "fivebar", _fivebar, "five-bar seedling pushing mechanism with its planetary gear "
                        "train (Wang et al. 2025): region, precise design, gears, verification",
-                       "five-bar problem file (TOML, mm and degrees)", "the figures")
+                       "five-bar problem file (TOML, mm and degrees)",
+                       "the figures, linkage.dxf, CSV tables and animation.gif")
     fivebar.add_argument("--design", metavar="DESIGN.toml", help="evaluate this given design instead of designing one")
+    fivebar.add_argument("--pick", metavar="N", type=int, help="build alternative N of the ranked alternatives "
+                         "(default 1, the best; report.md lists them)")
+    fivebar.add_argument("--no-animation", action="store_true", help="with --out: skip animation.gif (one turn)")
     _command(commands, "reverse", _reverse, "planetary non-circular gear train that makes the arm tip follow a closed "
              "path (the rice-transplanter, reverse-gear-design and cusp-pitch-curve papers): inverse kinematics, "
              "monotonicity, gears, round trip",
@@ -146,8 +203,12 @@ def _one_line_warning(message, category, filename, lineno, file=None, line=None)
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     warnings.formatwarning = _one_line_warning
+    out = getattr(args, "out", None)
     try:
-        return args.run(args)
+        quiet = getattr(args, "json", False) or getattr(args, "quiet", False)
+        with progress.showing(sys.stderr, enabled=sys.stderr.isatty() and not quiet):
+            with staged(out) as args.folder:
+                return args.run(args)
     except TransplanterError as error:
         print(f"transplanter: error: {error}", file=sys.stderr)
         return 2

@@ -1,6 +1,7 @@
 """Figures of a five-bar design: solution region (Wang et al. 2025 Figure 5), relative angle (Figure 9),
-gear train (Figure 10) and trajectory with the plate at the key poses (Figure 15b), as matplotlib
-``Figure`` objects (no pyplot, no backend chosen: a notebook shows them, the command saves them)."""
+gear train (Figure 10), trajectory with the plate at the key poses (Figure 15b) and the trade-off
+of the alternatives, as matplotlib ``Figure`` objects (no pyplot, no backend chosen: a notebook
+shows them, the command saves them)."""
 from __future__ import annotations
 
 import numpy as np
@@ -8,6 +9,10 @@ from matplotlib.figure import Figure
 
 from transplanter.fivebar.result import FiveBarResult
 from transplanter.trains.figures import LEGEND_BESIDE, draw_four_gear_train
+
+#: Which gear drives which in each stage, by the names ``draw_four_gear_train`` gives the curves.
+GEAR_ROLES = {"sun": "sun (driver, stage 1)", "first intermediate": "first intermediate (driven, stage 1)",
+              "second intermediate": "second intermediate (driver, stage 2)", "planet": "planet (driven, stage 2)"}
 
 
 def draw_region(result: FiveBarResult) -> Figure:
@@ -76,6 +81,9 @@ def draw_gears(result: FiveBarResult) -> Figure:
     ax.set_ylabel("transmission ratio (dimensionless)")
     ax.legend(fontsize=8, **LEGEND_BESIDE)
     draw_four_gear_train(right, train, result.design.mech.carrier_length)
+    for line in right.get_lines():
+        line.set_label(GEAR_ROLES.get(line.get_label(), line.get_label()))
+    right.legend(fontsize=7, **LEGEND_BESIDE)
     right.set_title("pitch curves on the carrier (O left, A right) at pose 1", fontsize=9)
     return fig
 
@@ -94,6 +102,9 @@ def draw_trajectory(result: FiveBarResult) -> Figure:
     a = mech.carrier_point(0.0)
     ax.plot(*np.array([[0, 0], a, f[0]]).T, "r-o", ms=3, label="O-A-F (pose 1)")
     ax.plot(*np.array([mech.hinge_b, e[0]]).T, "b-o", ms=3, label="B-E (pose 1)")
+    for point, name in ((np.zeros(2), "O"), (a, "A"), (mech.hinge_b, "B"), (e[0], "E"), (f[0], "F"),
+                        (problem.poses[0, :2], "P")):
+        ax.annotate(name, point, xytext=(4, 4), textcoords="offset points", fontsize=10, fontweight="bold")
     ax.set_aspect("equal")
     ax.legend(fontsize=8, **LEGEND_BESIDE)
     ax.set_xlabel("x (mm)")
@@ -101,8 +112,33 @@ def draw_trajectory(result: FiveBarResult) -> Figure:
     return fig
 
 
+def draw_tradeoff(result: FiveBarResult) -> Figure:
+    """Largest return-point miss (mm) against the smallest angle EBF (deg) of each refined alternative,
+    labelled with its rank; the picked one ringed."""
+    alternatives = result.alternatives
+    angles = np.degrees([a.transmission_angle for a in alternatives])
+    misses = np.array([a.largest_miss_mm for a in alternatives])
+    fig = Figure(figsize=(8, 5), layout="constrained")
+    ax = fig.subplots()
+    ax.plot(angles, misses, "o", color="tab:blue", label="refined alternatives (rank)")
+    for rank, (angle, miss) in enumerate(zip(angles, misses), start=1):
+        ax.annotate(str(rank), (angle, miss), xytext=(5, 5), textcoords="offset points", fontsize=9)
+    picked = result.picked - 1
+    ax.plot(angles[picked], misses[picked], "o", mfc="none", mec="tab:red", ms=14, mew=2,
+            label=f"picked: alternative {result.picked}")
+    ax.set_xlabel("smallest transmission angle EBF over the turn (deg)")
+    ax.set_ylabel("largest return-point miss (mm)")
+    starts = sum(len(a.starts) for a in alternatives)
+    bounds = ", ".join(map(str, result.chosen.active_bounds)) or "no bound"
+    ax.set_title(f"{len(alternatives)} distinct designs refined from {starts} region candidates\n"
+                 f"the picked one sits on {bounds}", fontsize=9)
+    ax.legend(fontsize=8, **LEGEND_BESIDE)
+    return fig
+
+
 def draw_figures(result: FiveBarResult) -> dict[str, Figure]:
-    """The figures of a five-bar design by file stem: ``region``, ``relative_angle``, ``gears``, ``trajectory``.
+    """The figures of a five-bar design by file stem: ``region``, ``relative_angle``, ``gears``, ``trajectory``,
+    ``tradeoff``.
 
     Parameters
     ----------
@@ -115,4 +151,4 @@ def draw_figures(result: FiveBarResult) -> dict[str, Figure]:
         Save with ``figure.savefig(f"{stem}.png")`` or show in a notebook.
     """
     return {"region": draw_region(result), "relative_angle": draw_relative_angle(result),
-            "gears": draw_gears(result), "trajectory": draw_trajectory(result)}
+            "gears": draw_gears(result), "trajectory": draw_trajectory(result), "tradeoff": draw_tradeoff(result)}

@@ -27,8 +27,13 @@ Schema (docs/fivebar.md, "Problem files"); the carrier pivot O is the origin:
     samples = 1000                # pencil lines per 4-pose curve, 64-20000 (five-bars judged grow as its square)
     radius_mm = 600.0             # hinges within this distance of the poses' centroid
     [gears]
-    first_center_distance = 23.7  # sun to intermediate shaft, mm (default: half the carrier)
-    second_center_distance = 23.7 # intermediate shaft to planet, mm (default: the rest of the carrier)
+    module = 1.5                  # mm, 0.2-10: pitch perimeters are pi * module * whole teeth
+    pressure_angle_deg = 20.0     # 14.5-30
+    cutter = "rack"               # "rack" (a stage with a concave stretch is shaper-cut, with the reason) or "shaper"
+    shaper_teeth = 16             # teeth of the shaper cutter, 8-200
+    layout = "bent"               # "bent": intermediate shaft off O-A; "straight": a1 + a2 = |OA|
+    first_center_distance = 93.8  # optional, both or neither: a1, a2 (mm) fixed instead of searched;
+    second_center_distance = 122. # they must give whole teeth at the module
 """
 from __future__ import annotations
 
@@ -38,6 +43,8 @@ from pathlib import Path
 import numpy as np
 
 from transplanter.toml_fields import ClassFields, FieldReader, read_toml
+from transplanter.trains.toothed_train import (CUTTERS, LAYOUTS, MODULE_RANGE, PRESSURE_ANGLE_RANGE_DEG,
+                                               SHAPER_TEETH_RANGE, Gearing)
 
 RANGE_FIELDS = {"ep": "|EP| (mm)", "fp": "|FP| (mm)", "x_e": "x of E in pose 1 (mm)", "x_f": "x of F in pose 1 (mm)"}
 _TOP_KEYS = {"title", "description", "key_poses", "return_points", "ranges", "conditions", "spline", "region", "gears"}
@@ -72,8 +79,9 @@ class FiveBarProblem:
         Pencil lines tracing each 4-pose curve of the solution region.
     radius_mm : float
         Hinges are kept within this distance of the poses' centroid (mm).
-    center_distances : (float, float) or None
-        Sun to intermediate shaft and intermediate shaft to planet (mm); None: half the carrier each.
+    gearing : Gearing
+        Module, pressure angle, cutter, carrier layout and optional fixed centre distances of the gear train
+        (``trains.toothed_train``); ``center_distances`` gives its fixed centre distances (mm) or None.
     source, title : str
         Where the problem came from (file name or ``"<dict>"``) and its title.
 
@@ -95,7 +103,7 @@ class FiveBarProblem:
     spline_count: int = 12
     samples: int = 1000
     radius_mm: float = 600.0
-    center_distances: tuple[float, float] | None = None
+    gearing: Gearing = field(default_factory=Gearing)
     source: str = "<dict>"
     title: str = ""
 
@@ -117,8 +125,13 @@ class FiveBarProblem:
         if not (np.isfinite(self.return_tolerance_mm) and self.return_tolerance_mm >= 0):
             check.fail("return_tolerance_mm", self.return_tolerance_mm, "a finite distance >= 0 (mm)")
         check.positive("radius_mm")
-        if self.center_distances is not None and min(self.center_distances) <= 0:
-            check.fail("center_distances", self.center_distances, "two positive distances (mm) or None")
+        if not isinstance(self.gearing, Gearing):
+            check.fail("gearing", self.gearing, "a trains.toothed_train.Gearing")
+
+    @property
+    def center_distances(self) -> tuple[float, float] | None:
+        """Sun to intermediate shaft and intermediate shaft to planet (mm) when the problem fixes them."""
+        return self.gearing.center_distances
 
 
 def load_problem(path: str | Path) -> FiveBarProblem:
@@ -149,6 +162,42 @@ def _table_rows(read: FieldReader, data: dict, key: str, fields: tuple[str, ...]
         values.append([read.number(row, name, where) for name in fields])
         labels.append(str(row.get("label", "")))
     return np.array(values, float).reshape(-1, len(fields)), labels
+
+
+def _choice(read: FieldReader, table: dict, key: str, choices: tuple[str, ...], why: str) -> str:
+    value = table.get(key, choices[0])
+    if value not in choices:
+        read.fail(f"gears.{key}", value, " or ".join(f'"{c}"' for c in choices) + why)
+    return value
+
+
+def _gearing(read: FieldReader, table: dict) -> Gearing:
+    """The [gears] table: module, pressure angle, cutter, layout and optional fixed centre distances."""
+    read.keys(table, {"module", "pressure_angle_deg", "cutter", "shaper_teeth", "layout", "first_center_distance",
+                      "second_center_distance"}, "gears")
+    module = read.number(table, "module", "gears") if "module" in table else 1.5
+    if not MODULE_RANGE[0] <= module <= MODULE_RANGE[1]:
+        read.fail("gears.module", module, f"a module from {MODULE_RANGE[0]:g} to {MODULE_RANGE[1]:g} mm (finer gives "
+                                          "hundreds of teeth on these gears, coarser a few tens of mm per tooth)")
+    pressure = read.number(table, "pressure_angle_deg", "gears") if "pressure_angle_deg" in table else 20.0
+    low, high = PRESSURE_ANGLE_RANGE_DEG
+    if not low <= pressure <= high:
+        read.fail("gears.pressure_angle_deg", pressure, f"an angle from {low:g} to {high:g} deg (the standard ones; "
+                                                       "smaller needs ever larger gears against rack undercut, larger "
+                                                       "makes pointed teeth)")
+    cutter = _choice(read, table, "cutter", CUTTERS, "")
+    layout = _choice(read, table, "layout", LAYOUTS, " (intermediate shaft off O-A, or on it)")
+    teeth = read.integer(table, "shaper_teeth", "gears", *SHAPER_TEETH_RANGE, default=16)
+    keys = ("first_center_distance", "second_center_distance")
+    centers = None
+    if any(key in table for key in keys):
+        if not all(key in table for key in keys):
+            read.fail("gears", {k: table[k] for k in keys if k in table},
+                      "both first_center_distance and second_center_distance (mm), or neither")
+        centers = tuple(read.number(table, key, "gears") for key in keys)
+        if min(centers) <= 0:
+            read.fail("gears", {k: table[k] for k in keys}, "positive center distances (mm)")
+    return Gearing(module, float(np.radians(pressure)), cutter, teeth, layout, centers)
 
 
 def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
@@ -217,15 +266,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
     if radius <= 0:
         read.fail("region.radius_mm", radius, "a positive distance (mm)")
 
-    gears = data.get("gears", {})
-    read.keys(gears, {"first_center_distance", "second_center_distance"}, "gears")
-    centers = None
-    if gears:
-        if set(gears) != {"first_center_distance", "second_center_distance"}:
-            read.fail("gears", gears, "both first_center_distance and second_center_distance (mm), or neither")
-        centers = tuple(read.number(gears, key, "gears") for key in ("first_center_distance", "second_center_distance"))
-        if min(centers) <= 0:
-            read.fail("gears", gears, "positive center distances (mm)")
+    gearing = _gearing(read, data.get("gears", {}))
 
     poses = rows[:, :3].copy()
     poses[:, 2] = np.radians(poses[:, 2])
@@ -233,4 +274,4 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
                           return_tolerance_mm=tolerance,
                           return_labels=tuple(return_labels), ranges=ranges, min_closure_margin=margin,
                           ratio_bounds=ratio, spline_count=count, samples=samples, radius_mm=radius,
-                          center_distances=centers, source=source, title=str(data.get("title", "")))
+                          gearing=gearing, source=source, title=str(data.get("title", "")))

@@ -20,21 +20,32 @@ def to_markdown(report: dict, labels: tuple[str, ...], figures: list[str]) -> st
              "## Design (pose 1)", "", "| quantity | value |", "|---|---|"]
     lines += [f"| {key} | {value if isinstance(value, (str, list)) else round(value, 4)} |" for key, value in d.items()]
     lines += ["", "## Whole turn", "",
+              f"- smallest transmission angle EBF: {report['transmission_angle_min_deg']:.2f} deg at carrier turn "
+              f"{report['transmission_angle_min_at_deg']:.1f} deg; smallest angle between EF and BE at E: "
+              f"{report['angle_at_e_min_deg']:.2f} deg",
               f"- smallest closure margin sin²(EBF): {report['min_closure_margin']:.5f} "
               f"(required {report['required_closure_margin']}); eq (10) discriminant ≥ {report['min_discriminant']:.4g} mm⁴",
+              "- active bounds: " + (", ".join(_bound(b) for b in report["active_bounds"]) or "none"),
               f"- relative angle strictly increasing: {report['relative_angle_monotonic']}; total ratio i0 in "
               f"[{report['ratio_range'][0]:.4f}, {report['ratio_range'][1]:.4f}]", ""]
-    gears = report["gears"]
+    train, mesh = report["gear_train"], report["mesh_check"]
+    a1, a2 = train["center_distances_mm"]
     lines += ["## Gears (eq 11-13)", "",
-              f"Correction factor k = {gears['correction_k']:.6f}. Eq (12) as printed (integrating over the relative "
-              f"angle) gives k = {gears['printed_eq12_k']:.6f}, with which the first intermediate gear turns "
-              f"{gears['printed_eq12_intermediate_turn_deg']:.3f} deg per sun turn instead of 360.", "",
-              "| pair | a (mm) | closure error (rad) | driver r (mm) | driven r (mm) | convex |", "|---|---|---|---|---|---|"]
-    for stage in gears["stages"]:
-        lines.append(f"| {stage['pair']} | {stage['center_distance']:.3f} | {stage['closure_error_rad']:.2g} | "
-                     f"{stage['driver_radius_range'][0]:.3f}-{stage['driver_radius_range'][1]:.3f} | "
-                     f"{stage['driven_radius_range'][0]:.3f}-{stage['driven_radius_range'][1]:.3f} | "
-                     f"{stage['driver_convex']}/{stage['driven_convex']} |")
+              f"Correction factor k = {train['correction_k']:.6f}. Eq (12) as printed (integrating over the relative "
+              f"angle) gives k = {train['printed_eq12_k']:.6f}, with which the first intermediate gear turns "
+              f"{train['printed_eq12_intermediate_turn_deg']:.3f} deg per sun turn instead of 360.", "",
+              f"Module {train['module']:g} mm, pressure angle {train['pressure_angle_deg']:g} deg, {train['layout']} "
+              f"carrier: a1 = {a1:.4f} mm, a2 = {a2:.4f} mm, the intermediate shaft at "
+              f"({train['shaft_mm'][0]:.3f}, {train['shaft_mm'][1]:.3f}) mm, bent {train['bend_angle_deg']:.2f} deg "
+              "from O-A.", "",
+              "| gear | role | teeth | convex | smallest convex curvature radius (mm) | cutter | why |",
+              "|---|---|---|---|---|---|---|"]
+    lines += [f"| {g['name']} | {g['role']} | {g['teeth']} | {g['convex']} | {g['min_curvature_radius_mm']:.3f} | "
+              f"{g['cutter']} | {g['reason']} |" for g in report["gears"]]
+    lines += ["", f"Tooth mesh over a turn (teeth turned by the designed motion): largest overlap "
+              f"{mesh['max_overlap_mm']:.4f} mm, smallest clearance {mesh['min_clearance_mm']:.4f} mm, transmission "
+              f"error {mesh['transmission_error_deg']:.4f} deg: {'passed' if mesh['passed'] else 'FAILED'}.", ""]
+    lines += _alternatives(report)
     region = report["region"]
     lines += ["", "## Solution region", "",
               f"{region['receiving_kept']} of {region['receiving_dyads']} B-E dyads and {region['carrier_kept']} of "
@@ -43,6 +54,35 @@ def to_markdown(report: dict, labels: tuple[str, ...], figures: list[str]) -> st
               f"NLP: {report['nlp']['status']} in {report['nlp']['iterations']} iterations.", ""]
     lines += [f"![{name}]({name})" for name in figures]
     return "\n".join(lines) + "\n"
+
+
+def _bound(bound: dict) -> str:
+    return f"{bound['bound']} {'>=' if bound['side'] == 'lower' else '<='} {bound['limit']:g}"
+
+
+def _alternatives(report: dict) -> list[str]:
+    """The table of the ranked alternatives and the list of the candidates that failed."""
+    lines = ["", "## Alternatives", "",
+             f"{report['ranking_rule']} Alternative {report['picked']} is built (`--pick N` builds another).", "",
+             "| # | OA | AF | EF | BE | EP | FP | B (mm) | min EBF (deg) at turn | min angle at E (deg) | i0 range | "
+             "largest return miss (mm) | active bounds | from candidates |", "|---" * 14 + "|"]
+    for alternative in report["alternatives"]:
+        d = alternative["design"]
+        mark = " (built)" if alternative["rank"] == report["picked"] else ""
+        lines.append(
+            f"| {alternative['rank']}{mark} | {d['carrier_length_OA']:.2f} | {d['rod_length_AF']:.2f} | "
+            f"{d['plate_link_length_EF']:.2f} | {d['receiving_plate_length_BE']:.2f} | {d['push_plate_EP']:.2f} | "
+            f"{d['push_plate_FP']:.2f} | ({d['hinge_B'][0]:.1f}, {d['hinge_B'][1]:.1f}) | "
+            f"{alternative['transmission_angle_min_deg']:.2f} at {alternative['transmission_angle_min_at_deg']:.1f} | "
+            f"{alternative['angle_at_e_min_deg']:.2f} | {alternative['ratio_range'][0]:.3f}-"
+            f"{alternative['ratio_range'][1]:.3f} | {max(alternative['return_point_errors_mm']):.3g} | "
+            f"{', '.join(_bound(b) for b in alternative['active_bounds']) or 'none'} | "
+            f"{', '.join(map(str, alternative['start_candidates']))} |")
+    lines += ["", "Lengths in mm; turns are the carrier's, clockwise from pose 1 (deg)."]
+    if report["failed"]:
+        lines += ["", "Candidates whose refinement failed:", ""]
+        lines += [f"- candidate {failure['candidate']}: {failure['reason']}" for failure in report["failed"]]
+    return lines
 
 
 def evaluation_markdown(report: dict, labels: tuple[str, ...]) -> str:

@@ -5,6 +5,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from transplanter.fivebar.alternatives import RANKING_RULE, ActiveBound, Alternative, Failure
 from transplanter.fivebar.candidate import Candidate
 from transplanter.fivebar.linkage import FiveBar
 from transplanter.fivebar.nlp import BENDING_WEIGHT, DesignSolution
@@ -12,6 +13,7 @@ from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import Region
 from transplanter.fivebar.verification import Verification
 from transplanter.trains.planetary import PlanetaryTrain, printed_correction
+from transplanter.trains.toothed_train import ToothedTrain, toothed_train_json
 
 
 def design_json(mech: FiveBar, pose1: np.ndarray) -> dict:
@@ -37,6 +39,27 @@ def _stage_json(stage, name: str) -> dict:
             "perimeters_mm": list(stage.perimeters)}
 
 
+def bounds_json(bounds: tuple[ActiveBound, ...]) -> list[dict]:
+    """Active bounds as ``{"bound", "side", "limit", "value"}``."""
+    return [{"bound": b.name, "side": b.side, "limit": b.limit, "value": b.value} for b in bounds]
+
+
+def alternative_json(alternative: Alternative, rank: int, pose1: np.ndarray) -> dict:
+    """One ranked alternative (mm, degrees); ``start_candidates`` number the region's feasible
+    candidates from 1 in the region's order."""
+    design = alternative.design
+    return {"rank": rank, "design": design_json(design.mech, pose1),
+            "transmission_angle_min_deg": float(np.degrees(alternative.transmission_angle)),
+            "transmission_angle_min_at_deg": float(np.degrees(alternative.transmission_turn)),
+            "angle_at_e_min_deg": float(np.degrees(alternative.angle_at_e)),
+            "angle_at_e_min_at_deg": float(np.degrees(alternative.angle_at_e_turn)),
+            "min_closure_margin": alternative.min_closure_margin, "ratio_range": list(alternative.ratio_range),
+            "return_point_errors_mm": alternative.return_misses_mm.tolist(),
+            "active_bounds": bounds_json(alternative.active_bounds),
+            "start_candidates": [k + 1 for k in alternative.starts],
+            "nlp": {"status": design.status, "iterations": design.iterations, "objective": design.objective}}
+
+
 @dataclass(frozen=True)
 class FiveBarResult:
     """A five-bar mechanism designed for a ``FiveBarProblem``, with its planetary gear train.
@@ -48,33 +71,63 @@ class FiveBarResult:
     region : Region
         The solution region: traced B-E and A-F dyads and the five-bars they pair into.
     start : Candidate
-        The region candidate the design NLP started from.
+        The region candidate the picked design was refined from (the first of its starts).
     design : DesignSolution
-        The refined mechanism (mm, rad), the relative angle of rod I as a B-spline of the carrier
-        turn (rad), the return stroke, and the NLP's objective, iterations and status.
-    train : PlanetaryTrain
-        The four pitch curves (mm) of the two gear stages and the correction factor k.
+        The picked refined mechanism (mm, rad), the relative angle of rod I as a B-spline of the
+        carrier turn (rad), the return stroke, and the NLP's objective, iterations and status.
+    toothed : ToothedTrain
+        The four gears with whole teeth on the carrier: pitch curves (mm), counts, cutters, tooth
+        outlines and the mesh check of each stage; ``train`` is its ``PlanetaryTrain``.
     verification : Verification
         The independent forward simulation: errors at the key poses (mm, deg) and return
         points (mm), trajectory of P over a turn (mm), closure margin, ratio range.
     timings_s : dict
-        Wall time of each stage (s).
+        Wall time of each stage (s); ``nlp_per_candidate`` lists each refinement's.
+    alternatives : tuple of Alternative
+        Every distinct refined design, ranked (``fivebar.alternatives``); ``design`` is number ``picked``.
+    failed : tuple of Failure
+        The feasible candidates whose refinement failed, with the reason.
+    picked : int
+        Which alternative was built (1-based).
     """
 
     problem: FiveBarProblem
     region: Region
     start: Candidate
     design: DesignSolution
-    train: PlanetaryTrain
+    toothed: ToothedTrain
     verification: Verification
     timings_s: dict
+    alternatives: tuple[Alternative, ...]
+    failed: tuple[Failure, ...]
+    picked: int
+
+    @property
+    def train(self) -> PlanetaryTrain:
+        """The pitch curves of the two gear stages and the correction factor k."""
+        return self.toothed.train
+
+    @property
+    def failures(self) -> list[str]:
+        """Every check of the built mechanism it fails: verification, then the gears' mesh."""
+        return [*self.verification.failures, *self.toothed.failures]
+
+    @property
+    def passed(self) -> bool:
+        return not self.failures
+
+    @property
+    def chosen(self) -> Alternative:
+        """The picked alternative."""
+        return self.alternatives[self.picked - 1]
 
     def to_json(self) -> dict:
         """The report as plain JSON types (mm, degrees): the content of report.json."""
         problem, design, train, check = self.problem, self.design, self.train, self.verification
+        toothed = toothed_train_json(self.toothed)
         relative = design.relative_angle
         k_printed, turn_printed = printed_correction(relative)
-        region = self.region
+        region, chosen = self.region, self.chosen
         return {
             "source": problem.source, "title": problem.title,
             "key_pose_position_errors_mm": check.key_position_errors_mm.tolist(),
@@ -85,15 +138,26 @@ class FiveBarResult:
             "required_closure_margin": problem.min_closure_margin,
             "relative_angle_monotonic": check.relative_angle_monotonic,
             "ratio_range": list(check.ratio_range),
+            "transmission_angle_min_deg": float(np.degrees(chosen.transmission_angle)),
+            "transmission_angle_min_at_deg": float(np.degrees(chosen.transmission_turn)),
+            "angle_at_e_min_deg": float(np.degrees(chosen.angle_at_e)),
+            "active_bounds": bounds_json(chosen.active_bounds),
+            "picked": self.picked, "ranking_rule": RANKING_RULE,
+            "alternatives": [alternative_json(a, k + 1, problem.poses[0]) for k, a in enumerate(self.alternatives)],
+            "failed": [{"candidate": f.start + 1, "reason": f.reason} for f in self.failed],
             "design": design_json(design.mech, problem.poses[0]),
             "relative_angle": {"rho1_deg": float(np.degrees(relative.rho1)),
                                "control_values_deg": np.degrees(relative.coefficients).tolist(),
                                "return_point_turns_deg": np.degrees(design.stroke.carrier_turns).tolist()},
             "gear_closure_errors": [train.stage_one.closure_error, train.stage_two.closure_error],
-            "gears": {"correction_k": train.correction, "printed_eq12_k": k_printed,
-                      "printed_eq12_intermediate_turn_deg": float(np.degrees(turn_printed)),
-                      "stages": [_stage_json(train.stage_one, "sun -> first intermediate"),
-                                 _stage_json(train.stage_two, "second intermediate -> planet")]},
+            "gears": toothed["gears"], "mesh_check": toothed["mesh_check"],
+            "gear_train": {"correction_k": train.correction, "printed_eq12_k": k_printed,
+                           "printed_eq12_intermediate_turn_deg": float(np.degrees(turn_printed)),
+                           **{key: toothed[key] for key in ("layout", "module", "pressure_angle_deg",
+                                                            "center_distances_mm", "teeth", "bend_angle_deg",
+                                                            "shaft_mm")},
+                           "stages": [_stage_json(train.stage_one, "sun -> first intermediate"),
+                                      _stage_json(train.stage_two, "second intermediate -> planet")]},
             "roundtrip_max_error_mm": check.roundtrip_max_error_mm,
             "contact_gap_mm": check.contact_gap_mm,
             "region": {"receiving_dyads": len(region.receiving.fixed),

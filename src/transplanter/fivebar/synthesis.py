@@ -1,27 +1,27 @@
 """The main job: from a five-bar problem to a verified mechanism with its gear train.
 
-Region (``fivebar.region``) -> best feasible candidate -> design NLP (``fivebar.nlp``, one
-solver per problem) -> gear train (``trains.planetary``) -> independent verification
-(``fivebar.verification``).
+Region (``fivebar.region``) -> every feasible candidate refined by the design NLP (one solver
+per problem), judged, merged and ranked (``fivebar.alternatives``) -> the picked alternative's
+gear train with whole teeth, cut and mesh-checked (``trains.toothed_train``) -> independent
+verification (``fivebar.verification``).
 When the region is empty, the error names the condition that emptied it and the closest
 candidates.
 """
 from __future__ import annotations
 
 import time
+from numbers import Integral
 
 import numpy as np
 
 from transplanter.errors import InfeasibleError, ProblemError, SolverError
+from transplanter.fivebar.alternatives import Alternative, Progress, refine_all
 from transplanter.fivebar.nlp import DesignSolver
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import ChainFamily, Region, solution_region
 from transplanter.fivebar.result import FiveBarResult
 from transplanter.fivebar.verification import verify
-from transplanter.trains.planetary import design_train
-
-#: Region candidates the NLP is started from, best first, before giving up.
-STARTS = 3
+from transplanter.trains.toothed_train import design_toothed_train
 
 
 def _empty_family(problem: FiveBarProblem, name: str, family: ChainFamily):
@@ -56,43 +56,67 @@ def _no_feasible_pair(problem: FiveBarProblem, region: Region):
                           f"feasible (first failing condition per pair: {counts}); closest: {lines}")
 
 
-def center_distances(problem: FiveBarProblem, carrier_length: float) -> tuple[float, float]:
-    if problem.center_distances is None:
-        return carrier_length / 2, carrier_length / 2
-    a1, a2 = problem.center_distances
-    if a1 + a2 < carrier_length or abs(a1 - a2) > carrier_length:
-        raise ProblemError(f"{problem.source}: gears = [{a1:g}, {a2:g}] mm: expected center distances that can span "
-                           f"the carrier O-A = {carrier_length:.3f} mm (a1 + a2 >= OA >= |a1 - a2|)")
-    return a1, a2
+def _checked_pick(pick) -> int:
+    """``pick`` as a whole number of at least 1 (None: 1), before any work starts."""
+    if pick is None:
+        return 1
+    if isinstance(pick, bool) or not isinstance(pick, Integral) or pick < 1:
+        raise ProblemError(f"--pick = {pick!r}: expected a whole number of at least 1 (1: the best-ranked alternative)")
+    return int(pick)
 
 
-def synthesize(problem: FiveBarProblem) -> FiveBarResult:
+def pick_alternative(alternatives: list[Alternative], pick: int, source: str) -> Alternative:
+    """Alternative number ``pick`` (1-based, in ranked order); a ``ProblemError`` naming the valid range
+    when there is no such alternative."""
+    if pick > len(alternatives):
+        count = len(alternatives)
+        valid = "1" if count == 1 else f"1 to {count}"
+        raise ProblemError(f"--pick = {pick}: expected {valid} ({source} gives {count} "
+                           f"alternative{'s' if count > 1 else ''})")
+    return alternatives[pick - 1]
+
+
+def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progress | None = None) -> FiveBarResult:
     """Design the five-bar and its four-gear planetary train for ``problem``, and verify it.
+
+    Every feasible region candidate is refined by the design NLP; the results are judged by
+    their own forward evaluation, merged where they are one mechanism, and ranked
+    (``fivebar.alternatives``: the largest smallest transmission angle EBF first). Alternative
+    ``pick`` gets its gears and the verification.
 
     Parameters
     ----------
     problem : FiveBarProblem
         Key poses, return points, ranges and conditions (from ``load_problem`` or
         ``parse_problem``; mm and radians inside).
+    pick : int, optional
+        Which alternative to build, 1-based in ranked order (default 1, the best).
+    progress : callable, optional
+        ``progress(step, done, total)``, called with done = 0 when a step starts and after each
+        unit of it; steps ``"region"``, ``"refinement"`` (one unit per candidate), ``"gears"``,
+        ``"verification"``.
 
     Returns
     -------
     FiveBarResult
-        The region, the start candidate, the NLP design, the gear train and the forward
-        verification; ``to_json()`` gives the report.
+        The region, the ranked alternatives and failed candidates, the picked design with its
+        start candidate, gear train and forward verification; ``to_json()`` gives the report.
 
     Raises
     ------
+    ProblemError
+        ``pick`` is not a whole number from 1 to the number of alternatives.
     InfeasibleError
         The region holds no feasible five-bar: the message names the condition and the
         closest candidates.
     SolverError
-        IPOPT failed from each of the ``STARTS`` best candidates (the statuses are given).
+        No refinement succeeded (the reason for each candidate is given).
     """
+    pick = _checked_pick(pick)
     timings = {}
-    start = time.perf_counter()
+    start = _step(progress, "region")
     region = solution_region(problem)
-    timings["region"] = time.perf_counter() - start
+    timings["region"] = _done(progress, "region", start)
     if not region.receiving.kept.any():
         _empty_family(problem, "2R chain B-E", region.receiving)
     if not region.carrier.kept.any():
@@ -104,22 +128,35 @@ def synthesize(problem: FiveBarProblem) -> FiveBarResult:
     solver = DesignSolver(problem)
     timings["nlp_build"] = time.perf_counter() - start
     start = time.perf_counter()
-    failures = []
-    for candidate in region.feasible[:STARTS]:
-        try:
-            design = solver.refine(candidate)
-            break
-        except SolverError as error:
-            failures.append(error.status)
-    else:
-        raise SolverError(f"{problem.source}: the design NLP failed from the {len(failures)} best region candidates",
-                          ", ".join(failures))
+    alternatives, failed, seconds = refine_all(problem, solver, region.feasible, progress)
     timings["nlp"] = time.perf_counter() - start
+    timings["nlp_per_candidate"] = seconds
+    if not alternatives:
+        raise SolverError(f"{problem.source}: none of the {len(failed)} feasible region candidates refined into a "
+                          f"design that passes its checks", "; ".join(f"{f.start + 1}: {f.reason}" for f in failed))
+    chosen = pick_alternative(alternatives, pick, problem.source)
+    design = chosen.design
 
-    start = time.perf_counter()
-    train = design_train(design.relative_angle, center_distances(problem, design.mech.carrier_length), problem.source)
-    timings["gears"] = time.perf_counter() - start
-    start = time.perf_counter()
-    verification = verify(problem, design.mech, design.relative_angle, train, design.stroke.carrier_turns)
-    timings["verification"] = time.perf_counter() - start
-    return FiveBarResult(problem, region, candidate, design, train, verification, timings)
+    start = _step(progress, "gears")
+    toothed = design_toothed_train(design.relative_angle, design.mech.carrier_length, problem.gearing, problem.source)
+    timings["gears"] = _done(progress, "gears", start)
+    timings.update((f"gears_{step}", seconds) for step, seconds in toothed.timings_s.items())
+    start = _step(progress, "verification")
+    verification = verify(problem, design.mech, design.relative_angle, toothed.train, design.stroke.carrier_turns)
+    timings["verification"] = _done(progress, "verification", start)
+    return FiveBarResult(problem, region, region.feasible[chosen.starts[0]], design, toothed, verification, timings,
+                         tuple(alternatives), tuple(failed), pick)
+
+
+def _step(progress: Progress | None, step: str) -> float:
+    """Say that a one-unit ``step`` starts; its start time."""
+    if progress:
+        progress(step, 0, 1)
+    return time.perf_counter()
+
+
+def _done(progress: Progress | None, step: str, start: float) -> float:
+    """Say that a one-unit ``step`` is done; its wall time (s)."""
+    if progress:
+        progress(step, 1, 1)
+    return time.perf_counter() - start

@@ -128,8 +128,8 @@ def generate_teeth(design: GearPairDesign, module: float, alpha: float, source: 
     else:                   # the shaper cuts the driver; the driver's teeth cut the driven gear (conjugate)
         driver = shaper_profile(tables[0], module, alpha, cutter_teeth)
         outlines = [driver, mate_profile(design, driver, tables[1], module)]
-    convex = [c > 0 for c in design.convexity]
-    ratio = local_contact_ratio(*design.curvature_radius, module, alpha)[convex[0] & convex[1]]
+    both = (design.convexity[0] > 0) & (design.convexity[1] > 0)
+    ratio = local_contact_ratio(design.curvature_radius[0][both], design.curvature_radius[1][both], module, alpha)
     return PairTeeth(tuple(outlines), tuple(counts), cutter,
                      (float(ratio.min()), float(ratio.max())) if ratio.size else None,
                      tuple(self_intersections(o) for o in outlines))

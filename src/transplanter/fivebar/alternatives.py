@@ -1,0 +1,278 @@
+"""Every feasible region candidate refined, each result judged by its own forward evaluation,
+the same mechanisms merged, and the alternatives ranked.
+
+The design NLP is a black box here: a refined design is evaluated again on its own by
+``FiveBar.forward`` over a fine grid of the carrier turn, ``range_values`` and
+``RelativeAngle.evaluate``. That gives the transmission angles, the ratio range, the
+return-point misses and the bounds the design sits on, and it rejects a design that breaks a
+condition (the candidate is then listed as failed, with the reason).
+
+Ranking rule (``rank``): the largest smallest transmission angle EBF over the turn first.
+Angles within ``ANGLE_TIE`` (relative) of the first of their group tie; a tie goes to the
+smaller largest return-point miss (misses within ``MISS_TIE`` of the reach tie), then to the
+gentler ratio, i.e. the smaller spread i0_max / i0_min; then to the earlier start candidate.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, replace
+from typing import Callable
+
+import numpy as np
+
+from transplanter.errors import SolverError
+from transplanter.fivebar.candidate import (GRID, Candidate, closure_defect, monotonic_defect, range_defect,
+                                            range_values, ratio_defect)
+from transplanter.fivebar.linkage import FiveBar
+from transplanter.fivebar.nlp import DesignSolution, DesignSolver
+from transplanter.fivebar.problem import FiveBarProblem
+from transplanter.fivebar.relative_angle import ratio_range
+
+TWO_PI = 2 * np.pi
+#: Carrier turns of the evaluation (0.1 deg apart).
+TURN_SAMPLES = 3600
+#: A bound is active when the design is within this fraction of the bound's own scale (range width,
+#: margin floor, span of the ratio bounds) of it; beyond it on the wrong side, the design fails.
+ACTIVE_TOLERANCE = 1e-4
+#: Key poses must be met to this fraction of the reach (positions) and in radians (plate angles).
+KEY_TOLERANCE = 1e-8
+#: Two designs are one mechanism when lengths agree to this fraction of the reach and angles, the
+#: relative angle included, to this many radians.
+MERGE_TOLERANCE = 1e-6
+#: Smallest angles EBF within this fraction of each other rank as a tie.
+ANGLE_TIE = 1e-3
+#: Largest return-point misses within this fraction of the reach rank as a tie.
+MISS_TIE = 1e-6
+
+#: The ranking rule in words (the reports state it).
+RANKING_RULE = (f"Ranked by the smallest transmission angle EBF over the turn, largest first; angles within "
+                f"{ANGLE_TIE:.1%} of each other tie, and a tie goes to the smaller largest return-point miss "
+                f"(misses within {MISS_TIE:g} of the reach, the farthest key pose or return point from O, tie), "
+                f"then to the gentler ratio (smaller i0 max / min), then to the earlier start candidate.")
+
+#: ``progress(step, done, total)``: called with done = 0 when a step starts and after each unit of it.
+Progress = Callable[[str, int, int], None]
+
+
+@dataclass(frozen=True)
+class ActiveBound:
+    """A bound the design sits on: ``name`` (``ranges.ep``, ``min_closure_margin``, ``ratio``),
+    ``side`` (``lower`` or ``upper``), the bound's ``limit`` and the design's ``value``."""
+
+    name: str
+    side: str
+    limit: float
+    value: float
+
+    def __str__(self) -> str:
+        return f"{self.name} {'>=' if self.side == 'lower' else '<='} {self.limit:g}"
+
+
+@dataclass(frozen=True, eq=False)
+class Alternative:
+    """A refined design with its independent evaluation (mm, radians).
+
+    Attributes
+    ----------
+    design : DesignSolution
+        The NLP's result from the first of ``starts``.
+    starts : tuple of int
+        Indices into ``region.feasible`` of every candidate the NLP took to this mechanism.
+    transmission_angle, transmission_turn : float
+        Smallest angle EBF over the turn, folded to [0, pi/2] (asin of the root of eq 10's
+        margin), and the carrier turn where it occurs.
+    angle_at_e, angle_at_e_turn : float
+        Smallest angle between EF and BE at E over the turn (folded likewise), and where.
+    ratio_range : (float, float)
+        Smallest and largest total ratio i0 = 1 / rho'.
+    return_misses_mm : ndarray, shape (m,)
+        Distance of P from each return point at the carrier turn the design passes it.
+    min_closure_margin : float
+        Smallest sin^2(EBF) over the turn.
+    active_bounds : tuple of ActiveBound
+    """
+
+    design: DesignSolution
+    starts: tuple[int, ...]
+    transmission_angle: float
+    transmission_turn: float
+    angle_at_e: float
+    angle_at_e_turn: float
+    ratio_range: tuple[float, float]
+    return_misses_mm: np.ndarray
+    min_closure_margin: float
+    active_bounds: tuple[ActiveBound, ...]
+
+    @property
+    def largest_miss_mm(self) -> float:
+        return float(self.return_misses_mm.max())
+
+    @property
+    def ratio_spread(self) -> float:
+        """i0_max / i0_min: 1 for a constant ratio (circular gears), larger for harsher gears."""
+        return self.ratio_range[1] / self.ratio_range[0]
+
+
+@dataclass(frozen=True)
+class Failure:
+    """A feasible region candidate (index into ``region.feasible``) whose refinement failed, and why."""
+
+    start: int
+    reason: str
+
+
+def reach(problem: FiveBarProblem) -> float:
+    """The problem's own size (mm): the largest distance of a key pose or return point from O."""
+    return float(np.hypot(*np.vstack([problem.poses[:, :2], problem.return_points]).T).max())
+
+
+def _folded_angle(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Angle between vectors u and v (..., 2) folded to [0, pi/2]: 0 when they are collinear."""
+    cross = u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
+    return np.arctan2(np.abs(cross), np.abs(np.sum(u * v, axis=-1)))
+
+
+def transmission_angles(mech: FiveBar, state: dict) -> tuple[np.ndarray, np.ndarray]:
+    """Angle EBF at B and the angle between EF and BE at E (rad, folded to [0, pi/2]) for the hinge
+    positions of ``FiveBar.forward``'s ``state``."""
+    e, f = state["e"], state["f"]
+    return _folded_angle(e - mech.hinge_b, f - mech.hinge_b), _folded_angle(f - e, mech.hinge_b - e)
+
+
+def _near(value: float, limit: float, scale: float) -> bool:
+    return abs(value - limit) <= ACTIVE_TOLERANCE * scale
+
+
+def active_bounds(problem: FiveBarProblem, mech: FiveBar, min_margin: float,
+                  ratios: tuple[float, float]) -> tuple[ActiveBound, ...]:
+    """The ``[ranges]`` limits, the margin floor and the ratio bounds that the design sits on,
+    each judged within ``ACTIVE_TOLERANCE`` of the bound's own scale."""
+    found = []
+    values = range_values(problem, mech)
+    for key, (low, high) in problem.ranges.items():
+        value = float(values[key])
+        found += [ActiveBound(f"ranges.{key}", side, limit, value)
+                  for side, limit in (("lower", low), ("upper", high)) if _near(value, limit, high - low)]
+    if _near(min_margin, problem.min_closure_margin, problem.min_closure_margin):
+        found.append(ActiveBound("min_closure_margin", "lower", problem.min_closure_margin, min_margin))
+    low, high = problem.ratio_bounds
+    found += [ActiveBound("ratio", side, limit, value)
+              for side, limit, value in (("lower", low, ratios[0]), ("upper", high, ratios[1]))
+              if _near(value, limit, high - low)]
+    return tuple(found)
+
+
+def _defects(problem: FiveBarProblem, design: DesignSolution, slope: np.ndarray,
+             ratios: tuple[float, float], min_margin: float) -> list[str]:
+    """The conditions the refined design breaks beyond ``ACTIVE_TOLERANCE`` (empty: none)."""
+    mech, relative = design.mech, design.relative_angle
+    key = mech.forward(problem.carrier_turns, relative.evaluate(problem.carrier_turns))
+    position = np.linalg.norm(key["p"] - problem.poses[:, :2], axis=1)
+    angle = np.abs(np.angle(np.exp(1j * (key["direction"] - problem.poses[:, 2]))))
+    defects = []
+    if not (np.all(position <= KEY_TOLERANCE * reach(problem)) and np.all(angle <= KEY_TOLERANCE)):
+        defects.append(f"key poses: missed by up to {np.max(position):.3g} mm and "
+                       f"{np.degrees(np.max(angle)):.3g} deg")
+    floor = problem.min_closure_margin
+    if not min_margin >= floor * (1 - ACTIVE_TOLERANCE):      # NaN: the chain does not close somewhere
+        defects.append(closure_defect(min_margin, floor))
+    if slope.min() <= 0:
+        defects.append(monotonic_defect(relative.evaluate(GRID, 1)))
+    else:
+        low, high = problem.ratio_bounds
+        slack = ACTIVE_TOLERANCE * (high - low)
+        if ratios[0] < low - slack or ratios[1] > high + slack:
+            defects.append(ratio_defect(*ratios, problem.ratio_bounds))
+    values = range_values(problem, mech)
+    for name, (low, high) in problem.ranges.items():
+        if not low - ACTIVE_TOLERANCE * (high - low) <= values[name] <= high + ACTIVE_TOLERANCE * (high - low):
+            defects.append(range_defect(name, float(values[name]), (low, high)))
+    return defects
+
+
+def assess(problem: FiveBarProblem, design: DesignSolution, start: int) -> Alternative | Failure:
+    """The refined design from ``region.feasible[start]`` evaluated on its own: an ``Alternative``,
+    or a ``Failure`` naming every condition it breaks."""
+    mech, relative = design.mech, design.relative_angle
+    turns = np.linspace(0, TWO_PI, TURN_SAMPLES, endpoint=False)
+    state = mech.forward(turns, relative.evaluate(turns))
+    slope = relative.evaluate(turns, 1)
+    ratios = ratio_range(slope)
+    min_margin = float(np.min(state["margin"]))
+    defects = _defects(problem, design, slope, ratios, min_margin)
+    if defects:
+        return Failure(start, "; ".join(defects))
+    at_b, at_e = transmission_angles(mech, state)
+    returns = mech.forward(design.stroke.carrier_turns, relative.evaluate(design.stroke.carrier_turns))
+    return Alternative(design, (start,), float(at_b.min()), float(turns[at_b.argmin()]), float(at_e.min()),
+                       float(turns[at_e.argmin()]), ratios,
+                       np.linalg.norm(returns["p"] - problem.return_points, axis=1), min_margin,
+                       active_bounds(problem, mech, min_margin, ratios))
+
+
+def _signature(design: DesignSolution, size: float) -> np.ndarray:
+    """Lengths in units of ``size``, angles in radians, and the relative angle at 36 turns: what
+    makes two designs one mechanism."""
+    mech = design.mech
+    lengths = np.r_[mech.carrier_length, mech.rod_length, mech.hinge_b, mech.receiving_length, mech.e_local,
+                    mech.f_local] / size
+    return np.r_[lengths, mech.carrier_angle, mech.branch, design.relative_angle.evaluate(GRID[::20])]
+
+
+def merge(alternatives: list[Alternative], size: float) -> list[Alternative]:
+    """One alternative per mechanism (``MERGE_TOLERANCE``), kept from its first start and listing every start."""
+    merged, signatures = [], []
+    for alternative in alternatives:
+        signature = _signature(alternative.design, size)
+        same = [k for k, other in enumerate(signatures) if np.abs(signature - other).max() <= MERGE_TOLERANCE]
+        if same:
+            first = merged[same[0]]
+            merged[same[0]] = replace(first, starts=first.starts + alternative.starts)
+        else:
+            merged.append(alternative)
+            signatures.append(signature)
+    return merged
+
+
+def _tiered(items: list, keys: list) -> list:
+    """``items`` in ascending order of the first key; a run of items within that key's tolerance of the
+    run's first item is ordered by the remaining keys (a stable sort: ties keep their order)."""
+    if not keys or len(items) < 2:
+        return list(items)
+    (value, tolerance), rest = keys[0], keys[1:]
+    remaining, ordered = sorted(items, key=value), []
+    while remaining:
+        lead = value(remaining[0])
+        count = sum(value(item) - lead <= tolerance(lead) for item in remaining)
+        ordered += _tiered(remaining[:count], rest)
+        remaining = remaining[count:]
+    return ordered
+
+
+def rank(alternatives: list[Alternative], size: float) -> list[Alternative]:
+    """The alternatives best first by the rule of the module docstring (``size``: the reach, mm)."""
+    keys = [(lambda a: -a.transmission_angle, lambda lead: ANGLE_TIE * abs(lead)),
+            (lambda a: a.largest_miss_mm, lambda lead: MISS_TIE * size),
+            (lambda a: a.ratio_spread, lambda lead: 0.0)]
+    return _tiered(sorted(alternatives, key=lambda a: a.starts[0]), keys)
+
+
+def refine_all(problem: FiveBarProblem, solver: DesignSolver, candidates: list[Candidate],
+               progress: Progress | None = None) -> tuple[list[Alternative], list[Failure], list[float]]:
+    """Refine every candidate with the one ``solver`` (built for ``problem``); the ranked, merged
+    alternatives, the failures (by start), and the wall time of each refinement (s)."""
+    found, failed, seconds = [], [], []
+    if progress:
+        progress("refinement", 0, len(candidates))
+    for index, candidate in enumerate(candidates):
+        start = time.perf_counter()
+        try:
+            outcome = assess(problem, solver.refine(candidate), index)
+        except SolverError as error:
+            outcome = Failure(index, f"the design NLP did not converge: {error.status}")
+        seconds.append(time.perf_counter() - start)
+        (failed if isinstance(outcome, Failure) else found).append(outcome)
+        if progress:
+            progress("refinement", index + 1, len(candidates))
+    size = reach(problem)
+    return rank(merge(found, size), size), failed, seconds

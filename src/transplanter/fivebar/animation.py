@@ -1,0 +1,165 @@
+"""One turn of a designed five-bar as a moving picture: GIF through Pillow, MP4 where ffmpeg exists.
+
+The still parts are drawn once; each frame redraws only the moving artists over that background
+(blitting on the Agg canvas), which keeps a turn to a few seconds.
+
+Left, the ground frame (mm): the linkage O-A-F-E-B and the push plate E-F-P moving, P's path
+over the turn (from the verification) traced up to the frame, the key poses marked, the pitch
+curves turning on the carrier. Right, the carrier frame (mm): the four pitch curves meshing, and
+tooth outlines when given. Hinges and plate come from ``loop_closure``, gear turns from the design
+(``gears_on_carrier``).
+"""
+from __future__ import annotations
+
+import shutil
+import subprocess
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+from PIL import Image
+
+from transplanter.fivebar.gears_on_carrier import carrier_to_world, gears_on_carrier
+from transplanter.fivebar.loop_closure import close_loop
+from transplanter.fivebar.result import FiveBarResult
+from transplanter.geometry.poses import rotation
+from transplanter.trains.figures import LEGEND_BESIDE
+
+#: Frames per turn, frame rate and resolution: one turn in 6 s, about 0.5 MB, written in about 2 s.
+FRAMES = 72
+FPS = 12
+DPI = 80
+FIGURE_SIZE = (9.0, 4.8)
+#: Colours of the GIF palette (the picture uses a dozen line colours and their antialiased blends).
+PALETTE_COLORS = 64
+
+#: Tooth outlines by gear name: (outline (N, 2) mm in the gear's frame, centre (2,) mm in the carrier
+#: frame, the gear's turn (rad, counterclockwise in the carrier frame) as a function of the carrier turn).
+Teeth = dict[str, tuple[np.ndarray, np.ndarray, Callable[[np.ndarray], np.ndarray]]]
+
+
+def _placed(outline: np.ndarray, center: np.ndarray, angle: Callable, c: float) -> np.ndarray:
+    return center + outline @ rotation(float(np.asarray(angle(np.array([c])))[0])).T
+
+
+def _clock_text(c: float) -> str:
+    return f"carrier turn {np.degrees(c):5.1f} deg (clockwise from pose 1)"
+
+
+def _draw_frames(result: FiveBarResult, teeth: Teeth | None, frames: int):
+    """The Figure and a function that draws frame k."""
+    mech, problem, check = result.design.mech, result.problem, result.verification
+    turns = np.linspace(0, 2 * np.pi, frames, endpoint=False)
+    state = close_loop(mech, turns, result.design.relative_angle.evaluate(turns))
+    gears = gears_on_carrier(result.train, mech.carrier_length)
+    outlines = [(g.pitch_curve, g.center, g.angle, g.name.replace("_", " ")) for g in gears]
+    toothed = [(outline, center, angle, name) for name, (outline, center, angle) in (teeth or {}).items()]
+
+    fig = Figure(figsize=FIGURE_SIZE, layout="constrained")
+    world, carrier = fig.subplots(1, 2, width_ratios=[1, 1.5])
+    world.plot(*check.trajectory.T, color="0.75", lw=1, label="P over a turn")
+    trace, = world.plot([], [], "k-", lw=1.5, label="P so far", animated=True)
+    world.plot(*problem.poses[:, :2].T, "r^", ms=6, label="key poses")
+    for label, pose in zip(problem.labels, problem.poses):
+        world.annotate(f" {label}", pose[:2], fontsize=8, color="r")
+    chain, = world.plot([], [], "b-o", ms=3, lw=1.5, label="O-A-F-E-B", animated=True)
+    plate, = world.fill([], [], color="tab:green", alpha=0.5, label="plate E-F-P", animated=True)
+    world_gears = [world.plot([], [], lw=0.8, animated=True)[0] for _ in outlines]
+    gear_reach = max(np.linalg.norm(g.center) + np.linalg.norm(g.pitch_curve, axis=1).max() for g in gears)
+    every = np.vstack([check.trajectory, gear_reach * np.array([[-1, -1], [1, 1]]), mech.hinge_b[None], state["e"],
+                       state["f"]])
+    low, high = np.nanmin(every, axis=0), np.nanmax(every, axis=0)
+    pad = 0.05 * (high - low).max()
+    world.set(xlim=(low[0] - pad, high[0] + pad), ylim=(low[1] - pad, high[1] + pad), aspect="equal",
+              xlabel="x (mm)", ylabel="y (mm)", title="ground frame")
+    world.legend(fontsize=7, loc="upper left", bbox_to_anchor=(0, -0.12), ncols=2)
+
+    carrier_curves = [carrier.plot([], [], lw=1, label=name, animated=True)[0] for *_, name in outlines]
+    carrier_teeth = [carrier.plot([], [], "k-", lw=0.6, animated=True)[0] for _ in toothed]
+    clock = carrier.text(0.0, -0.22, _clock_text(0.0), transform=carrier.transAxes, ha="left", va="top", fontsize=9,
+                         animated=True)      # below the axis label, where constrained layout keeps room for it
+    centers = np.array([g.center for g in gears])
+    carrier.plot(*centers.T, "k+")
+    carrier.plot(*centers[[0, 1, 3]].T, "k:", lw=0.8)
+    reach = max(np.linalg.norm(g.pitch_curve, axis=1).max() for g in gears)
+    carrier.set(xlim=(centers[:, 0].min() - 1.2 * reach, centers[:, 0].max() + 1.2 * reach),
+                ylim=(centers[:, 1].min() - 1.2 * reach, centers[:, 1].max() + 1.2 * reach), aspect="equal",
+                xlabel="x along the carrier O-A (mm)", ylabel="y on the carrier (mm)",
+                title="pitch curves on the carrier" + (" with teeth" if toothed else ""))
+    carrier.legend(fontsize=7, **LEGEND_BESIDE)
+
+    def draw(k: int):
+        c = turns[k]
+        upto = check.carrier_turns <= c
+        trace.set_data(*check.trajectory[upto].T)
+        hinges = np.array([[0.0, 0.0], state["a"][k], state["f"][k], state["e"][k], mech.hinge_b])
+        chain.set_data(*hinges.T)
+        plate.set_xy(np.array([state["e"][k], state["f"][k], state["p"][k]]))
+        for line, (outline, center, angle, _) in zip(carrier_curves, outlines):
+            line.set_data(*_placed(outline, center, angle, c).T)
+        for line, (outline, center, angle, _) in zip(world_gears, outlines):
+            line.set_data(*carrier_to_world(mech, _placed(outline, center, angle, c), c).T)
+        for line, (outline, center, angle, _) in zip(carrier_teeth, toothed):
+            line.set_data(*_placed(outline, center, angle, c).T)
+        clock.set_text(_clock_text(c))
+        return [trace, chain, plate, clock, *world_gears, *carrier_curves, *carrier_teeth]
+
+    return fig, draw
+
+
+def render_frames(result: FiveBarResult, teeth: Teeth | None = None, frames: int = FRAMES) -> list[Image.Image]:
+    """The frames of one turn as RGB images (``FIGURE_SIZE`` at ``DPI``)."""
+    fig, draw = _draw_frames(result, teeth, frames)
+    canvas = FigureCanvasAgg(fig)
+    fig.set_dpi(DPI)
+    canvas.draw()                       # lays out and draws the still parts (moving ones are animated)
+    background = canvas.copy_from_bbox(fig.bbox)
+    images = []
+    for k in range(frames):
+        canvas.restore_region(background)
+        for artist in draw(k):
+            fig.draw_artist(artist)
+        images.append(Image.frombuffer("RGBA", canvas.get_width_height(), canvas.buffer_rgba()).convert("RGB"))
+    return images
+
+
+def write_animation(result: FiveBarResult, folder: str | Path, teeth: Teeth | None = None,
+                    frames: int = FRAMES) -> list[Path]:
+    """``animation.gif`` (Pillow) of one turn in ``folder``, and ``animation.mp4`` where ffmpeg exists.
+
+    Parameters
+    ----------
+    result : FiveBarResult
+        From ``fivebar.synthesize``.
+    folder : str or Path
+        Output folder (made if missing).
+    teeth : dict, optional
+        Tooth outlines by gear name (see ``Teeth``), drawn over the pitch curves.
+    frames : int
+        Frames per turn.
+
+    Returns
+    -------
+    list of Path
+        The files written.
+    """
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    images = render_frames(result, teeth, frames)
+    gif = folder / "animation.gif"
+    palette = images[0].quantize(PALETTE_COLORS, method=Image.Quantize.FASTOCTREE)   # every frame shares it
+    indexed = [image.quantize(palette=palette, dither=Image.Dither.NONE) for image in images]
+    indexed[0].save(gif, save_all=True, append_images=indexed[1:], duration=round(1000 / FPS), loop=0)
+    written = [gif]
+    ffmpeg = shutil.which("ffmpeg")
+    if ffmpeg:
+        mp4 = folder / "animation.mp4"
+        width, height = images[0].size
+        subprocess.run([ffmpeg, "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt", "rgb24", "-s",
+                        f"{width}x{height}", "-r", str(FPS), "-i", "-", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                        "-pix_fmt", "yuv420p", str(mp4)], input=b"".join(image.tobytes() for image in images),
+                       check=True)
+        written.append(mp4)
+    return written
