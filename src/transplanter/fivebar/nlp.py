@@ -26,20 +26,24 @@ Constraints:
   angle exactly as asked;
 - return points: the same closure for the plate at (P_j', direction_j), and
   |P_j' - P_j|^2 <= return_tolerance_mm^2 (a tolerance 0 fixes P_j' = P_j);
-- whole turn, on ``GRID_POINTS`` carrier turns plus any added ones: the two quality rows,
-  1/i_max <= rho' <= 1/i_min (rho strictly increasing: the gears never reverse), and the
-  convexity of the four pitch curves (``train_pitch_curvature``, derived): curvature times the
-  stage's center distance a kappa >= ``CURVATURE_FLOOR`` for sun, both intermediates and planet;
+- whole turn, on ``GRID_POINTS`` carrier turns, the left sides of the spline's knots (rho's third
+  derivative jumps there, and a kappa with it; the basis takes the right side) and any added turns:
+  the two quality rows,
+  1/i_max <= rho' <= 1/i_min (rho strictly increasing: the gears never reverse), and the four
+  pitch curves' curvature times the stage's center distance (``train_pitch_curvature``,
+  derived) held by a kappa >= u for sun, both intermediates and planet, u fixed by its bounds;
 - k int_0^2pi sqrt(rho') dc = 2 pi, the integral by ``QUADRATURE_NODES``-point Gauss-Legendre
   on each knot span (rho' is a quadratic there, so sqrt(rho') is smooth on the span; with 12
   nodes the row agrees with ``trains.planetary.correction_factor`` to ~1e-13, with 6 only to ~1e-7);
 - the B-E-F assembly of the start at all nine positions; c_j increasing between the last
   key pose and a full turn; the ``[ranges]`` limits.
 
-The convexity rows are switched off by their bounds (no rebuild). ``refine`` designs without
-them first; when a curve is not convex, it maximises the least a kappa u instead (at most
-``CONVEXITY_SEARCH_ITERATIONS``) and designs again with the rows on only when u reaches the
-floor; otherwise the design says why (``convex_enforced``, ``convexity_note``).
+Concavity. A rack cannot cut a hollow; a shaper can, when its pitch circle (radius m N / 2) fits
+the hollow, whose radius is a / |a kappa|. ``refine`` therefore always holds u = -``CONCAVITY_LIMIT``
+(a hollow no tighter than a / 6: a 16-tooth shaper fits once a > 48 m), then tries u =
+``CURVATURE_FLOOR`` (convex, rack-cut) from that design with at most ``CONVEX_ATTEMPT_ITERATIONS``
+per solve, and keeps it only when IPOPT succeeds. The rows are switched by their bounds and u's
+(no rebuild); ``curvature_floor`` and ``convexity_note`` say which held.
 
 Between grid points the quality, rho' and the curvatures may dip: ``DesignSolver.refine``
 checks them on a grid ``CHECK_POINTS`` fine, by independent forward kinematics
@@ -91,15 +95,22 @@ QUALITY_GAP = 1e-3
 #: rows far from their bounds).
 ACTIVE_TOLERANCE = 1e-6
 MULTIPLIER_FLOOR = 1e-6
+#: The NLP's grid holds the curvature rows just left of each knot, this far (rad): the curvature is smooth
+#: on a span, so this is its left limit to ~1e-9 relative.
+KNOT_SIDE = 1e-9
 MIN_STEP = np.radians(1.0)   # smallest carrier turn between consecutive positions
 #: Exchange points one solver holds before it is rebuilt larger.
 ADDED_CAPACITY = 16
-#: Iterations the search for convex pitch curves may take (it converged in 81 to 405 on the example's
-#: 17 starts; a design solve takes 40-50).
-CONVEXITY_SEARCH_ITERATIONS = 100
+#: Largest |a kappa| of a concave stretch (a: the stage's center distance): a hollow no tighter than
+#: a / 6, which a shaper of N teeth and module m fits once a > 6 m N / 2 (48 m for N = 16). The
+#: undercut-free counts of the whole-tooth train already make a that large on the bundled example.
+CONCAVITY_LIMIT = 6.0
+#: Iterations each solve of the attempt at convex curves may take, from the design held at
+#: -CONCAVITY_LIMIT (a design solve takes 20-50).
+CONVEX_ATTEMPT_ITERATIONS = 25
 CURVES = ("sun", "first intermediate", "second intermediate", "planet")
 #: The rows each exchange slot holds, in order (``DesignNLP.slot_rows``).
-SLOT_ROWS = ("angle EBF", "angle BEF", "ratio", *(f"convexity {curve}" for curve in CURVES))
+SLOT_ROWS = ("angle EBF", "angle BEF", "ratio", *(f"curvature {curve}" for curve in CURVES))
 IPOPT_OPTIONS = {"ipopt.print_level": 0, "ipopt.sb": "yes", "print_time": False, "ipopt.tol": 1e-10,
                  "ipopt.constr_viol_tol": 1e-12, "ipopt.max_iter": 1000, "ipopt.mu_strategy": "adaptive"}
 
@@ -129,8 +140,9 @@ class DesignSolution:
         k of eq (12) by the library's quadrature.
     min_curvature : tuple of 4 float
         Smallest a kappa of sun, first intermediate, second intermediate, planet (``CURVES``).
-    convex_enforced : bool
-        Whether the convexity rows were on; ``convexity_note`` says why not.
+    curvature_floor : float or None
+        The least a kappa the curvature rows held: ``CURVATURE_FLOOR`` (convex), -``CONCAVITY_LIMIT``
+        (shaper-cut hollows), None (rows off); ``convexity_note`` says why, with the numbers, when not convex.
     active_bounds : tuple of str
         Every bound the solution sits on (within ``ACTIVE_TOLERANCE`` of its size).
     """
@@ -152,7 +164,7 @@ class DesignSolution:
     correction: float
     min_curvature: tuple
     active_bounds: tuple
-    convex_enforced: bool = True
+    curvature_floor: float | None = None
     convexity_note: str = ""
 
 
@@ -242,21 +254,17 @@ class DesignNLP:
         lbg[free], ubg[free] = -np.inf, np.inf
         return lbg, ubg
 
-    def parameters(self, branch: float, added_turns: np.ndarray, curvature_mode: bool = False) -> np.ndarray:
-        """Value of ``p`` for a start's branch and the exchange points' carrier turns (rad); in
-        ``curvature_mode`` the objective is the smallest a kappa instead of t."""
+    def parameters(self, branch: float, added_turns: np.ndarray) -> np.ndarray:
+        """Value of ``p`` for a start's branch and the exchange points' carrier turns (rad)."""
         turns = np.r_[added_turns, np.zeros(self.capacity - len(added_turns))]
         n = self.spline_count
-        return np.r_[branch, float(curvature_mode), turns, *(basis_matrix(turns, n, order).ravel() for order in range(4))]
+        return np.r_[branch, turns, *(basis_matrix(turns, n, order).ravel() for order in range(4))]
 
-    def variable_bounds(self, x0: np.ndarray, convex: bool, curvature_mode: bool) -> tuple[np.ndarray, np.ndarray]:
-        """lbx, ubx with the least a kappa u held at ``CURVATURE_FLOOR`` (convex: the rows say a kappa >= it),
-        free (``curvature_mode`` maximises it), or held at its start value where its rows are off."""
+    def variable_bounds(self, x0: np.ndarray, curvature_floor: float | None) -> tuple[np.ndarray, np.ndarray]:
+        """lbx, ubx with the least a kappa u held at ``curvature_floor`` (the rows say a kappa >= it), or,
+        where the rows are off (None), at its start value."""
         lbx, ubx = self.lbx.copy(), self.ubx.copy()
-        if curvature_mode:
-            lbx[-1], ubx[-1] = -np.inf, np.inf
-        elif not convex:
-            lbx[-1] = ubx[-1] = x0[-1]
+        lbx[-1] = ubx[-1] = x0[-1] if curvature_floor is None else curvature_floor
         return lbx, ubx
 
 
@@ -276,7 +284,7 @@ def build_nlp(problem: FiveBarProblem, capacity: int = ADDED_CAPACITY) -> Design
     b, e_loc, f_loc = ca.vertcat(bx, by), ca.vertcat(ex, ey), ca.vertcat(fx, fy)
     q0 = basis_matrix(np.zeros(1), n)[0]
 
-    branch, curvature_mode = ca.SX.sym("branch"), ca.SX.sym("curvature_mode")
+    branch = ca.SX.sym("branch")
     added_turns = ca.SX.sym("added_turns", capacity)
     added_basis = [ca.SX.sym(f"added_basis_{order}", n, capacity) for order in range(4)]
 
@@ -295,9 +303,9 @@ def build_nlp(problem: FiveBarProblem, capacity: int = ADDED_CAPACITY) -> Design
         equalities += [ca.sumsqr(e - b) - l4**2, f - a - l2 * _unit(theta1 + angle)]
         assembly.append(branch * _cross(f - b, e - b) / (l4 * ca.norm_2(f - b)))
 
-    fixed = np.linspace(0, TWO_PI, GRID_POINTS, endpoint=False)
+    fixed = np.r_[np.linspace(0, TWO_PI, GRID_POINTS, endpoint=False), _knot_left_sides(n)]
     grid = ca.vertcat(ca.DM(fixed), added_turns)
-    points = GRID_POINTS + capacity
+    points = len(fixed) + capacity
     rows = [ca.vertcat(ca.DM(basis_matrix(fixed, n, order)), added_basis[order].T) for order in range(4)]
     rho_grid = rho1 + grid + ca.mtimes(rows[0], q) - ca.dot(ca.DM(q0), q)
     slope = 1 + ca.mtimes(rows[1], q)
@@ -332,7 +340,7 @@ def build_nlp(problem: FiveBarProblem, capacity: int = ADDED_CAPACITY) -> Design
         (margin - quality, 0.0, np.inf, None, 1.0),
         (transmission - quality, 0.0, np.inf, None, 1.0),
         (slope, 1 / high_ratio, 1 / low_ratio, ("ratio upper", "ratio lower"), 1 / high_ratio),
-        *((curvature[k, :].T - least_curvature, 0.0, np.inf, (f"convexity {curve}", None), CURVATURE_FLOOR)
+        *((curvature[k, :].T - least_curvature, 0.0, np.inf, (f"curvature {curve}", None), CURVATURE_FLOOR)
           for k, curve in enumerate(CURVES)),
         (closure_k, 0.0, 0.0, None, 1.0),
         (order, MIN_STEP, np.inf, ("return order", None), MIN_STEP),
@@ -350,18 +358,18 @@ def build_nlp(problem: FiveBarProblem, capacity: int = ADDED_CAPACITY) -> Design
         ubg.append(np.full(size, high, float))
         names += name if isinstance(name, list) else [name or (None, None)] * size
         scales.append(np.full(size, scale, float))
-    slot_rows = np.array([starts[k] + GRID_POINTS + np.arange(capacity) for k in range(2, 9)])
+    slot_rows = np.array([starts[k] + len(fixed) + np.arange(capacity) for k in range(2, 9)])
     curvature_rows = np.concatenate([starts[k] + np.arange(points) for k in range(5, 9)])
 
     bending = ca.mtimes([q.T, ca.DM(bending_matrix(n)), q])
     lbx = np.r_[1e-3, -np.inf, 1e-3, -np.inf, -np.inf, 1e-3, np.full(5 + (n - 1) + 4 * m, -np.inf),
-                problem.min_closure_margin, 0.0, CURVATURE_FLOOR]
-    ubx = np.r_[np.full(len(lbx) - 1, np.inf), CURVATURE_FLOOR]
+                problem.min_closure_margin, 0.0, -CONCAVITY_LIMIT]
+    ubx = np.r_[np.full(len(lbx) - 1, np.inf), -CONCAVITY_LIMIT]
     if tolerance == 0:
         fixed_points = 10 + n + 4 * np.arange(m)[:, None] + np.array([2, 3])
         lbx[fixed_points], ubx[fixed_points] = targets, targets
-    p = ca.vertcat(branch, curvature_mode, added_turns, *(ca.vec(v) for v in added_basis))
-    objective = -(1 - curvature_mode) * quality - curvature_mode * least_curvature + BENDING_WEIGHT * bending
+    p = ca.vertcat(branch, added_turns, *(ca.vec(v) for v in added_basis))
+    objective = -quality + BENDING_WEIGHT * bending
     return DesignNLP(x, p, objective, ca.vertcat(*g), np.concatenate(lbg),
                      np.concatenate(ubg), lbx, ubx, slot_rows, curvature_rows, names, np.concatenate(scales), n,
                      tolerance == 0)
@@ -387,12 +395,12 @@ class DesignSolver:
                                   {**IPOPT_OPTIONS, "iteration_callback": self.cap})
         self.builds += 1
 
-    def solve(self, start: Candidate, added_turns=(), warm: DesignSolution | None = None, convex: bool = False,
-              curvature_mode: bool = False, iteration_limit: int | None = None) -> DesignSolution:
+    def solve(self, start: Candidate, added_turns=(), warm: DesignSolution | None = None,
+              curvature_floor: float | None = None, iteration_limit: int | None = None) -> DesignSolution:
         """Solve with the start's assembly branch and the exchange points ``added_turns`` (rad),
         from the start's own dimensions or from the design ``warm`` (a previous round's), with the
-        convexity rows on or off; ``curvature_mode`` maximises the least a kappa of the four pitch
-        curves instead of t (every other constraint kept); ``iteration_limit`` stops IPOPT early."""
+        four curves held to a kappa >= ``curvature_floor`` (None: the rows off); ``iteration_limit``
+        stops IPOPT early (a ``SolverError``)."""
         added_turns = np.asarray(added_turns, float)
         while len(added_turns) > self.nlp.capacity:
             self._build(2 * self.nlp.capacity)
@@ -401,65 +409,60 @@ class DesignSolver:
             x0 = decision_vector(start.mech, start.relative_angle, start.stroke, self.problem.return_points)
         else:
             x0 = decision_vector(warm.mech, warm.relative_angle, warm.stroke, warm.reached_return_points)
-        lbg, ubg = nlp.bounds(len(added_turns), convex or curvature_mode)
-        lbx, ubx = nlp.variable_bounds(x0, convex, curvature_mode)
+        lbg, ubg = nlp.bounds(len(added_turns), curvature_floor is not None)
+        lbx, ubx = nlp.variable_bounds(x0, curvature_floor)
         self.cap.limit, self.cap.count = iteration_limit, 0
-        solution = self.function(x0=x0, p=nlp.parameters(branch, added_turns, curvature_mode), lbg=lbg, ubg=ubg,
-                                 lbx=lbx, ubx=ubx)
+        solution = self.function(x0=x0, p=nlp.parameters(branch, added_turns), lbg=lbg, ubg=ubg, lbx=lbx, ubx=ubx)
         stats = self.function.stats()
         if not stats["success"]:
             raise SolverError(f"{self.problem.source}: the design NLP did not converge from the region candidate",
                               stats["return_status"])
         active = _active_bounds(nlp, solution, lbg, ubg)
         return _unpack(np.asarray(solution["x"]).ravel(), self.problem, branch, float(solution["f"]), stats, active,
-                       convex)
+                       curvature_floor)
 
     def refine(self, start: Candidate) -> DesignSolution:
-        """The best transmission quality from ``start``, with the four pitch curves convex when the
-        requirements allow it.
+        """The best transmission quality from ``start`` with every pitch curve a shaper can cut, convex
+        (rack-cut) when IPOPT makes it so within ``CONVEX_ATTEMPT_ITERATIONS`` per solve.
 
-        First without the convexity rows (``_exchange``). When a fine check finds a curve with
-        a kappa below ``CURVATURE_FLOOR``, the NLP maximises the least a kappa instead (every other
-        constraint kept): when that reaches the floor, the design is made again with the rows on;
-        otherwise the requirements force a concave stretch and ``convexity_note`` gives the numbers.
+        First with a kappa >= -``CONCAVITY_LIMIT`` (``_exchange``); then, when a curve is not convex,
+        from that design with a kappa >= ``CURVATURE_FLOOR``, kept only if IPOPT succeeds. If IPOPT
+        fails at -``CONCAVITY_LIMIT``, the design is made without the rows. ``convexity_note`` gives
+        the numbers whenever the curves are not held convex.
         """
-        design = self._exchange(start, convex=False)
-        if min(design.min_curvature) >= CURVATURE_FLOOR:
-            return dataclasses.replace(design, convex_enforced=True, convexity_note="")
         try:
-            best = self.solve(start, warm=design, curvature_mode=True, iteration_limit=CONVEXITY_SEARCH_ITERATIONS)
+            design = self._exchange(start, -CONCAVITY_LIMIT)
         except SolverError as error:
+            design = self._exchange(start, None)
             return dataclasses.replace(design, convexity_note=(
-                f"the search for convex pitch curves ended with {error.status} (at most "
-                f"{CONVEXITY_SEARCH_ITERATIONS} iterations); designed without: {_curvature_text(design)}"))
-        reach = min(best.min_curvature)
-        if reach >= CURVATURE_FLOOR:
-            try:
-                return self._exchange(start, convex=True, warm=best)
-            except SolverError as error:
-                failure = f"IPOPT ended with {error.status} with the curves held convex"
-        else:
-            failure = (f"the requirements force a concave stretch: the largest least a kappa IPOPT finds under them is "
-                       f"{reach:.3f} ({CURVES[int(np.argmin(best.min_curvature))]}), below {CURVATURE_FLOOR:g}")
-        return dataclasses.replace(design, convexity_note=f"{failure}; designed without: {_curvature_text(design)}")
+                f"IPOPT ended with {error.status} with the curves held to a kappa >= {-CONCAVITY_LIMIT:g}; designed "
+                f"without curvature rows: {_curvature_text(design)}"))
+        if min(design.min_curvature) >= CURVATURE_FLOOR:
+            return dataclasses.replace(design, convexity_note="")
+        try:
+            return self._exchange(start, CURVATURE_FLOOR, warm=design, iteration_limit=CONVEX_ATTEMPT_ITERATIONS)
+        except SolverError as error:
+            failure = (f"IPOPT found no convex design within {CONVEX_ATTEMPT_ITERATIONS} iterations ({error.status})")
+        return dataclasses.replace(design, convexity_note=f"{failure}; {_concavity_text(design)}")
 
-    def _exchange(self, start: Candidate, convex: bool, warm: DesignSolution | None = None) -> DesignSolution:
+    def _exchange(self, start: Candidate, curvature_floor: float | None, warm: DesignSolution | None = None,
+                  iteration_limit: int | None = None) -> DesignSolution:
         """``solve`` with the carrier turns where the fine check finds the quality below t, or rho' or a
-        curvature (when ``convex``) out of bounds, added to its grid, until the fine grid holds (or
-        ``EXCHANGE_ROUNDS`` run out)."""
+        curvature (below ``curvature_floor``) out of bounds, added to its grid, until the fine grid holds
+        (or ``EXCHANGE_ROUNDS`` run out)."""
         problem = self.problem
         fine = np.linspace(0, TWO_PI, CHECK_POINTS, endpoint=False)
         low, high = 1 / problem.ratio_bounds[1], 1 / problem.ratio_bounds[0]
         added, solution = np.empty(0), warm
         for _ in range(EXCHANGE_ROUNDS):
-            solution = self.solve(start, added, solution, convex)
+            solution = self.solve(start, added, solution, curvature_floor, iteration_limit)
             check = whole_turn(solution.mech, solution.relative_angle, fine)
             slope = check["slope"]
             shortfall = np.fmax.reduce([
                 (solution.quality - np.fmin(check["ebf"], check["bef"])) / solution.quality - QUALITY_GAP,
                 (problem.min_closure_margin - check["ebf"]) / problem.min_closure_margin,
                 (low - slope) / low, (slope - high) / high,
-                *(((CURVATURE_FLOOR - check["curvature"]) / CURVATURE_FLOOR) if convex else [])])
+                *([] if curvature_floor is None else (curvature_floor - check["curvature"]) / abs(curvature_floor))])
             worst = fine[_local_maxima(shortfall)]
             if not worst.size:
                 break
@@ -467,8 +470,23 @@ class DesignSolver:
         return solution
 
 
+def _knot_left_sides(count: int) -> np.ndarray:
+    """Carrier turns just left of the spline's ``count`` knots, where a kappa takes its left limit."""
+    return np.mod(knots(count) - KNOT_SIDE, TWO_PI)
+
+
 def _curvature_text(design: DesignSolution) -> str:
     return "least a kappa " + ", ".join(f"{curve} {value:.3f}" for curve, value in zip(CURVES, design.min_curvature))
+
+
+def _concavity_text(design: DesignSolution) -> str:
+    """The held design's least a kappa per curve, the tightest, and the cutter that follows."""
+    tightest = int(np.argmin(design.min_curvature))
+    stages = sorted({("sun -> first intermediate", "second intermediate -> planet")[k // 2]
+                     for k, value in enumerate(design.min_curvature) if value < 0})
+    return (f"held to a kappa >= {-CONCAVITY_LIMIT:g} (a hollow no tighter than a / {CONCAVITY_LIMIT:g}): "
+            f"{_curvature_text(design)}, tightest the {CURVES[tightest]}; concave, so shaper-cut: "
+            + ", ".join(stages))
 
 
 def whole_turn(mech: FiveBar, relative: RelativeAngle, turns: np.ndarray) -> dict:
@@ -521,7 +539,7 @@ def decision_vector(mech: FiveBar, relative: RelativeAngle, stroke: ReturnStroke
 
 
 def _unpack(v: np.ndarray, problem: FiveBarProblem, branch: float, objective: float, stats, active: tuple,
-            convex: bool) -> DesignSolution:
+            curvature_floor: float | None) -> DesignSolution:
     n, m = problem.spline_count, len(problem.return_points)
     mech = FiveBar(carrier_length=v[0] * SCALE, carrier_angle=float(v[1]), rod_length=v[2] * SCALE,
                    hinge_b=v[3:5] * SCALE, receiving_length=v[5] * SCALE, e_local=v[6:8] * SCALE,
@@ -540,6 +558,7 @@ def _unpack(v: np.ndarray, problem: FiveBarProblem, branch: float, objective: fl
         min_closure_margin=float(check["ebf"][ebf]), min_closure_turn=float(fine[ebf]),
         min_angle_ebf=float(np.arcsin(np.sqrt(check["ebf"][ebf]))),
         min_angle_bef=float(np.arcsin(np.sqrt(min(check["bef"][bef], 1.0)))), min_angle_bef_turn=float(fine[bef]),
-        correction=check["correction"], min_curvature=tuple(float(v) for v in check["curvature"].min(axis=1)),
-        active_bounds=active, convex_enforced=convex,
-        convexity_note="" if convex else "convexity rows off")
+        correction=check["correction"], min_curvature=tuple(float(v) for v in np.fmin(
+            check["curvature"].min(axis=1), whole_turn(mech, relative, _knot_left_sides(n))["curvature"].min(axis=1))),
+        active_bounds=active, curvature_floor=curvature_floor,
+        convexity_note="" if curvature_floor is not None else "curvature rows off")
