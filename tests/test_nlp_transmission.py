@@ -12,7 +12,9 @@ from transplanter.fivebar.nlp import (CHECK_POINTS, CONCAVITY_LIMIT, CURVES, SLO
 from transplanter.fivebar.problem import FiveBarProblem, load_problem, parse_problem
 from transplanter.fivebar.region import solution_region
 from transplanter.toml_fields import read_toml
+from transplanter.gears.rack_teeth import ADDENDUM
 from transplanter.trains.planetary import correction_factor, design_train
+from transplanter.trains.toothed_train import Gearing, stage_shape
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples/vegetable_planting.toml"
 #: The former NLP put sin^2(EBF) on the 0.01 floor: angle EBF 5.74 deg.
@@ -110,6 +112,19 @@ def test_pitch_curves_keep_hollows_a_shaper_cuts_by_the_gear_library_curves(desi
     assert "shaper" in design.convexity_note and f"tightest the {tightest}" in design.convexity_note
     assert all(f"{curve} {value:.3f}" in design.convexity_note for curve, value in zip(CURVES, design.min_curvature))
     assert design.correction == pytest.approx(train.correction, rel=1e-12)
+
+
+def test_the_shaper_fits_the_hollows_at_the_undercut_free_tooth_counts(design):
+    """A hollow no tighter than a / CONCAVITY_LIMIT costs no teeth on the example: the counts the 16-tooth
+    shaper's pitch circle needs stay below the undercut-free counts, which set each stage's least count."""
+    gearing = Gearing()
+    train = design_train(design.relative_angle, (1.0, 1.0))
+    for stage in (train.stage_one, train.stage_two):
+        shape = stage_shape(stage, gearing)
+        undercut_free = np.ceil(ADDENDUM * shape.perimeter / (np.pi * shape.convex_radius
+                                                              * np.sin(gearing.pressure_angle) ** 2))
+        shaper_fit = np.floor(gearing.shaper_teeth * shape.perimeter / (2 * np.pi * shape.concave_radius[0])) + 1
+        assert shape.cutter == "shaper" and shaper_fit < undercut_free == shape.min_teeth
 
 
 def test_quadrature_of_k_and_the_convexity_switch(problem, start):
