@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from transplanter.errors import ProblemError
-from transplanter.fivebar.nlp import (CHECK_POINTS, CONCAVITY_LIMIT, CURVES, SLOT_ROWS, DesignSolver, build_nlp,
-                                      decision_vector)
+from transplanter.fivebar.nlp import (CHECK_POINTS, CONCAVITY_LIMIT, CURVATURE_GAP, CURVES, SLOT_ROWS, DesignSolver,
+                                      build_nlp, decision_vector)
 from transplanter.fivebar.problem import FiveBarProblem, load_problem, parse_problem
 from transplanter.fivebar.region import solution_region
 from transplanter.toml_fields import read_toml
@@ -102,9 +102,10 @@ def test_pitch_curves_keep_hollows_a_shaper_cuts_by_the_gear_library_curves(desi
     train = design_train(design.relative_angle, distances)
     library = [float((a / stage.curvature_radius[side]).min())
                for a, stage in zip(distances, (train.stage_one, train.stage_two)) for side in (0, 1)]
-    assert min(library) >= -CONCAVITY_LIMIT * (1 + 1e-6)     # 1e-6: between the fine check's points
-    # the library samples each curve 721 times, the design's least a kappa is the true one (knot sides included)
-    assert all(sampled >= least - 1e-6 * CONCAVITY_LIMIT for sampled, least in zip(library, design.min_curvature))
+    assert min(library) >= -CONCAVITY_LIMIT * (1 + CURVATURE_GAP)     # the fine check's gap
+    # the library samples each curve 721 times; the design's least a kappa is from 7200 turns and the knots' sides
+    assert all(sampled >= least - CURVATURE_GAP * CONCAVITY_LIMIT
+               for sampled, least in zip(library, design.min_curvature))
     assert [value < 0 for value in library] == [value < 0 for value in design.min_curvature]
     assert design.curvature_floor == -CONCAVITY_LIMIT
     tightest = CURVES[int(np.argmin(design.min_curvature))]

@@ -90,6 +90,8 @@ QUADRATURE_NODES = NODES   # Gauss-Legendre nodes per knot span for k (12: the r
 CURVATURE_FLOOR = 0.02
 #: The fine check adds carrier turns where the quality falls below t by more than this fraction.
 QUALITY_GAP = 1e-3
+#: ... or where a kappa falls below the value it is held at by more than this fraction of that value's size.
+CURVATURE_GAP = 1e-3
 #: A row is on its bound when within this fraction of the bound's size (IPOPT stops at 1e-12), or when
 #: its multiplier exceeds MULTIPLIER_FLOOR (the objective's gradient in t is 1; IPOPT leaves ~1e-10 on
 #: rows far from their bounds).
@@ -462,7 +464,8 @@ class DesignSolver:
                 (solution.quality - np.fmin(check["ebf"], check["bef"])) / solution.quality - QUALITY_GAP,
                 (problem.min_closure_margin - check["ebf"]) / problem.min_closure_margin,
                 (low - slope) / low, (slope - high) / high,
-                *([] if curvature_floor is None else (curvature_floor - check["curvature"]) / abs(curvature_floor))])
+                *([] if curvature_floor is None else
+                  (curvature_floor - check["curvature"]) / abs(curvature_floor) - CURVATURE_GAP)])
             worst = fine[_local_maxima(shortfall)]
             if not worst.size:
                 break
