@@ -444,7 +444,7 @@ class DesignSolver:
         try:
             return self._exchange(start, CURVATURE_FLOOR, warm=design, iteration_limit=CONVEX_ATTEMPT_ITERATIONS)
         except SolverError as error:
-            failure = (f"IPOPT found no convex design within {CONVEX_ATTEMPT_ITERATIONS} iterations ({error.status})")
+            failure = f"IPOPT found no convex design within {CONVEX_ATTEMPT_ITERATIONS} iterations ({error.status})"
         return dataclasses.replace(design, convexity_note=f"{failure}; {_concavity_text(design)}")
 
     def _exchange(self, start: Candidate, curvature_floor: float | None, warm: DesignSolution | None = None,
