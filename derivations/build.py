@@ -17,7 +17,7 @@ from derivations._printer import print_function, print_signatures
 
 DERIVATIONS = Path(__file__).resolve().parent
 GENERATED = DERIVATIONS.parent / "src" / "transplanter" / "_generated"
-MODULES = ("burmester", "fivebar", "gears", "planetary", "train_pitch_curvature")
+MODULES = ("burmester", "fivebar", "gears", "planetary")
 # Files every generated module depends on besides its own derivation.
 SHARED_SOURCES = ("_printer.py", "spec.py")
 

@@ -12,7 +12,7 @@ from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.fivebar.candidate import evaluate_candidate
 from transplanter.fivebar.evaluation import evaluate_design, load_design
 from transplanter.fivebar.linkage import FiveBar
-from transplanter.fivebar.nlp import SLOT_ROWS, DesignSolver, build_nlp, decision_vector
+from transplanter.fivebar.nlp import DesignSolver, build_nlp, decision_vector
 from transplanter.fivebar.problem import load_problem, parse_problem
 from transplanter.fivebar.region import ChainFamily
 from transplanter.fivebar.synthesis import _empty_family, synthesize
@@ -126,8 +126,7 @@ def test_main_job_meets_the_key_poses_by_forward_simulation(result, problem):
     assert np.abs(check.key_angle_errors_deg).max() < 1e-6
     assert check.roundtrip_max_error_mm < 1e-6
     assert check.contact_gap_mm < 1e-9
-    # within the tolerance at the spline's turns; the rolled gears move P by up to their round trip error
-    assert check.return_point_errors_mm.max() <= problem.return_tolerance_mm + check.roundtrip_max_error_mm
+    assert check.return_point_errors_mm.max() < 0.01        # least squares, measured about 1 um
     assert check.relative_angle_monotonic
     assert check.min_closure_margin >= problem.min_closure_margin - 1e-9
     assert check.min_discriminant > 0
@@ -145,18 +144,18 @@ def test_main_job_design_keeps_ranges_and_both_chains_close(result, problem):
 
 def test_exchange_slots_are_the_closure_margin_and_slope_of_forward_kinematics(result, problem):
     """A parametric exchange slot at any carrier turn gives the margin sin^2(EBF) and rho' that the
-    independent forward kinematics gives there (less t, for the margin); an unused slot constrains nothing."""
+    independent forward kinematics gives there; an unused slot constrains nothing."""
     candidate = result.region.feasible[0]
     nlp = build_nlp(problem, capacity=3)
     turns = np.radians([14.2, 123.45])
-    x0 = decision_vector(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points)
-    g = ca.Function("g", [nlp.x, nlp.p], [nlp.constraints])(x0, nlp.parameters(candidate.mech.branch, turns))
+    g = ca.Function("g", [nlp.x, nlp.p], [nlp.constraints])(
+        decision_vector(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points),
+        nlp.parameters(candidate.mech.branch, turns))
     g = np.asarray(g).ravel()
     forward = candidate.mech.forward(turns, candidate.relative_angle.evaluate(turns))["margin"]
-    margin_row, slope_row = nlp.slot_rows[SLOT_ROWS.index("angle EBF")], nlp.slot_rows[SLOT_ROWS.index("ratio")]
-    assert np.abs(g[margin_row[:2]] + x0[-3] - forward).max() < 1e-12
-    assert np.abs(g[slope_row[:2]] - candidate.relative_angle.evaluate(turns, 1)).max() < 1e-12
-    lbg, ubg = nlp.bounds(len(turns), convex=True)
+    assert np.abs(g[nlp.slot_rows[0, :2]] - forward).max() < 1e-12
+    assert np.abs(g[nlp.slot_rows[1, :2]] - candidate.relative_angle.evaluate(turns, 1)).max() < 1e-12
+    lbg, ubg = nlp.bounds(len(turns))
     assert np.isfinite(lbg[nlp.slot_rows[:, :2]]).all() and np.isneginf(lbg[nlp.slot_rows[:, 2]]).all()
     assert np.isposinf(ubg[nlp.slot_rows[:, 2]]).all()
 
@@ -171,7 +170,7 @@ def test_one_solver_serves_every_start_and_round(result, problem):
     reused = solver.refine(second)
     assert solver.builds == 1 and solver.function is function
     fresh = DesignSolver(problem).refine(second)
-    assert abs(reused.objective - fresh.objective) <= 1e-12 * abs(fresh.objective)
+    assert abs(reused.objective - fresh.objective) <= 1e-12 * fresh.objective
     for name in ("carrier_length", "rod_length", "receiving_length"):
         assert abs(getattr(reused.mech, name) - getattr(fresh.mech, name)) < 1e-9
     for name in ("hinge_b", "e_local", "f_local"):

@@ -20,7 +20,6 @@ Schema (docs/fivebar.md, "Problem files"); the carrier pivot O is the origin:
     [conditions]
     min_closure_margin = 0.01     # sin^2(angle EBF) kept above this all round (eq 10 without scale)
     ratio = [0.25, 4.0]           # bounds on the total ratio i0 = dc / drho (eq 11)
-    return_tolerance_mm = 1.0     # how far P may pass from each return point (mm, >= 0)
     [spline]
     control_points = 12           # periodic cubic B-spline of the relative angle
     [region]
@@ -71,8 +70,6 @@ class FiveBarProblem:
         sin^2 of the smallest angle EBF allowed over the turn, in (0, 1).
     ratio_bounds : (float, float)
         Bounds on the total ratio i0 = dc / drho, 0 < low < high.
-    return_tolerance_mm : float
-        Largest distance of P from each return point (mm, >= 0; 0 makes them exact).
     spline_count : int
         Control points of the periodic B-spline of the relative angle.
     samples : int
@@ -99,7 +96,6 @@ class FiveBarProblem:
     ranges: dict = field(default_factory=dict)
     min_closure_margin: float = 0.01
     ratio_bounds: tuple[float, float] = (0.25, 4.0)
-    return_tolerance_mm: float = 1.0
     spline_count: int = 12
     samples: int = 1000
     radius_mm: float = 600.0
@@ -122,8 +118,6 @@ class FiveBarProblem:
         low, high = self.ratio_bounds
         if not 0 < low < high:
             check.fail("ratio_bounds", self.ratio_bounds, "0 < low < high")
-        if not (np.isfinite(self.return_tolerance_mm) and self.return_tolerance_mm >= 0):
-            check.fail("return_tolerance_mm", self.return_tolerance_mm, "a finite distance >= 0 (mm)")
         check.positive("radius_mm")
         if not isinstance(self.gearing, Gearing):
             check.fail("gearing", self.gearing, "a trains.toothed_train.Gearing")
@@ -244,16 +238,13 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
         read.fail("ranges", ranges_table, "length ranges that start above zero")
 
     conditions = data.get("conditions", {})
-    read.keys(conditions, {"min_closure_margin", "ratio", "return_tolerance_mm"}, "conditions")
+    read.keys(conditions, {"min_closure_margin", "ratio"}, "conditions")
     margin = read.number(conditions, "min_closure_margin", "conditions") if "min_closure_margin" in conditions else 0.01
     if not 0 < margin < 1:
         read.fail("conditions.min_closure_margin", margin, "a number in (0, 1): sin^2 of the smallest angle EBF")
     ratio = _pair(read, conditions, "ratio", "conditions") if "ratio" in conditions else (0.25, 4.0)
     if ratio[0] <= 0:
         read.fail("conditions.ratio", list(ratio), "positive bounds (a ratio <= 0 reverses the gears)")
-    tolerance = read.number(conditions, "return_tolerance_mm", "conditions") if "return_tolerance_mm" in conditions else 1.0
-    if not (np.isfinite(tolerance) and tolerance >= 0):
-        read.fail("conditions.return_tolerance_mm", tolerance, "a finite distance >= 0 (mm) from each return point")
 
     spline = data.get("spline", {})
     read.keys(spline, {"control_points"}, "spline")
@@ -271,7 +262,6 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
     poses = rows[:, :3].copy()
     poses[:, 2] = np.radians(poses[:, 2])
     return FiveBarProblem(poses=poses, carrier_turns=np.radians(turns), return_points=points, labels=tuple(labels),
-                          return_tolerance_mm=tolerance,
                           return_labels=tuple(return_labels), ranges=ranges, min_closure_margin=margin,
                           ratio_bounds=ratio, spline_count=count, samples=samples, radius_mm=radius,
                           gearing=gearing, source=source, title=str(data.get("title", "")))
