@@ -194,5 +194,6 @@ def test_figures_name_hinges_gears_and_show_the_trade_off(run):
     assert picked.get_ydata()[0] == pytest.approx(second.largest_miss_mm)
     assert {"O", "A", "B", "E", "F", "P"} <= {text.get_text() for text in figures["trajectory"].axes[0].texts}
     gear_labels = [text.get_text() for text in figures["gears"].axes[1].get_legend().get_texts()]
-    assert gear_labels == ["sun (driver, stage 1)", "first intermediate (driven, stage 1)",
-                           "second intermediate (driver, stage 2)", "planet (driven, stage 2)"]
+    one, two = result.toothed.counts
+    assert gear_labels == [f"sun (driver, stage 1), {one} teeth", f"first intermediate (driven, stage 1), {one} teeth",
+                           f"second intermediate (driver, stage 2), {two} teeth", f"planet (driven, stage 2), {two} teeth"]

@@ -7,12 +7,9 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
+from transplanter.fivebar.gears_on_carrier import gears_on_carrier, tooth_outlines
 from transplanter.fivebar.result import FiveBarResult
-from transplanter.trains.figures import LEGEND_BESIDE, draw_four_gear_train
-
-#: Which gear drives which in each stage, by the names ``draw_four_gear_train`` gives the curves.
-GEAR_ROLES = {"sun": "sun (driver, stage 1)", "first intermediate": "first intermediate (driven, stage 1)",
-              "second intermediate": "second intermediate (driver, stage 2)", "planet": "planet (driven, stage 2)"}
+from transplanter.trains.figures import LEGEND_BESIDE
 
 
 def draw_region(result: FiveBarResult) -> Figure:
@@ -68,7 +65,8 @@ def draw_relative_angle(result: FiveBarResult) -> Figure:
 
 
 def draw_gears(result: FiveBarResult) -> Figure:
-    """Stage ratios against the carrier turn (deg), and the four pitch curves on the carrier (mm)."""
+    """Stage ratios against the carrier turn (deg), and the four cut gears with their pitch curves on the carrier at
+    pose 1 (mm)."""
     train = result.train
     grid = result.verification.carrier_turns
     first, second = train.stage_ratios(grid)
@@ -80,11 +78,18 @@ def draw_gears(result: FiveBarResult) -> Figure:
     ax.set_xlabel("carrier turn c (deg)")
     ax.set_ylabel("transmission ratio (dimensionless)")
     ax.legend(fontsize=8, **LEGEND_BESIDE)
-    draw_four_gear_train(right, train, result.design.mech.carrier_length)
-    for line in right.get_lines():
-        line.set_label(GEAR_ROLES.get(line.get_label(), line.get_label()))
-    right.legend(fontsize=7, **LEGEND_BESIDE)
-    right.set_title("pitch curves on the carrier (O left, A right) at pose 1", fontsize=9)
+    outlines = tooth_outlines(result.toothed)
+    for gear, teeth in zip(gears_on_carrier(train, result.design.mech.carrier_length),
+                           np.repeat(result.toothed.counts, 2)):
+        line, = right.plot(*gear.placed(outlines[gear.name], 0.0)[0].T, lw=0.7,
+                           label=f"{gear.name.replace('_', ' ')} ({gear.role}), {teeth} teeth")
+        right.plot(*gear.placed(gear.pitch_curve, 0.0)[0].T, ":", lw=0.8, color=line.get_color())
+        right.plot(*gear.center, "k+")
+    right.set_aspect("equal")
+    right.set_xlabel("x along the carrier O-A (mm)")
+    right.set_ylabel("y on the carrier (mm)")
+    right.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncols=2)
+    right.set_title("the gears on the carrier (O at the origin, A on +x) at pose 1; dotted: pitch curves", fontsize=9)
     return fig
 
 
