@@ -66,15 +66,16 @@ def fixed_relative_angle(path: Path = ROOT / "examples/published/relative_angle_
     return RelativeAngle(np.radians(data["rho1_deg"]), np.radians(np.array(data["control_values_deg"])))
 
 
-def printed_eq9(lengths, angles):
-    """A1, B1, C1 of Wang et al. 2025 eq (9) as printed (lengths (5, n), angles theta1, theta2, theta5 (3, n))."""
+def printed_eq9(lengths, angles, lib=np):
+    """A1, B1, C1 of Wang et al. 2025 eq (9) as printed (lengths (5, n), angles theta1, theta2, theta5 (3, n));
+    ``lib`` numpy, or sympy for symbols."""
     l1, l2, l3, l4, l5 = lengths
     t1, t2, t5 = angles
-    common = (l1**2 + l2**2 - l3**2 + l4**2 + l5**2 + 2 * l1 * l5 * np.cos(t1 + t5)
-              + 2 * l1 * l2 * np.cos(t1 - t2) + 2 * l2 * l5 * np.cos(t2 + t5))
-    a1 = common - 2 * l1 * l4 * np.cos(t1) + 2 * l4 * l5 * np.cos(t5) - 2 * l2 * l4 * np.cos(t2)
-    b1 = -4 * l4 * l5 * np.sin(t5) + 4 * l1 * l4 * np.sin(t1) + 4 * l2 * l4 * np.sin(t2)
-    c1 = common - 2 * l4 * l5 * np.cos(t5) - 2 * l1 * l4 * np.cos(t1) - 2 * l2 * l4 * np.cos(t2)
+    common = (l1**2 + l2**2 - l3**2 + l4**2 + l5**2 + 2 * l1 * l5 * lib.cos(t1 + t5)
+              + 2 * l1 * l2 * lib.cos(t1 - t2) + 2 * l2 * l5 * lib.cos(t2 + t5))
+    a1 = common - 2 * l1 * l4 * lib.cos(t1) + 2 * l4 * l5 * lib.cos(t5) - 2 * l2 * l4 * lib.cos(t2)
+    b1 = -4 * l4 * l5 * lib.sin(t5) + 4 * l1 * l4 * lib.sin(t1) + 4 * l2 * l4 * lib.sin(t2)
+    c1 = common - 2 * l4 * l5 * lib.cos(t5) - 2 * l1 * l4 * lib.cos(t1) - 2 * l2 * l4 * lib.cos(t2)
     return a1, b1, c1
 
 

@@ -12,6 +12,8 @@ import sympy as sp
 from derivations import fivebar
 from transplanter.generated import casadi_function
 
+from published_script import reproduce
+
 L = sp.symbols("L1:6", positive=True)
 T1, T2, T4, T5 = sp.symbols("theta1 theta2 theta4 theta5", real=True)
 quadratic = casadi_function("fivebar", "fivebar_half_angle_quadratic")
@@ -20,13 +22,8 @@ closure = casadi_function("fivebar", "fivebar_closure")
 
 
 def _published(l1, l2, l3, l4, l5, t1, t2, t5, lib=sp):
-    """Eq (9) coefficients as printed in Wang et al. 2025."""
-    common = (l1**2 + l2**2 - l3**2 + l4**2 + l5**2 + 2 * l1 * l5 * lib.cos(t1 + t5)
-              + 2 * l1 * l2 * lib.cos(t1 - t2) + 2 * l2 * l5 * lib.cos(t2 + t5))
-    a1 = common - 2 * l1 * l4 * lib.cos(t1) + 2 * l4 * l5 * lib.cos(t5) - 2 * l2 * l4 * lib.cos(t2)
-    b1 = -4 * l4 * l5 * lib.sin(t5) + 4 * l1 * l4 * lib.sin(t1) + 4 * l2 * l4 * lib.sin(t2)
-    c1 = common - 2 * l4 * l5 * lib.cos(t5) - 2 * l1 * l4 * lib.cos(t1) - 2 * l2 * l4 * lib.cos(t2)
-    return a1, b1, c1
+    """Eq (9) coefficients as printed in Wang et al. 2025 (the script's transcription)."""
+    return reproduce.printed_eq9((l1, l2, l3, l4, l5), (t1, t2, t5), lib)
 
 
 def test_printed_eq8_is_the_derived_closure():

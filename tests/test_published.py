@@ -6,8 +6,6 @@ except the rice-transplanter paper's iteration, which tests/test_reverse.py pins
 Pins marked "regression pin" hold a number the program computes from a seeded or iterative
 process; each of them has an independent check of the same quantity named beside it.
 """
-import importlib.util
-import sys
 from dataclasses import replace
 from pathlib import Path
 
@@ -21,10 +19,9 @@ from transplanter.fivebar.relative_angle import RelativeAngle
 from transplanter.geometry.turn_map import TurnMap
 from transplanter.trains.planetary import correction_factor, design_train, printed_correction
 
+from published_script import reproduce
+
 ROOT = Path(__file__).resolve().parents[1]
-_spec = importlib.util.spec_from_file_location("reproduce_published", ROOT / "scripts/reproduce_published.py")
-reproduce = sys.modules.setdefault("reproduce_published", importlib.util.module_from_spec(_spec))
-_spec.loader.exec_module(reproduce)
 
 #: key, column, the value as docs/published.md states it, decimals stated.
 STATED = [
