@@ -75,3 +75,14 @@ def test_many_poses_table():
     run = subprocess.run([sys.executable, "-m", "transplanter", "burmester", "examples/burmester_7poses.toml"],
                          capture_output=True, text=True, cwd=ROOT, check=True)
     assert "least-squares" in run.stdout and "RMS length error" in run.stdout
+
+
+@pytest.mark.parametrize("argv, named", [(["fivebar", "examples/vegetable_planting.toml", "--pick", "two"], "--pick"),
+                                         (["bogus"], "bogus"), (["gear"], "file")])
+def test_bad_command_line_gives_one_line_and_exit_2(argv, named, capsys):
+    from transplanter.cli import main
+
+    with pytest.raises(SystemExit) as stop:
+        main(argv)
+    err = capsys.readouterr().err
+    assert stop.value.code == 2 and err.count("\n") == 1 and named in err and "Traceback" not in err

@@ -169,8 +169,15 @@ def _command(commands, name: str, run, summary: str, file_help: str, extras: str
     return command
 
 
+class _OneLineParser(argparse.ArgumentParser):
+    """argparse's parser, but a bad command line gives one line on stderr (and exit 2), as every other bad input."""
+
+    def error(self, message: str):
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
 def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="transplanter", description="Synthesis of seedling transplanting mechanisms.")
+    parser = _OneLineParser(prog="transplanter", description="Synthesis of seedling transplanting mechanisms.")
     parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     commands = parser.add_subparsers(dest="command", required=True)
     burmester = _command(commands, "burmester", _burmester, "RR dyads that guide a body through 3 or more poses",
