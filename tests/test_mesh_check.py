@@ -8,6 +8,7 @@ from transplanter.gears.pair import design_pair
 from transplanter.gears.pitch_curves import PitchCurve, ellipse
 from transplanter.gears.rack_teeth import rack_profile
 from transplanter.gears.teeth import driver_table, generate_teeth
+from transplanter.geometry.poses import rotate_about
 
 MODULE, ALPHA, TEETH = 2.0, np.radians(20), 30
 
@@ -88,3 +89,26 @@ def test_teeth_cut_on_a_pitch_curve_off_by_005_mm_are_caught(pair):
         check.max_transmission_error_mm > 2 * ERROR_MODULES * MODULE
     worst = check.driver_angle[np.argmin(check.clearance)]
     assert abs(np.mod(worst - centre + np.pi, 2 * np.pi) - np.pi) < 2 * width     # found where the bump is
+
+
+@pytest.fixture(scope="module")
+def circles():
+    """Two 30-tooth circles of module 2 with rack-cut (involute) teeth: conjugate, no backlash."""
+    circle = ellipse(1.0, 0.0)
+    design = design_pair(circle.scaled(TEETH * np.pi * MODULE / design_pair(circle, 1).perimeters[0]), 1)
+    return design, generate_teeth(design, MODULE, ALPHA, "test")
+
+
+@pytest.mark.parametrize("turn_modules", [0.0, 0.015, -0.015])
+def test_transmission_error_of_an_involute_pair_is_the_turn_given_to_the_driven_gear(circles, turn_modules):
+    """The driven gear's outline turned ahead by a known angle must rest that far behind the design at
+    every position (the definition of transmission error, positive ahead); untouched, it rests on the
+    design. 0.015 module is three times the tolerance; agreement to a fifth of the tolerance."""
+    design, teeth = circles
+    radius = design.radius[1][0]
+    turn = turn_modules * MODULE / radius
+    driven = rotate_about(teeth.outlines[1], (0.0, 0.0), turn)
+    check = check_mesh(design, (teeth.outlines[0], driven), MODULE)
+    assert np.abs(check.transmission_error + turn).max() * radius < 0.2 * ERROR_MODULES * MODULE
+    assert np.all(check.play >= -1e-9)
+    assert check.passed == (turn_modules == 0.0)
