@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
+import shapely
 
 from transplanter.fivebar.linkage import FiveBar
 from transplanter.geometry.poses import rotate_about, rotation
@@ -22,6 +23,8 @@ from transplanter.trains.planetary import PlanetaryTrain
 from transplanter.trains.toothed_train import ToothedTrain
 
 MIRROR = np.array([1.0, -1.0])
+#: Drawn tooth outlines stay within this many modules of the cut ones (0.15 um at module 1.5).
+DRAWN_WITHIN_MODULES = 1e-4
 
 
 @dataclass(frozen=True)
@@ -83,8 +86,12 @@ def carrier_to_world(mech: FiveBar, points: np.ndarray, c) -> np.ndarray:
 
 def tooth_outlines(toothed: ToothedTrain) -> dict[str, np.ndarray]:
     """The cut outline (N, 2) mm of each gear of a toothed train, by the names of ``gears_on_carrier``
-    (both place stage 1 mirrored and give each gear the same frame, so the outlines fit the pitch curves)."""
-    return {gear.name.replace(" ", "_"): gear.outline for gear in toothed.gears}
+    (both place stage 1 mirrored and give each gear the same frame, so the outlines fit the pitch curves),
+    thinned (Douglas-Peucker) within ``DRAWN_WITHIN_MODULES`` of the module for drawings and pictures: a
+    shaper-cut outline has a vertex every 0.002 module, which CAD files and frames do not need."""
+    tolerance = DRAWN_WITHIN_MODULES * toothed.module
+    return {gear.name.replace(" ", "_"): shapely.get_coordinates(
+                shapely.simplify(shapely.linearrings(gear.outline), tolerance))[:-1] for gear in toothed.gears}
 
 
 def teeth_on_carrier(toothed: ToothedTrain, carrier_length: float) -> dict:
