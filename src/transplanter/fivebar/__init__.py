@@ -1,8 +1,9 @@
 """The five-bar seedling pushing mechanism of Wang et al. 2025 with its planetary gear train.
 
 Public API: ``load_problem`` / ``parse_problem`` (TOML file or dict, mm and degrees) ->
-``FiveBarProblem`` (mm, radians); ``synthesize(problem)`` -> ``FiveBarResult`` (region, design
-NLP, gears, verification; ``to_json()``); ``draw_figures(result)`` -> matplotlib Figures by file
+``FiveBarProblem`` (mm, radians); ``synthesize(problem, pick=None, progress=None)`` -> ``FiveBarResult``
+(region, every candidate refined and ranked, the picked one's whole-tooth gears cut and mesh-checked,
+verification; ``to_json()``); ``draw_figures(result)`` -> matplotlib Figures by file
 stem; ``load_design`` + ``evaluate_design`` -> ``DesignEvaluation`` for a given (published) design.
 """
 from transplanter.lazy_exports import lazy_exports
