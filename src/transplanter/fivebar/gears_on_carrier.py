@@ -20,7 +20,7 @@ import shapely
 from transplanter.fivebar.linkage import FiveBar
 from transplanter.geometry.poses import rotate_about, rotation
 from transplanter.trains.planetary import PlanetaryTrain
-from transplanter.trains.toothed_train import ToothedTrain
+from transplanter.trains.toothed_train import ToothedTrain, bend_angle
 
 MIRROR = np.array([1.0, -1.0])
 #: Drawn tooth outlines stay within this many modules of the cut ones (0.15 um at module 1.5).
@@ -52,10 +52,10 @@ class GearOnCarrier:
 
 
 def intermediate_shaft(train: PlanetaryTrain, carrier_length: float) -> np.ndarray:
-    """Shaft centre (mm, carrier frame) at a1 from O and a2 from A (cosine rule; on O-A when straight)."""
+    """Shaft centre (mm, carrier frame) at a1 from O and a2 from A, counterclockwise of O->A (on O-A when straight)."""
     a1, a2 = train.center_distances
-    cos_bend = np.clip((a1**2 + carrier_length**2 - a2**2) / (2 * a1 * carrier_length), -1.0, 1.0)
-    return a1 * np.array([cos_bend, np.sqrt(1 - cos_bend**2)])
+    delta = bend_angle(a1, a2, carrier_length)
+    return a1 * np.array([np.cos(delta), np.sin(delta)])
 
 
 def gears_on_carrier(train: PlanetaryTrain, carrier_length: float) -> list[GearOnCarrier]:
