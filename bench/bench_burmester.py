@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import dataclasses
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -27,6 +26,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
 from ground_truth import dyad_poses  # noqa: E402
+from best_time import best_time  # noqa: E402  (bench/ is the script's own folder)
 from transplanter.burmester.five_poses import burmester_points  # noqa: E402
 from transplanter.burmester.four_poses import trace_dyads  # noqa: E402
 from transplanter.geometry.poses import Frame, carry, pole, rotation  # noqa: E402
@@ -35,14 +35,6 @@ from transplanter.burmester.synthesis import synthesize  # noqa: E402
 
 SAMPLES = 2000
 
-
-def best_time(function, repeat: int) -> float:
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        function()
-        times.append(time.perf_counter() - start)
-    return min(times)
 
 
 def _rows(poses, centers):
@@ -103,28 +95,28 @@ def main():
     local4 = Frame.of(poses4).local_poses(poses4)
     centers, _ = trace_dyads(local4, SAMPLES, 10.0)
     base_centers, _ = baseline_trace(local4)
-    ours = best_time(lambda: trace_dyads(local4, SAMPLES, 10.0), 20)
-    base = best_time(lambda: baseline_trace(local4), 20)
+    ours = best_time(lambda: trace_dyads(local4, SAMPLES, 10.0), 20)[0]
+    base = best_time(lambda: baseline_trace(local4), 20)[0]
     print(f"4-pose center-point trace, {SAMPLES} lines: transplanter {ours * 1e3:.2f} ms ({len(centers)} dyads), "
           f"baseline (the same per-line cubic, vectorised in numpy) {base * 1e3:.2f} ms ({len(base_centers)} dyads), "
           f"ratio {base / ours:.1f}x  (target < 20 ms)")
     problem = dataclasses.replace(load_problem(ROOT / "examples/burmester_4poses.toml"), samples=SAMPLES)
     synthesize(problem)
-    full = best_time(lambda: synthesize(problem), 10)
+    full = best_time(lambda: synthesize(problem), 10)[0]
     print(f"4-pose synthesis on the Wang et al. 2025 example, both curves, {SAMPLES} lines each, every dyad verified: "
           f"{full * 1e3:.1f} ms")
 
     poses5, _, _ = dyad_poses(rng, 5)
     local5 = Frame.of(poses5).local_poses(poses5)
     wanted = len(burmester_points(local5)[0])
-    ours = best_time(lambda: burmester_points(local5), 50)
-    base = best_time(lambda: baseline_five(local5, np.random.default_rng(0), wanted), 3)
+    ours = best_time(lambda: burmester_points(local5), 50)[0]
+    base = best_time(lambda: baseline_five(local5, np.random.default_rng(0), wanted), 3)[0]
     found, tried = baseline_five(local5, np.random.default_rng(0), wanted)
     print(f"5-pose Burmester points: transplanter {ours * 1e3:.2f} ms ({wanted} found); baseline scipy least_squares "
           f"from random starts until it has found as many ({len(found)} found in {tried} starts) "
           f"{base * 1e3:.1f} ms; ratio {base / ours:.0f}x  (target < 5 ms)")
     problem5 = load_problem(ROOT / "examples/burmester_5poses.toml")
-    full = best_time(lambda: synthesize(problem5), 20)
+    full = best_time(lambda: synthesize(problem5), 20)[0]
     print(f"5-pose synthesis of examples/burmester_5poses.toml, verified: {full * 1e3:.2f} ms")
 
 

@@ -33,7 +33,7 @@ import numpy as np  # noqa: E402
 from scipy.optimize import minimize  # noqa: E402
 
 from fresh_process import cli_seconds  # noqa: E402  (bench/ is the script's own folder)
-from transplanter.fivebar.nlp import SCALE, DesignSolver, decision_vector  # noqa: E402
+from transplanter.fivebar.nlp import DesignSolver, decision_vector, length_unit  # noqa: E402
 from transplanter.fivebar.problem import load_problem  # noqa: E402
 from transplanter.fivebar.region import solution_region  # noqa: E402
 
@@ -106,15 +106,17 @@ def main():
         begin = time.perf_counter()
         design = solver.solve(candidate)
         ours.append(time.perf_counter() - begin)
-        x0 = decision_vector(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points)
+        x0 = decision_vector(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points,
+                              length_unit(problem))
         begin = time.perf_counter()
         result, violation = baseline.solve(x0, nlp.parameters(candidate.mech.branch, []), lbg, ubg)
         theirs.append(time.perf_counter() - begin)
         begin = time.perf_counter()
         refined = solver.refine(candidate)
         refines.append(time.perf_counter() - begin)
+        unit = length_unit(problem)
         apart = np.abs(result.x - decision_vector(design.mech, design.relative_angle, design.stroke,
-                                                  design.reached_return_points))[:10].max() * SCALE
+                                                  design.reached_return_points, unit))[:10].max() * unit
         print(f"  candidate: package {ours[-1]:.3f} s, {design.iterations} iterations, objective "
               f"{design.objective:.10e}; SLSQP {theirs[-1]:.3f} s, {result.nit} iterations, objective "
               f"{result.fun:.10e}, constraint violation {violation:.1e}, {result.message!r}, "

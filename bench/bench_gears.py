@@ -12,12 +12,12 @@ installed (``pip install ncgears``, Apache-2.0) the same pair is also timed with
 from __future__ import annotations
 
 import tempfile
-import time
 from pathlib import Path
 from unittest import mock
 
 import numpy as np
 
+from best_time import best_time  # bench/ is the script's own folder
 from transplanter.gears import teeth
 from transplanter.gears.problem import load_problem
 from transplanter.gears.synthesis import synthesize
@@ -41,14 +41,6 @@ def windowed_self_intersections(outline: np.ndarray, window: int = 400) -> int:
     crossing = (side(a[i], b[i], a[j]) * side(a[i], b[i], b[j]) < 0) & (side(a[j], b[j], a[i]) * side(a[j], b[j], b[i]) < 0)
     return int(crossing.sum())
 
-
-def best_time(function, repeat):
-    best, value = float("inf"), None
-    for _ in range(repeat):
-        start = time.perf_counter()
-        value = function()
-        best = min(best, time.perf_counter() - start)
-    return best, value
 
 
 def main():

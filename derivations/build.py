@@ -17,7 +17,8 @@ from derivations._printer import print_function, print_signatures
 
 DERIVATIONS = Path(__file__).resolve().parent
 GENERATED = DERIVATIONS.parent / "src" / "transplanter" / "_generated"
-MODULES = ("burmester", "fivebar", "gears", "planetary")
+MODULES = ("burmester", "cam", "cam_support", "cusp", "fivebar", "gears", "parallelogram", "planetary",
+           "train_pitch_curvature")
 # Files every generated module depends on besides its own derivation.
 SHARED_SOURCES = ("_printer.py", "spec.py")
 

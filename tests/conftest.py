@@ -10,10 +10,11 @@ def rng():
 @pytest.fixture(scope="session")
 def derived():
     """The derivations as sympy expressions, derived once per session (about 10 s)."""
-    from derivations import burmester, fivebar, gears, planetary
+    import importlib
 
-    return {(module.__name__.split(".")[-1], d.name): d for module in (burmester, fivebar, gears, planetary)
-            for d in module.derive()}
+    from derivations.build import MODULES
+
+    return {(module, d.name): d for module in MODULES for d in importlib.import_module(f"derivations.{module}").derive()}
 
 
 @pytest.fixture(scope="session")

@@ -13,9 +13,10 @@ import pytest
 
 from transplanter.cli import main
 from transplanter.errors import ProblemError, SolverError
-from transplanter.fivebar.alternatives import (ANGLE_TIE, Failure, active_bounds, assess, merge, rank, reach,
-                                               refine_all)
+from transplanter.fivebar.alternatives import (ACTIVE_TOLERANCE, ANGLE_TIE, MERGE_TOLERANCE, Failure, active_bounds,
+                                               assess, merge, rank, reach, refine_all)
 from transplanter.fivebar.figures import draw_figures
+from transplanter.fivebar.nlp import CURVES
 from transplanter.fivebar.problem import parse_problem
 from transplanter.fivebar.report import to_markdown
 from transplanter.fivebar.result import alternative_json
@@ -59,8 +60,9 @@ def test_designs_reached_from_different_starts_are_merged_and_different_ones_kep
     again = replace(first, starts=(99,))
     assert [a.starts for a in merge([first, second, again], size)] == [first.starts + (99,), second.starts]
     mech = first.design.mech
-    moved = replace(first, design=replace(first.design, mech=replace(mech, rod_length=mech.rod_length * (1 + 1e-4))))
-    assert len(merge([first, moved], size)) == 2
+    for step, count in ((2 * MERGE_TOLERANCE * size, 2), (0.5 * MERGE_TOLERANCE * size, 1)):
+        moved = replace(first, design=replace(first.design, mech=replace(mech, rod_length=mech.rod_length + step)))
+        assert len(merge([first, moved], size)) == count
 
 
 def test_alternatives_are_ranked_by_the_documented_rule(run):
@@ -143,18 +145,30 @@ def test_an_active_bound_is_flagged_and_a_slack_one_is_not(run):
     problem = result.problem
     alternative = result.alternatives[0]
     mech, margin, ratios = alternative.design.mech, alternative.min_closure_margin, alternative.ratio_range
+    misses, curvature = alternative.return_misses_mm, alternative.design.min_curvature
     low = problem.ranges["ep"][0]
     width = mech.ep - low
+    roomy = replace(problem, return_tolerance_mm=2 * misses.max() + 1.0)
+    unheld = replace(alternative.design, curvature_floor=None)
 
-    def names(edited):
-        return {(b.name, b.side) for b in active_bounds(edited, mech, margin, ratios)}
+    def names(edited, design=unheld):
+        return {(b.name, b.side) for b in active_bounds(edited, design, margin, ratios, misses)}
 
-    at_limit = replace(problem, ranges={"ep": (low, float(mech.ep))}, min_closure_margin=margin,
+    at_limit = replace(roomy, ranges={"ep": (low, float(mech.ep))}, min_closure_margin=margin,
                        ratio_bounds=(ratios[0], 10.0))
     assert names(at_limit) == {("ranges.ep", "upper"), ("min_closure_margin", "lower"), ("ratio", "lower")}
-    slack = replace(problem, ranges={"ep": (low, float(mech.ep) + 0.01 * width)}, min_closure_margin=0.99 * margin,
+    slack = replace(roomy, ranges={"ep": (low, float(mech.ep) + 0.01 * width)}, min_closure_margin=0.99 * margin,
                     ratio_bounds=(0.99 * ratios[0], 10.0))
     assert names(slack) == set()
+    farthest, tightest = int(np.argmax(misses)), int(np.argmin(curvature))
+    on_tolerance = replace(slack, return_tolerance_mm=float(misses[farthest]))
+    on = [name for name, side in names(on_tolerance) if name.startswith("conditions.return_tolerance_mm")]
+    assert len(on) == 1 and f"{farthest + 1})" in on[0]
+    beyond = float(misses.max()) + 2 * ACTIVE_TOLERANCE * reach(problem)
+    assert names(replace(slack, return_tolerance_mm=beyond)) == set()
+    held = replace(unheld, curvature_floor=float(curvature[tightest]))
+    assert names(slack, held) == {(f"a kappa of the {CURVES[tightest]} pitch curve", "lower")}
+    assert names(slack, replace(unheld, curvature_floor=float(curvature[tightest]) - 0.01)) == set()
 
 
 def test_a_refined_design_that_breaks_a_condition_fails_with_the_reason(run):
@@ -175,6 +189,9 @@ def test_a_refined_design_that_breaks_a_condition_fails_with_the_reason(run):
             if candidate is result.region.feasible[1]:
                 raise SolverError("no", "Maximum_Iterations_Exceeded")
             return result.alternatives[0].design
+
+        def make_convex(self, candidate, design):
+            return design
 
     found, failed, seconds = refine_all(problem, Solver(), result.region.feasible[:3])
     assert [a.starts for a in found] == [(0, 2)] and len(seconds) == 3

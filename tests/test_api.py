@@ -50,10 +50,9 @@ def from_dict(job, name: str):
 
 
 @pytest.fixture(scope="module")
-def fivebar_results():
-    """The vegetable planting example designed from its file and from a dict of numpy values (~5 s each)."""
-    path = EXAMPLES / "vegetable_planting.toml"
-    return fivebar.synthesize(fivebar.load_problem(path)), fivebar.synthesize(from_dict(fivebar, path.name))
+def fivebar_results(example_result):
+    """The vegetable planting example designed from its file (the session's) and from a dict of numpy values."""
+    return example_result, fivebar.synthesize(from_dict(fivebar, "vegetable_planting.toml"))
 
 
 @pytest.mark.parametrize("job, name", [(burmester, "burmester_relative.toml"), (burmester, "burmester_3poses.toml"),

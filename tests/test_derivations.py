@@ -60,8 +60,17 @@ def test_pencil_resultant_has_the_circular_factor():
     assert quotient.degree() == 6
 
 
+POSITIVE_INPUTS = ("gears", "train_pitch_curvature")
 GENERATED_FUNCTIONS = [(module, name) for module in MODULES
                        for name in __import__(f"transplanter._generated.{module}", fromlist=["SIGNATURES"]).SIGNATURES]
+
+
+# a real gear pair: driver angle within one turn, l > b > 0, m11 > 1/2, a > l + b
+PARALLELOGRAM_INPUTS = {
+    "driver_angle": lambda rng: rng.uniform(0, 2 * np.pi, size=1),
+    "pitch": lambda rng: np.r_[rng.uniform(40, 60), rng.uniform(5, 15), rng.uniform(0.8, 2.0), rng.uniform(0.6, 1.5)],
+    "center_distance": lambda rng: rng.uniform(90, 130, size=1),
+}
 
 
 @pytest.mark.parametrize("module,name", GENERATED_FUNCTIONS)
@@ -73,9 +82,10 @@ def test_generated_matches_lambdify(derived, module, name, rng):
     assert function.name_in() == [n for n, _ in d.inputs]
     assert function.name_out() == [n for n, _ in d.outputs]
     for _ in range(4):
-        # positive values keep square roots and ratios real (radii, distances, eccentricities < 1 below)
-        groups = [rng.uniform(0.1, 1.0, size=len(g)) if module == "gears" else rng.normal(size=len(g))
-                  for _, g in d.inputs]
+        # positive values keep square roots and ratios real (radii, distances, eccentricities < 1, rho' below)
+        groups = [PARALLELOGRAM_INPUTS[n](rng) if module == "parallelogram" and n in PARALLELOGRAM_INPUTS
+                  else rng.uniform(0.1, 1.0, size=len(g)) if module in POSITIVE_INPUTS else rng.normal(size=len(g))
+                  for n, g in d.inputs]
         expected = np.array(reference(*np.concatenate(groups)), float)
         via_casadi = np.concatenate([np.asarray(v).ravel() for v in function(*groups)]) \
             if function.n_out() > 1 else np.asarray(function(*groups)).ravel()

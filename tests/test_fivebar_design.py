@@ -12,7 +12,7 @@ from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.fivebar.candidate import evaluate_candidate
 from transplanter.fivebar.evaluation import evaluate_design, load_design
 from transplanter.fivebar.linkage import FiveBar
-from transplanter.fivebar.nlp import DesignSolver, build_nlp, decision_vector
+from transplanter.fivebar.nlp import SLOT_ROWS, DesignSolver, build_nlp, decision_vector, length_unit
 from transplanter.fivebar.problem import load_problem, parse_problem
 from transplanter.fivebar.region import ChainFamily
 from transplanter.fivebar.synthesis import _empty_family, synthesize
@@ -126,7 +126,8 @@ def test_main_job_meets_the_key_poses_by_forward_simulation(result, problem):
     assert np.abs(check.key_angle_errors_deg).max() < 1e-6
     assert check.roundtrip_max_error_mm < 1e-6
     assert check.contact_gap_mm < 1e-9
-    assert check.return_point_errors_mm.max() < 0.01        # least squares: a bound, not a pin (1 um when written)
+    # within the tolerance at the spline's turns; the rolled gears move P by up to their round trip error
+    assert check.return_point_errors_mm.max() <= problem.return_tolerance_mm + check.roundtrip_max_error_mm
     assert check.relative_angle_monotonic
     assert check.min_closure_margin >= problem.min_closure_margin - 1e-9
     assert check.min_discriminant > 0
@@ -144,37 +145,43 @@ def test_main_job_design_keeps_ranges_and_both_chains_close(result, problem):
 
 def test_exchange_slots_are_the_closure_margin_and_slope_of_forward_kinematics(result, problem):
     """A parametric exchange slot at any carrier turn gives the margin sin^2(EBF) and rho' that the
-    independent forward kinematics gives there; an unused slot constrains nothing."""
+    independent forward kinematics gives there (less t, for the margin); an unused slot constrains nothing."""
     candidate = result.region.feasible[0]
     nlp = build_nlp(problem, capacity=3)
     turns = np.radians([14.2, 123.45])
-    g = ca.Function("g", [nlp.x, nlp.p], [nlp.constraints])(
-        decision_vector(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points),
-        nlp.parameters(candidate.mech.branch, turns))
+    x0 = decision_vector(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points,
+                          length_unit(problem))
+    g = ca.Function("g", [nlp.x, nlp.p], [nlp.constraints])(x0, nlp.parameters(candidate.mech.branch, turns))
     g = np.asarray(g).ravel()
     forward = candidate.mech.forward(turns, candidate.relative_angle.evaluate(turns))["margin"]
-    assert np.abs(g[nlp.slot_rows[0, :2]] - forward).max() < 1e-12
-    assert np.abs(g[nlp.slot_rows[1, :2]] - candidate.relative_angle.evaluate(turns, 1)).max() < 1e-12
-    lbg, ubg = nlp.bounds(len(turns))
+    margin_row, slope_row = nlp.slot_rows[SLOT_ROWS.index("angle EBF")], nlp.slot_rows[SLOT_ROWS.index("ratio")]
+    assert np.abs(g[margin_row[:2]] + x0[-3] - forward).max() < 1e-12
+    assert np.abs(g[slope_row[:2]] - candidate.relative_angle.evaluate(turns, 1)).max() < 1e-12
+    lbg, ubg = nlp.bounds(len(turns), convex=True)
     assert np.isfinite(lbg[nlp.slot_rows[:, :2]]).all() and np.isneginf(lbg[nlp.slot_rows[:, 2]]).all()
     assert np.isposinf(ubg[nlp.slot_rows[:, 2]]).all()
 
 
 def test_one_solver_serves_every_start_and_round(result, problem):
     """Two refinements (each with its exchange rounds) run on the solver built once; the second start's
-    design is the one a freshly built solver gives."""
+    design is the one a freshly built solver gives when offered the same exchange turns. (Offered none, a
+    start may end at another local optimum of the max-min: the turns change IPOPT's path.)"""
     first, second = result.region.feasible[:2]
     solver = DesignSolver(problem)
     function = solver.function
     solver.refine(first)
+    offered = solver.exchange_turns
+    assert offered.size > 0
     reused = solver.refine(second)
     assert solver.builds == 1 and solver.function is function
-    fresh = DesignSolver(problem).refine(second)
-    assert abs(reused.objective - fresh.objective) <= 1e-12 * fresh.objective
+    fresh = DesignSolver(problem)
+    fresh.exchange_turns = offered
+    same_grid = fresh.refine(second)
+    assert abs(reused.objective - same_grid.objective) <= 1e-12 * abs(same_grid.objective)
     for name in ("carrier_length", "rod_length", "receiving_length"):
-        assert abs(getattr(reused.mech, name) - getattr(fresh.mech, name)) < 1e-9
+        assert abs(getattr(reused.mech, name) - getattr(same_grid.mech, name)) < 1e-9
     for name in ("hinge_b", "e_local", "f_local"):
-        assert np.abs(getattr(reused.mech, name) - getattr(fresh.mech, name)).max() < 1e-9
+        assert np.abs(getattr(reused.mech, name) - getattr(same_grid.mech, name)).max() < 1e-9
 
 
 def test_exchange_beyond_the_solver_room_rebuilds_it_larger(result, problem):

@@ -28,10 +28,13 @@ def test_one_example_per_family():
                              cwd=ROOT) for path in EXAMPLES]
     outputs = [run.communicate() for run in runs]
     for path, run, (_, stderr) in zip(EXAMPLES, runs, outputs):
-        assert run.returncode == 0, (path.name, stderr)
+        if path.name == "gear_cusp_composite.toml":     # known to fail its mesh check at the corners (docs/gear.md)
+            assert run.returncode == 1 and "transmission error" in stderr, (path.name, stderr)
+        else:
+            assert run.returncode == 0, (path.name, stderr)
     families = {json.loads(stdout)["driver"]["family"] for stdout, _ in outputs}
     assert families == {"ellipse", "higher_order_ellipse", "denatured_ellipse", "limacon", "denatured_limacon",
-                        "spline", "ratio"}
+                        "spline", "ratio", "composite"}
 
 
 def test_json_fields_and_drawings(tmp_path):
@@ -63,7 +66,7 @@ def test_json_fields_and_drawings(tmp_path):
 BAD = {
     "unknown family": ('[driver]\nfamily = "cycloid"\n', ["driver.family", "cycloid", "one of"]),
     "radius reaches zero": ('[driver]\nfamily = "limacon"\nbase = 10.0\namplitude = 12.0\n',
-                            ["driver pitch radius reaches", "positive radius"]),
+                            ["driver.amplitude = 12.0", "below driver.base = 10 mm"]),
     "ratio touches zero": ('[driver]\nfamily = "ratio"\nphi_deg = [0, 90, 180, 270]\nratio = [1.0, 0.0, 1.0, 2.0]\n'
                            '[pair]\ncenter_distance = 50.0\n', ["driver.ratio", "0.0", "reverses the driven gear"]),
     "ratio cannot close": ('[driver]\nfamily = "ratio"\nphi_deg = [0, 90, 180, 270]\nratio = [1.0, 1.5, 1.0, 2.0]\n'
@@ -85,7 +88,7 @@ BAD = {
     "expression not periodic": ('[driver]\nfamily = "ratio"\nexpression = "1 + phi / 10"\ncorrect = true\n'
                                 '[pair]\ncenter_distance = 50.0\n', ["driver.ratio is not periodic"]),
     "expression goes negative": ('[driver]\nfamily = "ratio"\nexpression = "0.5 + cos(phi)"\ncorrect = true\n'
-                                 '[pair]\ncenter_distance = 50.0\n', ["driver.ratio reaches", "goes negative"]),
+                                 '[pair]\ncenter_distance = 50.0\n', ["driver.expression = '0.5 + cos(phi)' reaches -0.5", "goes negative"]),
     "key of another family": ('[driver]\nfamily = "ellipse"\nsemi_major_axis = 30.0\neccentricity = 0.3\nbase = 4.0\n',
                               ["driver.base", "no such field"]),
 }

@@ -17,7 +17,7 @@ from transplanter.gears.teeth import driven_table, generate_teeth
 from transplanter.generated import casadi_function, numpy_twin
 from transplanter.gears.pitch_curves import denatured_limacon, denatured_partner, ellipse, limacon
 from transplanter.gears.rack_teeth import pitch_table, rack_profile, _flank
-from transplanter.gears.swept_teeth import shaper_profile
+from transplanter.gears.swept_teeth import mate_profile, shaper_profile
 
 ellipse_center = casadi_function("gears", "ellipse_center_distance")
 limacon_center = casadi_function("gears", "limacon_center_distance")
@@ -237,6 +237,38 @@ def test_shaper_pair_has_no_sampling_sliver():
     driven = driven_table(d)
     blank = driven.points + 2.0 * driven.normals
     assert check_mesh(d, (driver, blank), 2.0).max_overlap_mm > 0.005 * 2.0
+
+
+def _straight_tipped_gear(radius, teeth, module):
+    """A polygon gear: trapezoid teeth whose tip lands and roots are single straight edges."""
+    pitch_angle = 2 * np.pi / teeth
+    corners = []
+    for k in range(teeth):
+        middle = k * pitch_angle
+        for offset, r in ((-0.30, radius - 1.25 * module), (-0.18, radius + module),
+                          (0.18, radius + module), (0.30, radius - 1.25 * module)):
+            corners.append(r * np.array([np.cos(middle + offset * pitch_angle), np.sin(middle + offset * pitch_angle)]))
+    return np.array(corners)
+
+
+def test_mate_of_a_straight_tipped_gear_is_cut_to_its_tip():
+    """A straight tip land of length L sagging over the mate's pitch circle is a parabola in the mate's
+    normal coordinates (sagitta about L^2 (1/R1 + 1/R2) / 8, 0.03 mm here). Cut by its chord
+    ends alone, the mate kept that sliver in its roots and the placed polygons overlapped by it; with
+    the edges split, no point of the driver's densified outline enters the cut mate by more than
+    the overlap tolerance at any position."""
+    module, radius = 2.0, 20.0
+    d = _scaled_pair(ellipse(1.0, 0.0), 20, module)
+    driver = _straight_tipped_gear(radius, 20, module)
+    mate = mate_profile(d, driver, driven_table(d), module)
+    dense = shapely.get_coordinates(shapely.segmentize(shapely.linearrings(driver), 0.01))
+    depth = 0.0
+    for phi1 in np.linspace(0, 2 * np.pi / 20, 9):
+        phi2 = float(driven_angle(d, np.array([phi1]))[0])
+        placed = rotate_about(rotate_about(dense, (0.0, 0.0), -phi1) - [d.center_distance, 0.0], (0.0, 0.0), -phi2)
+        depth = max(depth, _depth_inside(mate, placed))
+    assert depth < 0.005 * module
+    assert check_mesh(d, (driver, mate), module).max_overlap_mm < 0.005 * module
 
 
 def _resting_turn(design, outlines, module, phi1, steps=40):

@@ -174,7 +174,7 @@ def test_given_center_distances_must_give_whole_teeth(circles):
 
 
 def _with_gears(**gears):
-    data = {"key_poses": [{"x": 0.0, "y": 0.0, "angle_deg": 0.0, "carrier_turn_deg": t} for t in (0, 18, 50, 90)],
+    data = {"key_poses": [{"x": float(t), "y": 0.0, "angle_deg": 0.0, "carrier_turn_deg": t} for t in (0, 18, 50, 90)],
             "return_points": [{"x": 1.0, "y": 1.0}], "gears": gears}
     return parse_problem(data, "p.toml")
 

@@ -6,19 +6,22 @@ Conventions of every design command: ``--out DIR`` is written whole or not at al
 of the longer steps goes to stderr when it is a terminal (as git does; a pipe or a log gets only
 errors), unless ``--quiet`` or ``--json``; exit 0 when the result
 passes its checks, 1 when it fails one (every file name then starts with FAILED- and the reports
-say why), 2 for bad input.
+say why), 2 for bad input or no result (one line; inputs, ``--out`` and ``--plot`` are checked
+before the work), 130 for Ctrl-C; report.json is always valid JSON (``output_folder.report_json``).
 """
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 import warnings
 from pathlib import Path
 
 from transplanter import __version__, progress
 from transplanter.errors import TransplanterError
-from transplanter.output_folder import FAILED_PREFIX, files_by_kind, staged
+from transplanter.output_folder import FAILED_PREFIX, check_file, files_by_kind, report_json, staged, staged_file
+
+#: What ``--plot`` may be named (the formats matplotlib writes without extra packages).
+PLOT_SUFFIXES = {".png", ".pdf", ".svg", ".jpg", ".jpeg", ".eps", ".ps", ".tif", ".tiff", ".webp"}
 
 
 def _failures(*checked) -> tuple[str, ...]:
@@ -41,12 +44,11 @@ def _publish(args, report: dict, file_text: str, screen_text: str, failures: tup
         (folder / "report.md").write_text(file_text)
         names = sorted(path.name for path in folder.iterdir())
         report["files"] = files_by_kind(prefix + name for name in [*names, "report.json"])
-        (folder / f"{prefix}report.json").write_text(json.dumps(report, indent=2) + "\n")
+        (folder / f"{prefix}report.json").write_text(report_json(report) + "\n")
         for name in names if prefix else ():
             (folder / name).rename(folder / (prefix + name))
     if args.json:
-        json.dump(report, sys.stdout)
-        sys.stdout.write("\n")
+        sys.stdout.write(report_json(report, indent=None) + "\n")
     else:
         sys.stdout.write(screen_text)
         if folder:
@@ -70,14 +72,16 @@ def _burmester(args) -> int:
     from transplanter import burmester
     from transplanter.burmester.report import to_markdown, to_text
 
+    plot = check_file(args.plot, "--plot", PLOT_SUFFIXES) if args.plot else None
     problem = burmester.load_problem(args.file)
     with progress.step("synthesis"):
         result = burmester.synthesize(problem)
-    if args.plot or args.folder:
+    if plot or args.folder:
         with progress.step("figures"):
             figures = burmester.draw_figures(result)
-            if args.plot:
-                figures["burmester"].savefig(args.plot, dpi=130)
+            if plot:
+                with staged_file(plot) as partial:
+                    figures["burmester"].savefig(partial, dpi=130)
             if args.folder:
                 _save_figures(figures, args.folder, dpi=130)
     return _publish(args, result.to_json(), to_markdown(result, "burmester.png"), to_text(result), _failures(result))
@@ -107,9 +111,10 @@ def _fivebar(args) -> int:
 
     problem = fivebar.load_problem(args.file)
     if args.design:
-        report = fivebar.evaluate_design(problem, fivebar.load_design(args.design)).to_json()
+        evaluation = fivebar.evaluate_design(problem, fivebar.load_design(args.design))
+        report = evaluation.to_json()
         return _publish(args, report, evaluation_markdown(report, problem.labels),
-                        evaluation_markdown(report, problem.labels))
+                        evaluation_markdown(report, problem.labels), _failures(evaluation.candidate))
     with progress.step("synthesis"):
         result = fivebar.synthesize(problem, pick=args.pick, progress=progress.report)
     report = result.to_json()
@@ -144,11 +149,83 @@ def _reverse(args) -> int:
         with progress.step("figures"):
             figures = _save_figures(reverse.draw_figures(result), args.folder)
     code = _publish(args, report, to_markdown(report, figures), to_markdown(report, []), _failures(result))
-    if not result.monotonic:
-        print(f"transplanter: error: {result.problem.source}: the path fails the monotonicity criterion: "
-              + "; ".join(v.message for v in result.violations), file=sys.stderr)
-        return 2
-    return code
+    return code if result.monotonic else 2          # no train: no result, though the report gives the hints
+
+
+def _cam(args) -> int:
+    from transplanter import cam
+    from transplanter.cam.report import to_markdown
+
+    problem = cam.load_problem(args.file)
+    with progress.step("synthesis"):
+        result = cam.synthesize(problem)
+    drawings, figures = [], []
+    if args.folder:
+        with progress.step("drawings"):
+            drawings = [path.name for path in cam.write_drawings(result, args.folder)]
+        with progress.step("figures"):
+            figures = _save_figures(cam.draw_figures(result), args.folder)
+    report = result.to_json()
+    return _publish(args, report, to_markdown(report, figures, drawings),
+                    to_markdown(report, [], []).replace("# ", "", 1), _failures(result))
+
+
+def _parallelogram(args) -> int:
+    from transplanter import parallelogram
+    from transplanter.parallelogram.report import evaluation_markdown, to_markdown
+
+    problem = parallelogram.load_problem(args.file)
+    if args.design:
+        given = parallelogram.load_design(args.design)
+        with progress.step("evaluation"):
+            result = parallelogram.evaluate_design(problem, given)
+        report = result.to_json()
+        figures = []
+        if args.folder:
+            with progress.step("figures"):
+                figures = _save_figures(parallelogram.draw_design_figures(problem, given.design), args.folder)
+        return _publish(args, report, evaluation_markdown(report, figures), evaluation_markdown(report),
+                        _failures(result))
+    with progress.step("search"):
+        result = parallelogram.synthesize(problem, pick=args.pick, progress=progress.report)
+    report = result.to_json()
+    figures = []
+    if args.folder:
+        from transplanter.parallelogram.tables import write_tables
+
+        with progress.step("figures"):
+            figures = _save_figures(parallelogram.draw_figures(result), args.folder)
+        with progress.step("tables"):
+            write_tables(result, args.folder)
+        if result.gear.teeth is not None:
+            from transplanter.gears import write_drawings
+
+            with progress.step("drawings"):
+                write_drawings(result.gear, args.folder)
+        if not args.no_animation:
+            from transplanter.parallelogram.animation import write_animation
+
+            with progress.step("animation"):
+                write_animation(result, args.folder)
+    return _publish(args, report, to_markdown(report, figures), to_markdown(report), _failures(result))
+
+
+def _pickup(args) -> int:
+    from transplanter import pickup
+    from transplanter.pickup.report import to_markdown
+
+    problem = pickup.load_problem(args.file)
+    with progress.step("kinematics"):
+        result = pickup.synthesize(problem)
+    report = result.to_json()
+    files = []
+    if args.folder:
+        with progress.step("figures"):
+            files = _save_figures(pickup.draw_figures(result), args.folder)
+        if not args.no_animation:
+            with progress.step("animation"):
+                files.append(pickup.write_animation(result, args.folder).name)
+    return _publish(args, report, to_markdown(report, files), to_markdown(report, []).replace("# ", "", 1))
 
 
 def _derive(args) -> int:
@@ -157,14 +234,17 @@ def _derive(args) -> int:
     return run_build(["--check"] if args.check else [])
 
 
-def _command(commands, name: str, run, summary: str, file_help: str, extras: str):
-    """A subcommand with the arguments every design command takes: FILE, --json, --out DIR, --quiet."""
+def _command(commands, name: str, run, summary: str, file_help: str, extras: str, animation: str | None = None):
+    """A subcommand with the arguments every design command takes: FILE, --json, --out DIR, --quiet; and
+    --no-animation when it writes the animation file ``animation``."""
     command = commands.add_parser(name, help=summary)
     command.add_argument("file", help=file_help)
     command.add_argument("--json", action="store_true", help="print the report as one JSON object (no progress)")
     command.add_argument("--out", metavar="DIR", help=f"write report.md, report.json and {extras} here (the "
                          "folder is replaced only when the run succeeds)")
     command.add_argument("--quiet", action="store_true", help="no progress on stderr")
+    if animation:
+        command.add_argument("--no-animation", action="store_true", help=f"with --out: skip {animation} (one cycle)")
     command.set_defaults(run=run)
     return command
 
@@ -188,15 +268,28 @@ def _parser() -> argparse.ArgumentParser:
     fivebar = _command(commands, "fivebar", _fivebar, "five-bar seedling pushing mechanism with its planetary gear "
                        "train (Wang et al. 2025): region, precise design, gears, verification",
                        "five-bar problem file (TOML, mm and degrees)",
-                       "the figures, linkage.dxf, CSV tables and animation.gif")
+                       "the figures, linkage.dxf, CSV tables and animation.gif", "animation.gif")
     fivebar.add_argument("--design", metavar="DESIGN.toml", help="evaluate this given design instead of designing one")
     fivebar.add_argument("--pick", metavar="N", type=int, help="build alternative N of the ranked alternatives "
                          "(default 1, the best; report.md lists them)")
-    fivebar.add_argument("--no-animation", action="store_true", help="with --out: skip animation.gif (one turn)")
     _command(commands, "reverse", _reverse, "planetary non-circular gear train that makes the arm tip follow a closed "
              "path (the rice-transplanter, reverse-gear-design and cusp-pitch-curve papers): inverse kinematics, "
              "monotonicity, gears, round trip",
              "reverse-design problem file (TOML, mm and degrees)", "the figures")
+    _command(commands, "cam", _cam, "a disc cam with a roller follower (translating or oscillating): motion laws, "
+             "profile, pressure angle, curvature, undercut, the smallest base circle",
+             "cam problem file (TOML, mm and degrees)", "cam_profile.csv, cam.dxf, cam.svg and the figures")
+    parallelogram = _command(commands, "parallelogram", _parallelogram, "onion transplanter: parallelogram planting "
+                             "mechanism driven by denatured Pascal limacon gears, NSGA-II and NLP polish",
+                             "parallelogram problem file (TOML, mm and degrees)",
+                             "figures, pareto.csv, trajectory.csv, gear drawings and animation.gif", "animation.gif")
+    parallelogram.add_argument("--design", metavar="DESIGN.toml", help="evaluate this given design (e.g. "
+                               "examples/onion_published.toml) instead of searching")
+    parallelogram.add_argument("--pick", metavar="N", type=int, help="build the N-th Pareto design, ranked by "
+                               "distance to the ideal point (default 1, the knee)")
+    _command(commands, "pickup", _pickup, "the seedling pick-up mechanism of the cusp-pitch-curve paper "
+                      "(eq 15), forward: tip path, picking and pushing angles, tip speed, animation",
+                      "pick-up problem file (TOML, mm and degrees)", "the figures and pickup.gif", "pickup.gif")
     derive = commands.add_parser("derive", help="regenerate src/transplanter/_generated from derivations/")
     derive.add_argument("--check", action="store_true", help="exit 1 if the generated code is out of step")
     derive.set_defaults(run=_derive)
@@ -219,6 +312,13 @@ def main(argv: list[str] | None = None) -> int:
     except TransplanterError as error:
         print(f"transplanter: error: {error}", file=sys.stderr)
         return 2
+    except OSError as error:            # a disk that fills or a folder that goes away under the run
+        print(f"transplanter: error: {error.filename or out}: cannot be written ({error.strerror})"
+              + (f"; {out} is left as it was" if out else ""), file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("transplanter: interrupted" + (f"; {out} is left as it was" if out else ""), file=sys.stderr)
+        return 130
 
 
 if __name__ == "__main__":

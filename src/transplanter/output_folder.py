@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import contextlib
 import json
+import math
+import os
 import shutil
 import tempfile
 from pathlib import Path
@@ -21,6 +23,20 @@ KINDS = {".json": "report", ".md": "report", ".png": "figure", ".dxf": "drawing"
          ".csv": "table", ".gif": "animation", ".mp4": "animation"}
 #: Prefix of every file name of a run whose result failed a check.
 FAILED_PREFIX = "FAILED-"
+
+
+def report_json(report: dict, indent: int | None = 2) -> str:
+    """``report`` as JSON text that any reader takes: a float that is not finite (NaN, Infinity,
+    which JSON has no words for) is written as null."""
+    def plain(value):
+        if isinstance(value, float) and not math.isfinite(value):
+            return None
+        if isinstance(value, dict):
+            return {key: plain(item) for key, item in value.items()}
+        if isinstance(value, (list, tuple)):
+            return [plain(item) for item in value]
+        return value
+    return json.dumps(plain(report), indent=indent, allow_nan=False)
 
 
 def files_by_kind(names) -> dict[str, list[str]]:
@@ -53,6 +69,40 @@ def check_target(out: str | Path):
                            f"(its report.json does not list them); expected a new or empty folder, or an earlier output")
 
 
+def check_file(path: str | Path, option: str, suffixes: set[str]) -> Path:
+    """Refuse (ProblemError) an output file that is a folder, has a suffix outside ``suffixes`` or
+    lies where nothing can be written; the absolute path otherwise."""
+    target = Path(path).absolute()
+    if target.suffix.lower() not in suffixes:
+        raise ProblemError(f"{option} = {path}: expected a file name ending in one of {', '.join(sorted(suffixes))}")
+    if target.is_dir():
+        raise ProblemError(f"{option} = {path}: a folder is there; expected a file name")
+    if not target.parent.is_dir() or not os.access(target.parent, os.W_OK | os.X_OK):
+        raise ProblemError(f"{option} = {path}: {target.parent} is not a folder this user can write into")
+    return target
+
+
+@contextlib.contextmanager
+def staged_file(path: Path):
+    """Yield a temporary name beside ``path`` and move it onto ``path`` only when the block succeeds."""
+    partial = path.with_name(f".{path.stem}.{os.getpid()}.partial{path.suffix}")   # the suffix names the format
+    try:
+        yield partial
+        os.replace(partial, path)
+    finally:
+        partial.unlink(missing_ok=True)
+
+
+def _work_folder(out: str | Path, target: Path) -> Path:
+    """The hidden temporary folder beside ``target``, or ProblemError naming ``--out`` when none can be made."""
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        return Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".partial", dir=target.parent))
+    except OSError as error:
+        raise ProblemError(f"--out = {out}: cannot write there ({error.strerror}): expected a folder this user "
+                           "can create and write into") from None
+
+
 @contextlib.contextmanager
 def staged(out: str | Path | None):
     """Yield a temporary folder beside ``out`` (None when ``out`` is None) and move it into place on success."""
@@ -61,8 +111,7 @@ def staged(out: str | Path | None):
         return
     check_target(out)
     target = Path(out).absolute()
-    target.parent.mkdir(parents=True, exist_ok=True)
-    work = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".partial", dir=target.parent))
+    work = _work_folder(out, target)
     stage = work / target.name
     stage.mkdir()                       # made as any folder is (mkdtemp's own is private to the user)
     try:

@@ -17,6 +17,36 @@ import numpy as np
 
 from transplanter.errors import ProblemError
 
+#: Largest magnitude a number of a problem may have: lengths and coordinates in mm (a kilometre
+#: of mechanism and more), counts, ratios and speeds. Beyond it squares and sums of squares of
+#: the lengths lose the digits the checks need, and soon overflow.
+MAGNITUDE_LIMIT = 1e9
+#: Smallest length a problem may give (mm): below it, products and quotients of lengths underflow.
+SMALLEST_LENGTH = 1 / MAGNITUDE_LIMIT
+#: Largest magnitude of an angle in degrees (fields named ``*_deg``): ten thousand turns and more;
+#: beyond it an angle's fraction of a turn has lost its digits.
+ANGLE_LIMIT_DEG = 1e6
+
+
+def _limit(field: str) -> float:
+    return ANGLE_LIMIT_DEG if "_deg" in field else MAGNITUDE_LIMIT
+
+
+def _within(value, field: str) -> bool:
+    return is_finite_number(value) and abs(value) <= _limit(field)
+
+
+def _finite_expected(field: str) -> str:
+    unit = "deg" if "_deg" in field else "mm for a length"
+    return f"a finite number within ±{_limit(field):.0e} ({unit}; beyond it the numerics lose the digits they need)"
+
+
+def require_problem(problem, kind: type, module: str):
+    """Refuse (ProblemError) a ``problem`` that is not a ``kind``, as a synthesis given a path or None."""
+    if not isinstance(problem, kind):
+        raise ProblemError(f"problem = {shown(problem)!r}: expected a {kind.__name__} (from transplanter.{module}."
+                           f"load_problem(path) or parse_problem(dict))")
+
 
 def read_toml(path: str | Path) -> dict:
     """The content of the TOML file at ``path``.
@@ -39,10 +69,25 @@ def read_toml(path: str | Path) -> dict:
         raise ProblemError(f"{path}: not valid TOML ({error})") from None
 
 
+#: Longest text a message quotes in full; longer values are cut and their length given.
+SHOWN_LENGTH = 300
+
+
+class _Cut(str):
+    """A long value as a message shows it: its start, and how long it is."""
+
+    def __repr__(self):
+        return self
+
+
 def shown(value):
-    """``value`` as a message shows it: numpy arrays and scalars as the plain lists and numbers TOML gives."""
+    """``value`` as a message shows it: numpy arrays and scalars as the plain lists and numbers TOML
+    gives, and a value longer than ``SHOWN_LENGTH`` characters cut to its start and its length."""
     if isinstance(value, (np.ndarray, np.generic)):
-        return value.tolist()
+        value = value.tolist()
+    text = repr(value)
+    if len(text) > SHOWN_LENGTH:
+        return _Cut(f"{text[:SHOWN_LENGTH - 20]}... ({len(text)} characters)")
     return value
 
 
@@ -92,13 +137,20 @@ class FieldReader:
         if key not in table:
             raise ProblemError(f"{self.source}: {field} is missing: expected a number")
         value = table[key]
-        if not is_finite_number(value):
-            self.fail(field, value, "a finite number")
+        if not _within(value, field):
+            self.fail(field, value, _finite_expected(field))
         return float(value)
 
+    def length(self, table, key: str, where: str) -> float:
+        """A positive length (mm) from ``SMALLEST_LENGTH`` to ``MAGNITUDE_LIMIT``."""
+        value = self.number(table, key, where)
+        if not SMALLEST_LENGTH <= value <= MAGNITUDE_LIMIT:
+            self.fail(f"{where}.{key}", value, f"a positive length from {SMALLEST_LENGTH:.0e} to {MAGNITUDE_LIMIT:.0e} mm")
+        return value
+
     def point(self, value, field: str) -> np.ndarray:
-        if not is_sequence(value) or len(value) != 2 or not all(is_finite_number(v) for v in value):
-            self.fail(field, value, "a point [x, y] of two finite numbers (mm)")
+        if not is_sequence(value) or len(value) != 2 or not all(_within(v, field) for v in value):
+            self.fail(field, value, f"a point [x, y] of two finite numbers (mm) within ±{MAGNITUDE_LIMIT:.0e}")
         return np.array(value, float)
 
     def points(self, table, key: str, where: str) -> np.ndarray:
@@ -121,8 +173,8 @@ class FieldReader:
     def numbers(self, table, key: str, where: str, minimum_count: int = 1) -> np.ndarray:
         field = f"{where}.{key}"
         value = table.get(key)
-        if not is_sequence(value) or len(value) < minimum_count or not all(is_finite_number(v) for v in value):
-            self.fail(field, value, f"a list of at least {minimum_count} finite numbers")
+        if not is_sequence(value) or len(value) < minimum_count or not all(_within(v, field) for v in value):
+            self.fail(field, value, f"a list of at least {minimum_count} finite numbers within ±{_limit(field):.0e}")
         return np.array(value, float)
 
     def flag(self, table, key: str, where: str, default: bool) -> bool:
@@ -157,8 +209,8 @@ class ClassFields:
         if (array.ndim != len(shape) or any(n is not None and n != size for n, size in zip(shape, array.shape))
                 or any(n is None and size < minimum for n, size in zip(shape, array.shape))):
             self.fail(field, value, expected)
-        if not np.all(np.isfinite(array)):
-            self.fail(field, value, "finite values")
+        if not np.all(np.isfinite(array)) or np.any(np.abs(array) > MAGNITUDE_LIMIT):
+            self.fail(field, value, f"finite values within ±{MAGNITUDE_LIMIT:.0e}")
         object.__setattr__(self.problem, field, array)
         return array
 
@@ -170,5 +222,5 @@ class ClassFields:
         value = getattr(self.problem, field)
         if optional and value is None:
             return
-        if not is_finite_number(value) or value <= 0:
-            self.fail(field, value, "a positive number" + (" or None" if optional else ""))
+        if not is_finite_number(value) or not 0 < value <= MAGNITUDE_LIMIT:
+            self.fail(field, value, f"a positive number up to {MAGNITUDE_LIMIT:.0e}" + (" or None" if optional else ""))

@@ -136,7 +136,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> DyadProblem:
     degrees = np.array(rows)
     if np.any(np.abs(degrees[:, 2]) > 360):
         read.fail("poses[].angle_deg", degrees[:, 2], "directions within one turn of zero (|angle_deg| <= 360)")
-    _check_distinct(read, degrees)
+    check_distinct(read, degrees, "poses")
     _warn_radians(source, degrees[:, 2])
     poses = degrees.copy()
     poses[:, 2] = np.radians(degrees[:, 2])
@@ -180,16 +180,17 @@ def parse_problem(data: dict, source: str = "<dict>") -> DyadProblem:
                        title=str(data.get("title", "")), labels=tuple(labels))
 
 
-def _check_distinct(read: FieldReader, degrees: np.ndarray):
-    """Two poses with the same position and orientation carry no information: reject them."""
+def check_distinct(read: FieldReader, degrees: np.ndarray, field: str):
+    """Two poses (rows x, y, angle_deg of ``field``) with the same position and orientation carry no
+    information: reject them."""
     spread = max(np.ptp(degrees[:, :2], axis=0).max(), 1.0)
     for i in range(len(degrees)):
         for j in range(i + 1, len(degrees)):
             same_place = np.linalg.norm(degrees[i, :2] - degrees[j, :2]) <= 1e-9 * spread
             same_turn = abs((degrees[i, 2] - degrees[j, 2] + 180) % 360 - 180) <= 1e-9
             if same_place and same_turn:
-                read.fail(f"poses[{j}]", dict(zip(("x", "y", "angle_deg"), degrees[j].tolist())),
-                          f"a pose different from poses[{i}] (they coincide)")
+                read.fail(f"{field}[{j}]", dict(zip(("x", "y", "angle_deg"), degrees[j, :3].tolist())),
+                          f"a pose different from {field}[{i}] (they coincide)")
 
 
 def _warn_radians(source: str, angles_deg: np.ndarray):

@@ -48,6 +48,19 @@ class Synthesis:
     circle_curve_dyads: list[Dyad] = field(default_factory=list)
     rms_mm: list[float] = field(default_factory=list)
 
+    @property
+    def passed(self) -> bool:
+        """Whether any dyad was found."""
+        return bool(self.dyads or self.circle_curve_dyads)
+
+    @property
+    def failures(self) -> list[str]:
+        """Why the synthesis has no result (empty when it passed)."""
+        if self.passed:
+            return []
+        return [f"no dyad found within search.radius_mm = {self.radius_mm:.6g} mm of the poses' centroid: enlarge "
+                "search.radius_mm, or check that the poses belong to one rigid body's motion"]
+
     def to_json(self) -> dict:
         """The report as plain JSON types (lengths in mm, angles in degrees): the content of report.json."""
         problem = self.problem

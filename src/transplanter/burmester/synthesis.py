@@ -18,7 +18,8 @@ from transplanter.burmester.many_poses import least_squares_dyads
 from transplanter.burmester.problem import DyadProblem
 from transplanter.burmester.result import Synthesis
 from transplanter.geometry.pivot_pairing import centers_for_circles, circles_for_centers
-from transplanter.geometry.poses import Frame, relative_to_link
+from transplanter.geometry.poses import Frame, pole, relative_to_link
+from transplanter.toml_fields import require_problem
 
 #: Smallest turn between the extreme pose angles that the Burmester construction accepts (rad).
 MIN_ROTATION = 1e-6
@@ -41,6 +42,36 @@ def _check_rotation(poses: np.ndarray, problem: DyadProblem):
             f"translation puts every center point at infinity")
 
 
+def pure_rotation_center(poses: np.ndarray) -> np.ndarray | None:
+    """The point the body turns about when every pose is pose 1 turned about that one point, else None.
+
+    Such poses leave the circle point free: every dyad centred there guides the body. The
+    poles of pose 1 with each other pose then coincide (to 1e-9 of the poses' own size).
+    """
+    turned = np.abs(np.sin((poses[1:, 2] - poses[0, 2]) / 2)) >= np.sin(MIN_ROTATION / 2)
+    if not turned.all():
+        return None
+    poles = np.array([pole(poses[0], other) for other in poses[1:]])
+    size = max(np.abs(poses[:, :2] - poses[0, :2]).max(), np.abs(poles - poses[0, :2]).max())
+    return poles[0] if np.abs(poles - poles[0]).max() <= 1e-9 * size else None
+
+
+def _pure_rotation(problem: DyadProblem, poses: np.ndarray, center: np.ndarray) -> Synthesis:
+    """Every dyad centred on ``center`` fits: the given circle points, or one a pose scale off it
+    along the body's direction in pose 1 (or ``radius_mm`` / 2 when the poses all sit on one point)."""
+    frame = Frame.of(poses)
+    radius_mm = problem.radius_mm or 10 * frame.scale
+    circles = problem.circle_points
+    if not len(circles):
+        reach = np.linalg.norm(poses[0, :2] - center) or min(frame.scale, radius_mm / 2)
+        circles = center + reach * np.array([[np.cos(poses[0, 2]), np.sin(poses[0, 2])]])
+    method = (f"pure rotation about ({center[0]:.6g}, {center[1]:.6g}) mm: every pose is pose 1 turned about "
+              "this point, so every dyad centred there guides the body, whatever its circle point "
+              "(one shown per given circle point, or one on the body's x axis)")
+    centers = np.repeat(center[None, :], len(circles), axis=0)
+    return Synthesis(problem, method, verify_dyads(problem.poses, centers, circles, problem.link), radius_mm)
+
+
 def synthesize(problem: DyadProblem) -> Synthesis:
     """RR dyads that guide the body through the problem's poses, each checked by forward kinematics.
 
@@ -59,8 +90,12 @@ def synthesize(problem: DyadProblem) -> Synthesis:
     ProblemError
         When the poses do not turn (pure translation).
     """
+    require_problem(problem, DyadProblem, "burmester")
     poses = working_poses(problem)
     _check_rotation(poses, problem)
+    center = pure_rotation_center(poses)
+    if center is not None:
+        return _pure_rotation(problem, poses, center + 0.0)     # + 0.0: no -0 in the report
     frame = Frame.of(poses)
     local = frame.local_poses(poses)
     radius_mm = problem.radius_mm or 10 * frame.scale

@@ -20,13 +20,14 @@ from typing import Callable
 
 import numpy as np
 
-from transplanter.errors import SolverError
+from transplanter.errors import SolverError, TransplanterError
 from transplanter.fivebar.candidate import (GRID, Candidate, closure_defect, monotonic_defect, range_defect,
                                             range_values, ratio_defect)
 from transplanter.fivebar.linkage import FiveBar
-from transplanter.fivebar.nlp import DesignSolution, DesignSolver
+from transplanter.fivebar.nlp import CURVES, DesignSolution, DesignSolver, concavity_text, reach
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.relative_angle import ratio_range
+from transplanter.trains.toothed_train import TrainSize, train_size
 
 TWO_PI = 2 * np.pi
 #: Carrier turns of the evaluation (0.1 deg apart).
@@ -37,8 +38,9 @@ ACTIVE_TOLERANCE = 1e-4
 #: Key poses must be met to this fraction of the reach (positions) and in radians (plate angles).
 KEY_TOLERANCE = 1e-8
 #: Two designs are one mechanism when lengths agree to this fraction of the reach and angles, the
-#: relative angle included, to this many radians.
-MERGE_TOLERANCE = 1e-6
+#: relative angle included, to this many radians. Starts that reach one optimum hold it on different
+#: exchange grids, so they agree only to the exchange's tolerances (7e-6 on the bundled example).
+MERGE_TOLERANCE = 1e-4
 #: Smallest angles EBF within this fraction of each other rank as a tie.
 ANGLE_TIE = 1e-3
 #: Largest return-point misses within this fraction of the reach rank as a tie.
@@ -90,6 +92,9 @@ class Alternative:
     min_closure_margin : float
         Smallest sin^2(EBF) over the turn.
     active_bounds : tuple of ActiveBound
+    gears : TrainSize or str or None
+        Whole-tooth sizes of its train (``trains.toothed_train.train_size``), or why there are none;
+        None until ``with_gear_sizes``.
     """
 
     design: DesignSolution
@@ -102,6 +107,7 @@ class Alternative:
     return_misses_mm: np.ndarray
     min_closure_margin: float
     active_bounds: tuple[ActiveBound, ...]
+    gears: TrainSize | str | None = None
 
     @property
     def largest_miss_mm(self) -> float:
@@ -121,11 +127,6 @@ class Failure:
     reason: str
 
 
-def reach(problem: FiveBarProblem) -> float:
-    """The problem's own size (mm): the largest distance of a key pose or return point from O."""
-    return float(np.hypot(*np.vstack([problem.poses[:, :2], problem.return_points]).T).max())
-
-
 def _folded_angle(u: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Angle between vectors u and v (..., 2) folded to [0, pi/2]: 0 when they are collinear."""
     cross = u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
@@ -143,12 +144,13 @@ def _near(value: float, limit: float, scale: float) -> bool:
     return abs(value - limit) <= ACTIVE_TOLERANCE * scale
 
 
-def active_bounds(problem: FiveBarProblem, mech: FiveBar, min_margin: float,
-                  ratios: tuple[float, float]) -> tuple[ActiveBound, ...]:
-    """The ``[ranges]`` limits, the margin floor and the ratio bounds that the design sits on,
-    each judged within ``ACTIVE_TOLERANCE`` of the bound's own scale."""
+def active_bounds(problem: FiveBarProblem, design: DesignSolution, min_margin: float,
+                  ratios: tuple[float, float], misses: np.ndarray) -> tuple[ActiveBound, ...]:
+    """The ``[ranges]`` limits, the margin floor, the ratio bounds, the return tolerance and the
+    pitch curves' curvature floor that the design sits on, each judged within ``ACTIVE_TOLERANCE`` of
+    the bound's own scale (the reach for the return tolerance, |floor| for a kappa)."""
     found = []
-    values = range_values(problem, mech)
+    values = range_values(problem, design.mech)
     for key, (low, high) in problem.ranges.items():
         value = float(values[key])
         found += [ActiveBound(f"ranges.{key}", side, limit, value)
@@ -159,6 +161,17 @@ def active_bounds(problem: FiveBarProblem, mech: FiveBar, min_margin: float,
     found += [ActiveBound("ratio", side, limit, value)
               for side, limit, value in (("lower", low, ratios[0]), ("upper", high, ratios[1]))
               if _near(value, limit, high - low)]
+    tolerance = problem.return_tolerance_mm
+    on = [j for j, miss in enumerate(misses) if _near(float(miss), tolerance, reach(problem))]
+    if on:
+        points = f"return point{'s' * (len(on) > 1)} {', '.join(str(j + 1) for j in on)}"
+        found.append(ActiveBound(f"conditions.return_tolerance_mm ({points})", "upper", tolerance,
+                                 float(misses[on].max())))
+    floor = design.curvature_floor
+    if floor is not None:       # on the floor, or below it within the gap the NLP's fine check allows
+        found += [ActiveBound(f"a kappa of the {curve} pitch curve", "lower", floor, float(value))
+                  for curve, value in zip(CURVES, design.min_curvature)
+                  if value - floor <= ACTIVE_TOLERANCE * abs(floor)]
     return tuple(found)
 
 
@@ -204,13 +217,13 @@ def assess(problem: FiveBarProblem, design: DesignSolution, start: int) -> Alter
         return Failure(start, "; ".join(defects))
     at_b, at_e = transmission_angles(mech, state)
     returns = mech.forward(design.stroke.carrier_turns, relative.evaluate(design.stroke.carrier_turns))
+    misses = np.linalg.norm(returns["p"] - problem.return_points, axis=1)
     return Alternative(design, (start,), float(at_b.min()), float(turns[at_b.argmin()]), float(at_e.min()),
-                       float(turns[at_e.argmin()]), ratios,
-                       np.linalg.norm(returns["p"] - problem.return_points, axis=1), min_margin,
-                       active_bounds(problem, mech, min_margin, ratios))
+                       float(turns[at_e.argmin()]), ratios, misses, min_margin,
+                       active_bounds(problem, design, min_margin, ratios, misses))
 
 
-def _signature(design: DesignSolution, size: float) -> np.ndarray:
+def mechanism_signature(design: DesignSolution, size: float) -> np.ndarray:
     """Lengths in units of ``size``, angles in radians, and the relative angle at 36 turns: what
     makes two designs one mechanism."""
     mech = design.mech
@@ -223,7 +236,7 @@ def merge(alternatives: list[Alternative], size: float) -> list[Alternative]:
     """One alternative per mechanism (``MERGE_TOLERANCE``), kept from its first start and listing every start."""
     merged, signatures = [], []
     for alternative in alternatives:
-        signature = _signature(alternative.design, size)
+        signature = mechanism_signature(alternative.design, size)
         same = [k for k, other in enumerate(signatures) if np.abs(signature - other).max() <= MERGE_TOLERANCE]
         if same:
             first = merged[same[0]]
@@ -275,4 +288,31 @@ def refine_all(problem: FiveBarProblem, solver: DesignSolver, candidates: list[C
         if progress:
             progress("refinement", index + 1, len(candidates))
     size = reach(problem)
-    return rank(merge(found, size), size), failed, seconds
+    merged = [_convex_if_possible(problem, solver, candidates, alternative) for alternative in merge(found, size)]
+    return rank(merge(merged, size), size), failed, seconds
+
+
+def _convex_if_possible(problem: FiveBarProblem, solver: DesignSolver, candidates: list[Candidate],
+                        alternative: Alternative) -> Alternative:
+    """The alternative with convex (rack-cut) pitch curves when the solver reaches them from it and the
+    result passes its own evaluation; else the alternative, its design noting why its curves are not."""
+    first = alternative.starts[0]
+    design = solver.make_convex(candidates[first], alternative.design)
+    if design is alternative.design or design.convexity_note:
+        return replace(alternative, design=design)
+    judged = assess(problem, design, first)
+    if isinstance(judged, Failure):
+        return replace(alternative, design=replace(alternative.design, convexity_note=(
+            f"the convex design IPOPT reached fails its checks ({judged.reason}); "
+            f"{concavity_text(alternative.design)}")))
+    return replace(judged, starts=alternative.starts)
+
+
+def with_gear_sizes(problem: FiveBarProblem, alternative: Alternative) -> Alternative:
+    """The alternative with the whole-tooth sizes of its train, or the reason it has none."""
+    design = alternative.design
+    try:
+        gears = train_size(design.relative_angle, design.mech.carrier_length, problem.gearing, problem.source)
+    except TransplanterError as error:
+        gears = str(error)
+    return replace(alternative, gears=gears)

@@ -1,7 +1,6 @@
 """One turn of a designed five-bar as a moving picture: GIF through Pillow, MP4 where ffmpeg exists.
 
-The still parts are drawn once; each frame redraws only the moving artists over that background
-(blitting on the Agg canvas), which keeps a turn to a few seconds.
+The still parts are drawn once; each frame redraws only the moving artists (``moving_picture``).
 
 Left, the ground frame (mm): the linkage O-A-F-E-B and the push plate E-F-P moving, P's path
 over the turn (from the verification) traced up to the frame, the key poses marked, the pitch
@@ -11,13 +10,10 @@ tooth outlines when given. Hinges and plate come from ``loop_closure``, gear tur
 """
 from __future__ import annotations
 
-import shutil
-import subprocess
 from pathlib import Path
 from typing import Callable
 
 import numpy as np
-from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from PIL import Image
 
@@ -25,15 +21,12 @@ from transplanter.fivebar.gears_on_carrier import carrier_to_world, gears_on_car
 from transplanter.fivebar.loop_closure import close_loop
 from transplanter.fivebar.result import FiveBarResult
 from transplanter.geometry.poses import rotation
+from transplanter.moving_picture import blitted_frames, write_gif, write_mp4
 from transplanter.trains.figures import LEGEND_BESIDE
 
-#: Frames per turn, frame rate and resolution: one turn in 6 s, about 0.5 MB, written in about 2 s.
+#: Frames per turn: one turn in 6 s at ``moving_picture.FPS``, written in about 2 s.
 FRAMES = 72
-FPS = 12
-DPI = 80
 FIGURE_SIZE = (9.0, 4.8)
-#: Colours of the GIF palette (the picture uses a dozen line colours and their antialiased blends).
-PALETTE_COLORS = 64
 
 #: Tooth outlines by gear name: (outline (N, 2) mm in the gear's frame, centre (2,) mm in the carrier
 #: frame, the gear's turn (rad, counterclockwise in the carrier frame) as a function of the carrier turn).
@@ -110,19 +103,8 @@ def _draw_frames(result: FiveBarResult, teeth: Teeth | None, frames: int):
 
 
 def render_frames(result: FiveBarResult, teeth: Teeth | None = None, frames: int = FRAMES) -> list[Image.Image]:
-    """The frames of one turn as RGB images (``FIGURE_SIZE`` at ``DPI``)."""
-    fig, draw = _draw_frames(result, teeth, frames)
-    canvas = FigureCanvasAgg(fig)
-    fig.set_dpi(DPI)
-    canvas.draw()                       # lays out and draws the still parts (moving ones are animated)
-    background = canvas.copy_from_bbox(fig.bbox)
-    images = []
-    for k in range(frames):
-        canvas.restore_region(background)
-        for artist in draw(k):
-            fig.draw_artist(artist)
-        images.append(Image.frombuffer("RGBA", canvas.get_width_height(), canvas.buffer_rgba()).convert("RGB"))
-    return images
+    """The frames of one turn as RGB images (``FIGURE_SIZE`` at ``moving_picture.DPI``)."""
+    return blitted_frames(*_draw_frames(result, teeth, frames), frames)
 
 
 def write_animation(result: FiveBarResult, folder: str | Path, teeth: Teeth | None = None,
@@ -148,18 +130,5 @@ def write_animation(result: FiveBarResult, folder: str | Path, teeth: Teeth | No
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     images = render_frames(result, teeth, frames)
-    gif = folder / "animation.gif"
-    palette = images[0].quantize(PALETTE_COLORS, method=Image.Quantize.FASTOCTREE)   # every frame shares it
-    indexed = [image.quantize(palette=palette, dither=Image.Dither.NONE) for image in images]
-    indexed[0].save(gif, save_all=True, append_images=indexed[1:], duration=round(1000 / FPS), loop=0)
-    written = [gif]
-    ffmpeg = shutil.which("ffmpeg")
-    if ffmpeg:
-        mp4 = folder / "animation.mp4"
-        width, height = images[0].size
-        subprocess.run([ffmpeg, "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt", "rgb24", "-s",
-                        f"{width}x{height}", "-r", str(FPS), "-i", "-", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-                        "-pix_fmt", "yuv420p", str(mp4)], input=b"".join(image.tobytes() for image in images),
-                       check=True)
-        written.append(mp4)
-    return written
+    written = [write_gif(images, folder / "animation.gif"), write_mp4(images, folder / "animation.mp4")]
+    return [path for path in written if path]

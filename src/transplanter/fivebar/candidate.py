@@ -46,6 +46,16 @@ class Candidate:
     def feasible(self) -> bool:
         return not self.defects
 
+    @property
+    def passed(self) -> bool:
+        """A candidate passes its checks when it is feasible (as a given design is judged)."""
+        return self.feasible
+
+    @property
+    def failures(self) -> list[str]:
+        """The conditions it violates (``defects``)."""
+        return list(self.defects)
+
 
 def crank_exists(mech: FiveBar):
     """The carrier turns fully iff the chain A-F-E-B (L2, L3, L4) spans every |AB| in

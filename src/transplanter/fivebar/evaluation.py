@@ -22,7 +22,8 @@ from transplanter.fivebar.candidate import Candidate, evaluate_candidate
 from transplanter.fivebar.linkage import FiveBar, circle_intersection, from_hinges
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.result import design_json
-from transplanter.toml_fields import FieldReader, read_toml
+from transplanter.errors import ProblemError
+from transplanter.toml_fields import FieldReader, read_toml, require_problem, shown
 
 _FIELDS = ("carrier_length", "carrier_angle_deg", "rod_length", "rod_angle_deg", "push_plate_length",
            "receiving_plate_length")
@@ -175,8 +176,12 @@ def evaluate_design(problem: FiveBarProblem, design: GivenDesign) -> DesignEvalu
     Raises
     ------
     ProblemError
-        When the plate cannot reach pose 1 (no assembly).
+        When the plate cannot reach pose 1 (no assembly), or the arguments are not a problem and a design.
     """
+    require_problem(problem, FiveBarProblem, "fivebar")
+    if not isinstance(design, GivenDesign):
+        raise ProblemError(f"design = {shown(design)!r}: expected a GivenDesign (from "
+                           "transplanter.fivebar.load_design(path))")
     a1 = design.carrier_length * np.array([np.cos(design.carrier_angle), np.sin(design.carrier_angle)])
     f1 = a1 + design.rod_length * np.array([np.cos(design.rod_angle), np.sin(design.rod_angle)])
     options = []

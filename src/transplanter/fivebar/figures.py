@@ -4,6 +4,8 @@ of the alternatives, as matplotlib ``Figure`` objects (no pyplot, no backend cho
 shows them, the command saves them)."""
 from __future__ import annotations
 
+import textwrap
+
 import numpy as np
 from matplotlib.figure import Figure
 
@@ -119,11 +121,13 @@ def draw_trajectory(result: FiveBarResult) -> Figure:
 
 def draw_tradeoff(result: FiveBarResult) -> Figure:
     """Largest return-point miss (mm) against the smallest angle EBF (deg) of each refined alternative,
-    labelled with its rank; the picked one ringed."""
+    labelled with its rank, the picked one ringed, the return tolerance drawn; the bounds the picked one
+    sits on are listed under the axes."""
     alternatives = result.alternatives
     angles = np.degrees([a.transmission_angle for a in alternatives])
     misses = np.array([a.largest_miss_mm for a in alternatives])
-    fig = Figure(figsize=(8, 5), layout="constrained")
+    tolerance = result.problem.return_tolerance_mm
+    fig = Figure(figsize=(8, 5.5), layout="constrained")
     ax = fig.subplots()
     ax.plot(angles, misses, "o", color="tab:blue", label="refined alternatives (rank)")
     for rank, (angle, miss) in enumerate(zip(angles, misses), start=1):
@@ -131,12 +135,16 @@ def draw_tradeoff(result: FiveBarResult) -> Figure:
     picked = result.picked - 1
     ax.plot(angles[picked], misses[picked], "o", mfc="none", mec="tab:red", ms=14, mew=2,
             label=f"picked: alternative {result.picked}")
+    ax.axhline(tolerance, color="gray", ls="--", lw=1, label=f"return tolerance {tolerance:g} mm")
+    ax.set_ylim(0, 1.2 * max(tolerance, misses.max()) or 1.0)
+    ax.ticklabel_format(useOffset=False)
     ax.set_xlabel("smallest transmission angle EBF over the turn (deg)")
     ax.set_ylabel("largest return-point miss (mm)")
     starts = sum(len(a.starts) for a in alternatives)
+    ax.set_title(f"{len(alternatives)} distinct designs refined from {starts} region candidates", fontsize=9)
     bounds = ", ".join(map(str, result.chosen.active_bounds)) or "no bound"
-    ax.set_title(f"{len(alternatives)} distinct designs refined from {starts} region candidates\n"
-                 f"the picked one sits on {bounds}", fontsize=9)
+    fig.text(0.01, 0.0, textwrap.fill(f"The picked design sits on: {bounds}", 110), fontsize=8, va="bottom")
+    fig.get_layout_engine().set(rect=(0, 0.08, 1, 0.92))
     ax.legend(fontsize=8, **LEGEND_BESIDE)
     return fig
 

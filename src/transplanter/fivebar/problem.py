@@ -20,6 +20,7 @@ Schema (docs/fivebar.md, "Problem files"); the carrier pivot O is the origin:
     [conditions]
     min_closure_margin = 0.01     # sin^2(angle EBF) kept above this all round (eq 10 without scale)
     ratio = [0.25, 4.0]           # bounds on the total ratio i0 = dc / drho (eq 11)
+    return_tolerance_mm = 1.0     # how far P may pass from each return point (mm, >= 0)
     [spline]
     control_points = 12           # periodic cubic B-spline of the relative angle
     [region]
@@ -41,6 +42,7 @@ from pathlib import Path
 
 import numpy as np
 
+from transplanter.burmester.problem import check_distinct
 from transplanter.toml_fields import ClassFields, FieldReader, read_toml
 from transplanter.trains.toothed_train import (CUTTERS, LAYOUTS, MODULE_RANGE, PRESSURE_ANGLE_RANGE_DEG,
                                                SHAPER_TEETH_RANGE, Gearing)
@@ -70,6 +72,8 @@ class FiveBarProblem:
         sin^2 of the smallest angle EBF allowed over the turn, in (0, 1).
     ratio_bounds : (float, float)
         Bounds on the total ratio i0 = dc / drho, 0 < low < high.
+    return_tolerance_mm : float
+        Largest distance of P from each return point (mm, >= 0; 0 makes them exact).
     spline_count : int
         Control points of the periodic B-spline of the relative angle.
     samples : int
@@ -96,6 +100,7 @@ class FiveBarProblem:
     ranges: dict = field(default_factory=dict)
     min_closure_margin: float = 0.01
     ratio_bounds: tuple[float, float] = (0.25, 4.0)
+    return_tolerance_mm: float = 1.0
     spline_count: int = 12
     samples: int = 1000
     radius_mm: float = 600.0
@@ -118,6 +123,8 @@ class FiveBarProblem:
         low, high = self.ratio_bounds
         if not 0 < low < high:
             check.fail("ratio_bounds", self.ratio_bounds, "0 < low < high")
+        if not (np.isfinite(self.return_tolerance_mm) and self.return_tolerance_mm >= 0):
+            check.fail("return_tolerance_mm", self.return_tolerance_mm, "a finite distance >= 0 (mm)")
         check.positive("radius_mm")
         if not isinstance(self.gearing, Gearing):
             check.fail("gearing", self.gearing, "a trains.toothed_train.Gearing")
@@ -194,6 +201,26 @@ def _gearing(read: FieldReader, table: dict) -> Gearing:
     return Gearing(module, float(np.radians(pressure)), cutter, teeth, layout, centers)
 
 
+def _check_return_points(read: FieldReader, key: np.ndarray, points: np.ndarray, radius: float):
+    """Refuse a return point on a key pose (the stroke's order is then undefined) or beyond reach:
+    the hinges lie within ``radius`` of the key poses' centroid, and so P within 2 ``radius`` plus
+    the farthest key pose of it. A radius smaller than the key poses' spread is left to the region,
+    which names it (no chain reaches the key poses then)."""
+    centre = key.mean(axis=0)
+    spread = np.linalg.norm(key - centre, axis=1).max()
+    reach = 2 * radius + spread
+    for k, point in enumerate(points):
+        gaps = np.linalg.norm(key - point, axis=1)
+        if gaps.min() <= 1e-9 * spread:
+            read.fail(f"return_points[{k}]", point.tolist(), f"a point of the return stroke apart from the key "
+                                                            f"poses (it is on key_poses[{int(np.argmin(gaps))}])")
+        distance = np.linalg.norm(point - centre)
+        if distance > reach and radius >= spread:
+            read.fail(f"return_points[{k}]", point.tolist(),
+                      f"a point P can reach: it is {distance:.6g} mm from the key poses' centroid, and with the hinges "
+                      f"within region.radius_mm = {radius:g} mm of it P stays within {reach:.6g} mm")
+
+
 def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
     """Validate a five-bar problem given as a dict with the fields of the file (mm, degrees).
 
@@ -225,6 +252,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
     if turns[0] != 0 or np.any(np.diff(turns) <= 0) or turns[-1] >= 360:
         read.fail("key_poses[].carrier_turn_deg", turns.tolist(),
                   "0 at the first pose, then strictly increasing and below 360 (clockwise turn since pose 1)")
+    check_distinct(read, rows, "key_poses")
     points, return_labels = _table_rows(read, data, "return_points", ("x", "y"))
     if len(points) == 0:
         read.fail("return_points", [], "at least one point of the return stroke (Wang et al. 2025 Table 3 has five)")
@@ -238,13 +266,16 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
         read.fail("ranges", ranges_table, "length ranges that start above zero")
 
     conditions = data.get("conditions", {})
-    read.keys(conditions, {"min_closure_margin", "ratio"}, "conditions")
+    read.keys(conditions, {"min_closure_margin", "ratio", "return_tolerance_mm"}, "conditions")
     margin = read.number(conditions, "min_closure_margin", "conditions") if "min_closure_margin" in conditions else 0.01
     if not 0 < margin < 1:
         read.fail("conditions.min_closure_margin", margin, "a number in (0, 1): sin^2 of the smallest angle EBF")
     ratio = _pair(read, conditions, "ratio", "conditions") if "ratio" in conditions else (0.25, 4.0)
     if ratio[0] <= 0:
         read.fail("conditions.ratio", list(ratio), "positive bounds (a ratio <= 0 reverses the gears)")
+    tolerance = read.number(conditions, "return_tolerance_mm", "conditions") if "return_tolerance_mm" in conditions else 1.0
+    if not (np.isfinite(tolerance) and tolerance >= 0):
+        read.fail("conditions.return_tolerance_mm", tolerance, "a finite distance >= 0 (mm) from each return point")
 
     spline = data.get("spline", {})
     read.keys(spline, {"control_points"}, "spline")
@@ -258,10 +289,12 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
         read.fail("region.radius_mm", radius, "a positive distance (mm)")
 
     gearing = _gearing(read, data.get("gears", {}))
+    _check_return_points(read, rows[:, :2], points, radius)
 
     poses = rows[:, :3].copy()
     poses[:, 2] = np.radians(poses[:, 2])
     return FiveBarProblem(poses=poses, carrier_turns=np.radians(turns), return_points=points, labels=tuple(labels),
+                          return_tolerance_mm=tolerance,
                           return_labels=tuple(return_labels), ranges=ranges, min_closure_margin=margin,
                           ratio_bounds=ratio, spline_count=count, samples=samples, radius_mm=radius,
                           gearing=gearing, source=source, title=str(data.get("title", "")))

@@ -27,6 +27,7 @@ from transplanter.fivebar.linkage import from_hinges
 from transplanter.errors import ProblemError
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.geometry.poses import carry
+from transplanter.toml_fields import require_problem
 from transplanter.burmester.problem import DyadProblem
 from transplanter.burmester.result import Synthesis
 from transplanter.burmester.synthesis import synthesize
@@ -126,6 +127,7 @@ def _check_pair_count(problem: FiveBarProblem, receiving: ChainFamily, carrier: 
 
 
 def solution_region(problem: FiveBarProblem) -> Region:
+    require_problem(problem, FiveBarProblem, "fivebar")
     receiving, carrier = chain_families(problem)
     _check_pair_count(problem, receiving, carrier)
     pairs = np.stack(np.meshgrid(np.flatnonzero(receiving.kept), np.flatnonzero(carrier.kept), indexing="ij"),

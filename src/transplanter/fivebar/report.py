@@ -14,7 +14,8 @@ def to_markdown(report: dict, labels: tuple[str, ...], figures: list[str]) -> st
              "| | " + " | ".join(labels) + " |", "|---" * (len(labels) + 1) + "|",
              _row("P position error (mm)", report["key_pose_position_errors_mm"]),
              _row("plate angle error (deg)", report["key_pose_angle_errors_deg"]), "",
-             f"Return points reached within {max(report['return_point_errors_mm']):.3g} mm (least squares). "
+             f"Return points reached within {max(report['return_point_errors_mm']):.3g} mm "
+             f"(tolerance {report['return_tolerance_mm']:g} mm). "
              f"Gear trajectory against the designed one: {report['roundtrip_max_error_mm']:.3g} mm at most; "
              f"pitch-curve contact gap {report['contact_gap_mm']:.3g} mm.", "",
              "## Design (pose 1)", "", "| quantity | value |", "|---|---|"]
@@ -38,6 +39,8 @@ def to_markdown(report: dict, labels: tuple[str, ...], figures: list[str]) -> st
               f"carrier: a1 = {a1:.4f} mm, a2 = {a2:.4f} mm, the intermediate shaft at "
               f"({train['shaft_mm'][0]:.3f}, {train['shaft_mm'][1]:.3f}) mm, bent {train['bend_angle_deg']:.2f} deg "
               "from O-A.", "",
+              *([f"Pitch curves in the design NLP: {report['nlp']['convexity_note']}.", ""]
+                if report["nlp"]["convexity_note"] else []),
               "| gear | role | teeth | convex | smallest convex curvature radius (mm) | cutter | why |",
               "|---|---|---|---|---|---|---|"]
     lines += [f"| {g['name']} | {g['role']} | {g['teeth']} | {g['convex']} | {g['min_curvature_radius_mm']:.3f} | "
@@ -60,12 +63,21 @@ def _bound(bound: dict) -> str:
     return f"{bound['bound']} {'>=' if bound['side'] == 'lower' else '<='} {bound['limit']:g}"
 
 
+def _gear_sizes(gears: dict) -> str:
+    if "none" in gears:
+        return f"none: {gears['none']}"
+    counts, (a1, a2), radii = gears["teeth"], gears["center_distances_mm"], gears["largest_pitch_radius_mm"]
+    return (f"{counts[0]} / {counts[1]} at m {gears['module']:g} ({'/'.join(gears['cutters'])}), "
+            f"{a1:.1f} / {a2:.1f}, {max(radii):.1f}")
+
+
 def _alternatives(report: dict) -> list[str]:
     """The table of the ranked alternatives and the list of the candidates that failed."""
     lines = ["", "## Alternatives", "",
              f"{report['ranking_rule']} Alternative {report['picked']} is built (`--pick N` builds another).", "",
              "| # | OA | AF | EF | BE | EP | FP | B (mm) | min EBF (deg) at turn | min angle at E (deg) | i0 range | "
-             "largest return miss (mm) | active bounds | from candidates |", "|---" * 14 + "|"]
+             "largest return miss (mm) | gears: teeth, a1 / a2, largest pitch radius (mm) | active bounds | "
+             "from candidates |", "|---" * 15 + "|"]
     for alternative in report["alternatives"]:
         d = alternative["design"]
         mark = " (built)" if alternative["rank"] == report["picked"] else ""
@@ -76,6 +88,7 @@ def _alternatives(report: dict) -> list[str]:
             f"{alternative['transmission_angle_min_deg']:.2f} at {alternative['transmission_angle_min_at_deg']:.1f} | "
             f"{alternative['angle_at_e_min_deg']:.2f} | {alternative['ratio_range'][0]:.3f}-"
             f"{alternative['ratio_range'][1]:.3f} | {max(alternative['return_point_errors_mm']):.3g} | "
+            f"{_gear_sizes(alternative['gears'])} | "
             f"{', '.join(_bound(b) for b in alternative['active_bounds']) or 'none'} | "
             f"{', '.join(map(str, alternative['start_candidates']))} |")
     lines += ["", "Lengths in mm; turns are the carrier's, clockwise from pose 1 (deg)."]

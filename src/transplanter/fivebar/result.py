@@ -6,6 +6,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from transplanter.fivebar.alternatives import RANKING_RULE, ActiveBound, Alternative, Failure
+from transplanter.trains.toothed_train import TrainSize
 from transplanter.fivebar.candidate import Candidate
 from transplanter.fivebar.linkage import FiveBar
 from transplanter.fivebar.nlp import BENDING_WEIGHT, DesignSolution
@@ -57,6 +58,8 @@ def alternative_json(alternative: Alternative, rank: int, pose1: np.ndarray) -> 
             "return_point_errors_mm": alternative.return_misses_mm.tolist(),
             "active_bounds": bounds_json(alternative.active_bounds),
             "start_candidates": [k + 1 for k in alternative.starts],
+            "gears": (alternative.gears.to_json() if isinstance(alternative.gears, TrainSize)
+                      else {"none": alternative.gears}),
             "nlp": {"status": design.status, "iterations": design.iterations, "objective": design.objective}}
 
 
@@ -133,6 +136,7 @@ class FiveBarResult:
             "key_pose_position_errors_mm": check.key_position_errors_mm.tolist(),
             "key_pose_angle_errors_deg": check.key_angle_errors_deg.tolist(),
             "return_point_errors_mm": check.return_point_errors_mm.tolist(),
+            "return_tolerance_mm": problem.return_tolerance_mm,
             "min_discriminant": check.min_discriminant,
             "min_closure_margin": check.min_closure_margin,
             "required_closure_margin": problem.min_closure_margin,
@@ -167,6 +171,7 @@ class FiveBarResult:
                        "removed_by": region.pair_defects,
                        "start_min_closure_margin": self.start.min_margin},
             "nlp": {"status": design.status, "iterations": design.iterations, "objective": design.objective,
-                    "bending_weight": BENDING_WEIGHT},
+                    "bending_weight": BENDING_WEIGHT, "curvature_floor": design.curvature_floor,
+                    "convexity_note": design.convexity_note},
             "timings_s": self.timings_s,
         }

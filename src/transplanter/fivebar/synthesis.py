@@ -15,7 +15,7 @@ from numbers import Integral
 import numpy as np
 
 from transplanter.errors import InfeasibleError, ProblemError, SolverError
-from transplanter.fivebar.alternatives import Alternative, Progress, refine_all
+from transplanter.fivebar.alternatives import Alternative, Progress, refine_all, with_gear_sizes
 from transplanter.fivebar.nlp import DesignSolver
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import ChainFamily, Region, solution_region
@@ -134,6 +134,7 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
     if not alternatives:
         raise SolverError(f"{problem.source}: none of the {len(failed)} feasible region candidates refined into a "
                           f"design that passes its checks", "; ".join(f"{f.start + 1}: {f.reason}" for f in failed))
+    alternatives = [with_gear_sizes(problem, alternative) for alternative in alternatives]
     chosen = pick_alternative(alternatives, pick, problem.source)
     design = chosen.design
 

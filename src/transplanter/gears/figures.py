@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
+from transplanter.gears.composite_teeth import CompositeTeeth
 from transplanter.gears.drawings import outlines
 from transplanter.gears.rack_teeth import ADDENDUM
 from transplanter.gears.result import GearResult
@@ -79,7 +80,12 @@ def draw_figures(result: GearResult) -> dict[str, Figure]:
     Returns
     -------
     dict of str to matplotlib.figure.Figure
-        Save with ``figure.savefig(f"{stem}.png")`` or show in a notebook.
+        With composite teeth also ``gear_cusps`` (each corner zoomed). Save with ``figure.savefig(f"{stem}.png")`` or show in a notebook.
     """
-    return {"gear_mesh": draw_mesh(result), "gear_kinematics": draw_kinematics(result),
-            "gear_curvature": draw_curvature(result)}
+    figures = {"gear_mesh": draw_mesh(result), "gear_kinematics": draw_kinematics(result),
+               "gear_curvature": draw_curvature(result)}
+    if isinstance(result.teeth, CompositeTeeth):
+        from transplanter.gears.cusp_figures import draw_cusps
+
+        figures["gear_cusps"] = draw_cusps(result)
+    return figures

@@ -2,7 +2,8 @@
 
 Allowed: numbers, ``phi``, ``pi``, + - * / **, parentheses and cos, sin, tan, exp, sqrt, log.
 Anything else is refused with the offending piece named; nothing is evaluated by Python
-but arithmetic on constants, which must stay finite (``1/0``, ``9**9**9**9`` are refused).
+but arithmetic on constants, which must stay finite (``1/0``, ``9**9**9**9`` are refused), and
+the text is bounded (``MAX_LENGTH`` characters, nesting as deep as Python's parser goes).
 """
 from __future__ import annotations
 
@@ -16,16 +17,24 @@ _OPERATORS = {ast.Add: lambda a, b: a + b, ast.Sub: lambda a, b: a - b, ast.Mult
               ast.Div: lambda a, b: a / b, ast.Pow: lambda a, b: a**b}
 
 
+#: Longest formula read: a ratio fits in a line or two, and the parse and build cost grow with the text.
+MAX_LENGTH = 1000
+
+
 class ExpressionError(ValueError):
     """The text is not a formula of the allowed form; the message names the piece."""
 
 
 def parse_ratio(text: str, phi: ca.SX) -> ca.SX:
+    """The casadi expression of ``text``, a formula of ``phi``; ExpressionError names what is wrong."""
+    if len(text) > MAX_LENGTH:
+        raise ExpressionError(f"{len(text)} characters; expected at most {MAX_LENGTH}")
     try:
-        tree = ast.parse(text, mode="eval")
+        return _build(ast.parse(text, mode="eval").body, phi)
     except SyntaxError as error:
         raise ExpressionError(f"not a formula ({error.msg})") from None
-    return _build(tree.body, phi)
+    except (RecursionError, MemoryError):
+        raise ExpressionError("nested deeper than the parser goes") from None
 
 
 def _build(node, phi):

@@ -15,6 +15,9 @@ def to_markdown(report: dict, figures: list[str], drawings: list[str]) -> str:
     for joint in report["joints"]:
         lines.append(f"- joint at {joint['phi_deg']:.4f} deg: jumps of r {joint['radius_jump']:.2e} mm, "
                      f"r' {joint['slope_jump']:.2e} mm/rad, r'' {joint['bend_jump']:.4g} mm/rad^2")
+    for cusp in report.get("cusps") or []:
+        lines.append(f"- cusp at {cusp['phi_deg']:.4f} deg: the driver's tangent turns {cusp['turn_deg']:.4f} deg "
+                     f"(+ convex), the driven curve's {cusp['driven_turn_deg']:.4f} deg at the same contact")
     if report["tooth_counts"]:
         counts = report["tooth_counts"]
         lines.append(f"- module {report['module']:g}: {counts['fractional'][0]:.4f} and {counts['fractional'][1]:.4f} "

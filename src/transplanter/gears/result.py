@@ -5,6 +5,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from transplanter.gears.composite_curve import CompositeCurve, cusps
+from transplanter.gears.composite_teeth import CompositeTeeth, composite_teeth_json
 from transplanter.gears.pair import GearPairDesign
 from transplanter.gears.problem import GearProblem
 from transplanter.gears.rack_teeth import ADDENDUM
@@ -69,6 +71,27 @@ class GearResult:
     ratio_correction: float | None
     timings_s: dict
 
+    @property
+    def failures(self) -> list[str]:
+        """Checks the pair fails: tooth outlines that cross themselves (a cutter that cuts away teeth it
+        made) cannot be made or drawn as given; composite teeth add their contact and mesh checks."""
+        if self.teeth is None:
+            return []
+        composite = getattr(self.teeth, "failures", None)
+        if composite is not None:          # composite teeth name their own crossings
+            return list(composite)
+        if not any(self.teeth.self_intersections):
+            return []
+        driver, driven = self.teeth.self_intersections
+        return [f"tooth outlines cross themselves (driver {driver}, driven {driven} crossings): the cutter cuts "
+                "away teeth it made, usually where a pitch curve bends sharper than the tooth; try fewer teeth "
+                "(a larger pair.module), or pair.cutter = \"shaper\" for concave stretches"]
+
+    @property
+    def passed(self) -> bool:
+        """Whether the pair passes its checks (``failures`` empty)."""
+        return not self.failures
+
     def to_json(self) -> dict:
         """The report as plain JSON types (mm, rad, rad/s): the content of report.json."""
         d, problem = self.design, self.problem
@@ -84,6 +107,7 @@ class GearResult:
             "convex": [bool((c > 0).all()) for c in d.convexity],
             "min_curvature_radius": [_min_convex(r, c) for r, c in zip(d.curvature_radius, d.convexity)],
             "joints": d.joints,
+            "cusps": cusps(d.driver, d.center_distance) if isinstance(d.driver, CompositeCurve) else None,
             "driver_speed_rad_s": d.driver_speed,
             "driven_speed_range_rad_s": [float(d.driven_speed.min()), float(d.driven_speed.max())],
             "driven_acceleration_range_rad_s2": [float(d.driven_acceleration.min()),
@@ -103,4 +127,6 @@ class GearResult:
             out["cutter"] = self.teeth.cutter
             out["contact_ratio_range"] = None if self.teeth.contact_ratio is None else list(self.teeth.contact_ratio)
             out["self_intersections"] = list(self.teeth.self_intersections)
+        if isinstance(self.teeth, CompositeTeeth):
+            out.update(composite_teeth_json(self.teeth))
         return out

@@ -36,6 +36,8 @@ BIN_MODULES = 0.002
 MARGIN_MODULES = 0.1
 #: A cut outline that cuts its mate is first simplified (Douglas-Peucker) within this many modules.
 SIMPLIFY_MODULES = 1e-4
+#: Most a straight cutter edge may bow (modules) in the normal coordinates of the gear it cuts.
+BOW_MODULES = 1e-4
 
 
 def shaper_cutter(module: float, alpha: float, teeth: int) -> np.ndarray:
@@ -77,6 +79,19 @@ def _segments(points: np.ndarray, facing: np.ndarray, reach: float, place, chunk
         after = np.searchsorted(index, (edge + 1) % len(points))
         still = np.arange(width * (len(rows) - 1))
         yield cloud.reshape(-1, 2), np.r_[(row + at).ravel(), still], np.r_[(row + after).ravel(), still + width]
+
+
+def _short_edges(outline: np.ndarray, table: PitchTable, module: float) -> np.ndarray:
+    """The cutter outline with its edges split so none bows more than ``BOW_MODULES`` in the gear's normal
+    coordinates: a straight edge of length L over a pitch curve of curvature kappa is a parabola of
+    sagitta L^2 |kappa| / 8 in (s, h), and ``_lower_envelope`` takes edges as straight there. A long flat
+    edge (a tooth tip on a nearly straight stretch of the cutting gear) otherwise leaves material in the
+    mate's root where the tip passed."""
+    turn = np.abs(np.diff(np.unwrap(np.arctan2(table.tangents[:, 1], table.tangents[:, 0]))))
+    kappa = float(np.max(turn / np.maximum(np.diff(table.arc), 1e-300)))
+    longest = np.sqrt(8 * BOW_MODULES * module / max(kappa, 1e-12 / module))
+    ring = shapely.segmentize(shapely.linearrings(outline), longest)
+    return shapely.get_coordinates(ring)[:-1]
 
 
 def _normal_coordinates(table: PitchTable, samples: cKDTree, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -160,7 +175,8 @@ def shaper_profile(table: PitchTable, module: float, alpha: float, cutter_teeth:
     def place(points, rows):
         return center[rows, None, :] + rotate_about(points[None], ORIGIN, turn[rows, None])
 
-    return _lower_envelope(table, ADDENDUM * module, module, _segments(cutter, local_facing, reach, place))
+    return _lower_envelope(table, ADDENDUM * module, module,
+                           _segments(_short_edges(cutter, table, module), local_facing, reach, place))
 
 
 def mate_profile(design: GearPairDesign, driver_outline: np.ndarray, driven: PitchTable, module: float,
@@ -181,5 +197,5 @@ def mate_profile(design: GearPairDesign, driver_outline: np.ndarray, driven: Pit
 
     # the driver's one-per-bin vertices, thinned where they stay within a hair of their chords
     ring = shapely.simplify(shapely.linearrings(driver_outline), SIMPLIFY_MODULES * module)
-    cutter = shapely.get_coordinates(ring)[:-1]
+    cutter = _short_edges(shapely.get_coordinates(ring)[:-1], driven, module)
     return _lower_envelope(driven, ADDENDUM * module, module, _segments(cutter, phi1, reach, place))

@@ -5,13 +5,16 @@ import time
 
 import numpy as np
 
-from transplanter.errors import InfeasibleError
+from transplanter.errors import InfeasibleError, ProblemError
+from transplanter.gears.composite_curve import CompositeCurve, with_exact_curvature
+from transplanter.gears.composite_teeth import generate_composite_teeth
 from transplanter.gears.pair import GearPairDesign, arc_length, design_pair
 from transplanter.geometry.turn_quadrature import panels
-from transplanter.gears.problem import GearProblem
+from transplanter.gears.problem import MAX_TEETH, GearProblem, ratio_defect
 from transplanter.gears.result import GearResult, ToothCounts
 from transplanter.gears.teeth import generate_teeth
 from transplanter.gears.pitch_curves import from_ratio
+from transplanter.toml_fields import require_problem
 
 
 def tooth_counts(design: GearPairDesign, module: float) -> ToothCounts:
@@ -27,13 +30,10 @@ def _ratio_curve(problem: GearProblem, center_distance: float):
     not close is corrected by a constant factor k when asked (Wang et al. 2025 eq 12), or refused."""
     ratio, breaks = problem.ratio
     grid = panels(breaks)
-    dense = np.linspace(0, 2 * np.pi, 20001)
-    values = ratio(dense)
-    if not np.all(np.isfinite(values[0])) or values[0].min() <= 0:
-        k = int(np.nanargmin(np.where(np.isfinite(values[0]), values[0], -np.inf)))
-        raise InfeasibleError(f"{problem.source}: driver.ratio reaches {values[0][k]:.6g} at phi = "
-                              f"{np.degrees(dense[k]):.2f} deg: a ratio that touches zero or goes negative "
-                              f"reverses the driven gear; expected positive all round")
+    defect = ratio_defect(ratio)
+    if defect:
+        raise ProblemError(f"{problem.source}: GearProblem.ratio {defect}")
+    values = ratio(np.array([0.0, 2 * np.pi]))
     ends = [v[0] - v[-1] for v in values[:2]]
     if max(abs(e) for e in ends) > 1e-9 * (1 + np.abs(values[0]).max()):
         raise InfeasibleError(f"{problem.source}: driver.ratio is not periodic: i12(360 deg) - i12(0) = {-ends[0]:.3g} "
@@ -67,6 +67,7 @@ def synthesize(problem: GearProblem) -> GearResult:
     InfeasibleError
         When the ratio reverses, is not periodic or does not close, or the teeth do not fit the lobes.
     """
+    require_problem(problem, GearProblem, "gears")
     start = time.perf_counter()
     correction = None
     center = problem.center_distance
@@ -79,18 +80,29 @@ def synthesize(problem: GearProblem) -> GearResult:
         if problem.teeth % driver.lobes:
             raise InfeasibleError(f"{problem.source}: pair.teeth = {problem.teeth}: expected a multiple of the driver "
                                   f"order {driver.lobes} (equal teeth on every lobe)")
+        driven_teeth = problem.teeth * problem.driven_order // driver.lobes
+        if driven_teeth > MAX_TEETH:
+            raise ProblemError(f"{problem.source}: pair.teeth = {problem.teeth}: the driven gear would get "
+                               f"{driven_teeth} teeth; expected at most {MAX_TEETH} on each gear (time and memory "
+                               "grow with the teeth cut)")
         perimeter = arc_length(driver, panels(driver.breaks))[-1]
         factor = np.pi * problem.module * problem.teeth / perimeter
         driver = driver.scaled(factor)
         center = center * factor if center is not None and problem.ratio is not None else None
     design = design_pair(driver, problem.driven_order, center, problem.driver_speed, problem.source)
+    if isinstance(driver, CompositeCurve):
+        design = with_exact_curvature(design)
     timings = {"pitch_curves": time.perf_counter() - start}
     counts = teeth = None
     if problem.module is not None:
         counts = tooth_counts(design, problem.module)
         if problem.teeth is not None:
             start = time.perf_counter()
-            teeth = generate_teeth(design, problem.module, problem.pressure_angle, problem.source,
-                                   problem.cutter, problem.shaper_teeth)
+            if isinstance(driver, CompositeCurve):
+                teeth = generate_composite_teeth(design, problem.module, problem.pressure_angle, problem.teeth,
+                                                 problem.shaper_teeth, problem.source, problem.corner_pressure_angle)
+            else:
+                teeth = generate_teeth(design, problem.module, problem.pressure_angle, problem.source,
+                                       problem.cutter, problem.shaper_teeth)
             timings["teeth"] = time.perf_counter() - start
     return GearResult(problem, design, counts, teeth, correction, timings)

@@ -3,9 +3,10 @@
 The path parameter x runs over [0, 2 pi) once around the curve (reports give u = x / 2 pi,
 so point k of the input sits at u = k / N). ``kind = "control_points"`` takes the points as
 the control polygon (the curve passes near them); ``kind = "samples"`` takes them as points
-on the curve and solves the cyclic system (d_{k-1} + 4 d_k + d_{k+1}) / 6 = q_k for the
-control polygon, so the curve passes through every sample. Coordinates are relative to the
-carrier pivot.
+on the curve, sample k at x = 2 pi k / N, and fits a control polygon of fewer points by least
+squares (``fitted_polygon``: the count that minimises generalised cross-validation, so noise is
+not followed into the curvature the gears are cut from). ``interpolating_polygon`` gives the
+curve through every sample. Coordinates are relative to the carrier pivot.
 """
 from __future__ import annotations
 
@@ -22,6 +23,43 @@ def interpolating_polygon(samples: np.ndarray) -> np.ndarray:
     n = len(samples)
     matrix = 4 * np.eye(n) + np.roll(np.eye(n), 1, axis=1) + np.roll(np.eye(n), -1, axis=1)
     return np.linalg.solve(matrix / 6, samples)
+
+
+def _least_squares_polygon(samples: np.ndarray, count: int) -> tuple[np.ndarray, float]:
+    """Control polygon of ``count`` points whose curve passes nearest the samples, and the sum of
+    squared misses (mm^2). The normal matrix of the periodic cubic basis is banded and small."""
+    basis = periodic_bspline.basis_matrix(periodic_bspline.knots(len(samples)), count)
+    control = np.linalg.solve(basis.T @ basis, basis.T @ samples)
+    return control, float(np.sum((basis @ control - samples) ** 2))
+
+
+#: Control-point counts a fit tries: from the first, growing by the factor, up to the last (or two
+#: fewer than the samples). 256 points follow a smooth loop to about 1e-9 of its size, and the arm's
+#: inverse kinematics costs grow with the count.
+FIT_COUNTS = (8, 1.25, 256)
+
+
+def fitted_polygon(samples: np.ndarray) -> np.ndarray:
+    """Control polygon fitted to closed-path samples (N, 2): of the counts 8, 10, 12, ... up to
+    min(256, N - 2), the one that minimises generalised cross-validation, (RSS / N) / (1 - count / N)^2
+    (Craven and Wahba's score: misses that only shrink by following noise do not pay for the
+    extra points). Fewer than 16 samples are interpolated."""
+    n = len(samples)
+    first, factor, last = FIT_COUNTS
+    if n < 2 * first:
+        return interpolating_polygon(samples)
+    last = min(last, n - 2)
+    counts, count = [last], float(first)
+    while count < last:
+        counts.append(int(round(count)))
+        count *= factor
+    best = None
+    for count in sorted(set(counts)):
+        control, squares = _least_squares_polygon(samples, count)
+        score = squares / n / (1 - count / n) ** 2
+        if best is None or score < best[0]:
+            best = (score, control)
+    return best[1]
 
 
 @dataclass(frozen=True)
@@ -74,6 +112,33 @@ class ClosedTrajectory:
         # a root at a joint is found by both segments that meet there: keep one
         gaps = np.diff([e.parameter for e in extremes] + [extremes[0].parameter + TWO_PI]) if extremes else []
         return [e for e, gap in zip(extremes, gaps) if gap > 1e-8]
+
+    def sample_misses(self, samples: np.ndarray) -> np.ndarray:
+        """Distance of each sample (N, 2), sample k taken at x = 2 pi k / N, from the curve there (mm)."""
+        return np.linalg.norm(self.evaluate(periodic_bspline.knots(len(samples))) - samples, axis=1)
+
+    def radially_remapped(self, farthest: float, nearest: float) -> "ClosedTrajectory":
+        """The curve with its control points moved radially, r -> a + b r about the pivot, so that its
+        farthest and nearest distances from the pivot are exactly ``farthest`` and ``nearest`` (Newton
+        on a, b; the curve's extremes, not the control points', are matched)."""
+        radius = np.linalg.norm(self.control, axis=1)
+        if not radius.all():
+            raise ValueError("a control point on the pivot has no radial direction")
+        direction = self.control / radius[:, None]
+
+        def miss(ab):
+            radii = [e.radius for e in ClosedTrajectory(direction * (ab[0] + ab[1] * radius)[:, None]).radial_extremes()]
+            return np.array([max(radii) - farthest, min(radii) - nearest])
+
+        ab, size = np.array([0.0, 1.0]), farthest
+        for _ in range(30):
+            residual = miss(ab)
+            if np.abs(residual).max() <= 1e-13 * size:
+                break
+            steps = np.diag([1e-7 * size, 1e-7])
+            jacobian = np.column_stack([(miss(ab + step) - residual) / step.max() for step in steps])
+            ab = ab - np.linalg.solve(jacobian, residual)
+        return ClosedTrajectory(direction * (ab[0] + ab[1] * radius)[:, None])
 
     def turning_speed_floor(self, samples_per_segment: int = 64) -> tuple[float, float]:
         """(smallest |P'|, where): zero means the curve stops (a cusp of the control polygon)."""

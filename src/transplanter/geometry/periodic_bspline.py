@@ -24,14 +24,20 @@ CASADI = SimpleNamespace(floor=ca.floor, fabs=ca.fabs, if_else=ca.if_else)
 
 
 def kernel(u, order: int = 0, lib=NUMPY):
-    """``order``-th derivative of the centered cubic B-spline at u (in knot spacings)."""
+    """``order``-th derivative of the centered cubic B-spline at u (in knot spacings). The third
+    derivative is piecewise constant; at the knots it takes its value from the right, as ``evaluate`` does."""
+    if order == 3:
+        steps = ((-2, 0.0), (-1, 1.0), (0, -3.0), (1, 3.0), (2, -1.0))
+        value = 0 * u
+        for edge, left in reversed(steps):
+            value = lib.if_else(u < edge, left + 0 * u, value)
+        return value
     a = lib.fabs(u)
     sign = lib.if_else(u < 0, -1.0, 1.0)
     inner, outer = [
         (2 / 3 - a**2 + a**3 / 2, (2 - a)**3 / 6),
         (sign * (-2 * a + 1.5 * a**2), -sign * (2 - a)**2 / 2),
         (-2 + 3 * a, 2 - a),
-        (3 * sign, -sign),
     ][order]
     return lib.if_else(a < 1, inner, lib.if_else(a < 2, outer, 0 * a))
 

@@ -76,10 +76,11 @@ class Frame:
 
 
 def pose_scale(poses: np.ndarray) -> float:
-    """Largest distance of a pose position from their centroid, at least 1 mm.
+    """Largest distance of a pose position from their centroid (mm): the poses' own size, so a
+    problem in micrometres or in metres is conditioned and judged as one in millimetres.
 
-    Residuals are reported relative to it. The floor keeps the scale meaningful when the
-    body only turns about one point.
+    Residuals are reported relative to it. When every pose sits on one point (the body only
+    turns about it) there is no size, and 1 mm stands in.
     """
     spread = np.linalg.norm(poses[:, :2] - poses[:, :2].mean(axis=0), axis=1).max()
-    return float(max(spread, 1.0))
+    return float(spread) if spread > 0 else 1.0

@@ -20,8 +20,9 @@ PANELS = 180
 
 
 class TurnMap:
-    def __init__(self, rate, breaks=()):
-        self.grid = panels(breaks, PANELS)
+    def __init__(self, rate, breaks=(), count: int = PANELS):
+        """``count`` panels per turn (plus the breaks)."""
+        self.grid = panels(breaks, count)
         values = rate(self.grid.nodes)
         self.table = self.grid.integrate(values)
         standard, _ = legendre.leggauss(NODES)

@@ -28,8 +28,9 @@ from transplanter.generated import numpy_twin
 _inverse = numpy_twin("planetary", "two_link_inverse")
 _rates = numpy_twin("planetary", "two_link_rates")
 
-#: An extreme of |P| within this distance of r = s + l or |s - l| touches the circle (mm).
-TOUCH_TOLERANCE_MM = 1e-6
+#: An extreme of |P| within this fraction of the reach s + l of r = s + l or |s - l| touches the
+#: circle (1e-6 mm on the rice path's 254 mm): relative, so a path in metres or micrometres behaves the same.
+TOUCH_TOLERANCE = 4e-9
 #: Within this distance (in x) of a touch, rates are taken as the mean of the two sides.
 TOUCH_LIMIT = 1e-5
 #: Offsets (rad of carrier turn) of the extra breaks on either side of a touch.
@@ -167,7 +168,8 @@ def touched_circle(extreme: RadialExtreme, carrier_length: float, arm_length: fl
         bound, circle = carrier_length + arm_length, "outer"
     else:
         bound, circle = abs(carrier_length - arm_length), "inner"
-    return (circle, bound - extreme.radius) if abs(bound - extreme.radius) <= TOUCH_TOLERANCE_MM else None
+    tolerance = TOUCH_TOLERANCE * (carrier_length + arm_length)
+    return (circle, bound - extreme.radius) if abs(bound - extreme.radius) <= tolerance else None
 
 
 def find_touches(trajectory: ClosedTrajectory, carrier_length: float, arm_length: float) -> tuple[Touch, ...]:

@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from transplanter.toml_fields import ClassFields, FieldReader, read_toml
+from transplanter.toml_fields import SMALLEST_LENGTH, ClassFields, FieldReader, read_toml
 
 TOPOLOGIES = {"sun-intermediate-planet": ("sqrt", "peak_to_valley"),
               "pick-up": ("sqrt", "peak_to_valley"),
@@ -126,12 +126,13 @@ def _trajectory_points(read: FieldReader, table: dict) -> tuple[np.ndarray, str]
     read.keys(table, {"kind", "points"}, "trajectory")
     kind = _choice(read, table, "kind", "trajectory", ("control_points", "samples"))
     points = read.points(table, "points", "trajectory")
-    if len(points) > 4 and np.allclose(points[0], points[-1], rtol=0, atol=1e-9):
+    size = np.ptp(points, axis=0).max() if len(points) else 0.0      # the path's own size: tolerances follow it
+    if len(points) > 4 and np.linalg.norm(points[0] - points[-1]) <= 1e-9 * size:
         points = points[:-1]                 # closed explicitly: the last point repeats the first
     if len(points) < 4:
         read.fail("trajectory.points", table.get("points"), "at least 4 points [x, y] (mm) of a closed curve")
     gaps = np.linalg.norm(np.diff(np.r_[points, points[:1]], axis=0), axis=1)
-    if gaps[:-1].min() < 1e-9 * max(gaps.max(), 1.0):
+    if gaps[:-1].min() <= 1e-9 * size:
         k = int(np.argmin(gaps[:-1]))
         read.fail(f"trajectory.points[{k + 1}]", points[k + 1].tolist(),
                   f"a point distinct from points[{k}] (a repeated point makes the curve stop there)")
@@ -155,10 +156,7 @@ def _arm(read: FieldReader, table: dict):
         read.fail(f"arm.{given[0]}", table[given[0]], "carrier_length and arm_length together, or neither "
                   "(then both come from the farthest and nearest path points, the rice-transplanter paper eq 1-2)")
     if given:
-        lengths = tuple(read.number(table, key, "arm") for key in ("carrier_length", "arm_length"))
-        for key, value in zip(("carrier_length", "arm_length"), lengths):
-            if value <= 0:
-                read.fail(f"arm.{key}", value, "a positive length (mm)")
+        lengths = tuple(read.length(table, key, "arm") for key in ("carrier_length", "arm_length"))
     direction = _choice(read, table, "direction", "arm", ("counterclockwise", "clockwise"), "counterclockwise")
     branch = _choice(read, table, "branch", "arm", ("auto", "approach", "retraction"), "auto")
     return pivot, lengths, 1 if direction == "counterclockwise" else -1, branch
@@ -175,12 +173,10 @@ def _train(read: FieldReader, table: dict):
     centers = None
     if "center_distances" in table:
         centers = read.numbers(table, "center_distances", "train", 2)
-        if len(centers) != 2 or centers.min() <= 0:
+        if len(centers) != 2 or centers.min() < SMALLEST_LENGTH:
             read.fail("train.center_distances", table["center_distances"], "two positive center distances (mm)")
         centers = (float(centers[0]), float(centers[1]))
-    module = read.number(table, "module", "train") if "module" in table else 2.5
-    if module <= 0:
-        read.fail("train.module", module, "a positive module (mm)")
+    module = read.length(table, "module", "train") if "module" in table else 2.5
     return topology, split, coefficient, centers, module
 
 

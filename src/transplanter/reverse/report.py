@@ -6,7 +6,9 @@ def to_markdown(report: dict, figures: list[str]) -> str:
     lines = [f"# Reverse design: {report['title'] or report['source']}", "",
              f"- Path: {report['trajectory']['points']} {report['trajectory']['kind'].replace('_', ' ')}, farthest "
              f"{report['trajectory']['farthest_mm']:.4f} mm and nearest {report['trajectory']['nearest_mm']:.4f} mm "
-             f"from the pivot {report['trajectory']['pivot']}",
+             f"from the pivot {report['trajectory']['pivot']}"
+             + (f"; the curve fitted to the samples misses them by up to {report['trajectory']['fit_residual_mm']:.3g} mm"
+                if report["trajectory"]["fit_residual_mm"] is not None else ""),
              f"- Carrier s = {report['carrier_length']:.4f} mm, arm l = {report['arm_length']:.4f} mm "
              f"({report['lengths_from']}), carrier turning {report['direction']}",
              "- Branches: " + ", ".join(f"{s['branch']} on u {s['u'][0]:.4f}-{s['u'][1]:.4f}"

@@ -69,6 +69,17 @@ class ReverseResult:
         """Whether the path meets the monotonicity criterion (then it has a train)."""
         return not self.violations
 
+    @property
+    def failures(self) -> list[str]:
+        """Why there is no train: where the path fails the monotonicity criterion (empty when it passes)."""
+        if self.monotonic:
+            return []
+        return ["the path fails the monotonicity criterion: " + "; ".join(v.message for v in self.violations)]
+
+    @property
+    def passed(self) -> bool:
+        return self.monotonic
+
     def branch_segments(self) -> list[dict]:
         """Stretches of the path parameter u (in turns) and the arm branch on each."""
         motion = self.motion
@@ -95,7 +106,9 @@ class ReverseResult:
         report = {
             "title": problem.title, "source": problem.source,
             "trajectory": {"kind": problem.kind, "points": len(problem.points), "pivot": problem.pivot.tolist(),
-                           "farthest_mm": self.extremes[0], "nearest_mm": self.extremes[1]},
+                           "farthest_mm": self.extremes[0], "nearest_mm": self.extremes[1],
+                           "fit_residual_mm": (float(self.trajectory.sample_misses(problem.points).max())
+                                               if problem.kind == "samples" else None)},
             "carrier_length": motion.carrier_length, "arm_length": motion.arm_length,
             "lengths_from": "path extremes (the rice-transplanter paper eq 1-2)" if self.lengths_derived else "problem file",
             "direction": DIRECTION_NAMES[motion.direction],

@@ -121,6 +121,23 @@ class StageShape:
 
 
 @dataclass(frozen=True)
+class TrainSize:
+    """Whole-tooth sizes of the train before any tooth is cut (mm): counts Z1, Z2, centre distances
+    a1, a2, the module, each stage's cutter and the largest pitch radius of each stage."""
+
+    counts: tuple[int, int]
+    center_distances: tuple[float, float]
+    module: float
+    cutters: tuple[str, str]
+    largest_pitch_radius: tuple[float, float]
+
+    def to_json(self) -> dict:
+        return {"teeth": list(self.counts), "center_distances_mm": list(self.center_distances),
+                "module": self.module, "cutters": list(self.cutters),
+                "largest_pitch_radius_mm": list(self.largest_pitch_radius)}
+
+
+@dataclass(frozen=True)
 class ToothedGear:
     """One of the four gears, cut (mm, radians; carrier-frame handedness)."""
 
@@ -322,6 +339,37 @@ def _gear(name, role, stage_design: GearPairDesign, side: int, count, module, ce
                        None if convex.all() else float(np.abs(rho[~convex]).min()), cutter, reason)
 
 
+def _sizes(relative: RelativeMotion, carrier_length: float, gearing: Gearing, source: str):
+    """Stage shapes, whole counts, centre distances and module of the layout (module docstring)."""
+    unit = design_train(relative, (1.0, 1.0), source)
+    shapes = (stage_shape(unit.stage_one, gearing), stage_shape(unit.stage_two, gearing))
+    module = gearing.module
+    if gearing.center_distances is not None:
+        counts = _given_counts(shapes, gearing, carrier_length, source)
+    elif gearing.layout == "straight":
+        *counts, module = _straight_module(shapes, module, carrier_length, source)
+    else:
+        try:
+            counts = _bent_counts(shapes, module, carrier_length)
+        except InfeasibleError as error:
+            raise InfeasibleError(f"{source}: {error}") from None
+    a1, a2 = (z * np.pi * module / s.perimeter for z, s in zip(counts, shapes))
+    if gearing.layout == "straight":
+        a2 = carrier_length - a1
+    return shapes, counts, (a1, a2), module, unit
+
+
+def train_size(relative: RelativeMotion, carrier_length: float, gearing: Gearing = Gearing(),
+               source: str = "<train>") -> TrainSize:
+    """The sizes ``design_toothed_train`` would give, without cutting teeth (for comparing designs);
+    raises as it does."""
+    shapes, counts, distances, module, unit = _sizes(relative, carrier_length, gearing, source)
+    largest = [a * max(float(np.max(r)) for r in stage.radius)
+               for a, stage in zip(distances, (unit.stage_one, unit.stage_two))]
+    return TrainSize(tuple(int(z) for z in counts), tuple(float(a) for a in distances), float(module),
+                     tuple(shape.cutter for shape in shapes), tuple(largest))
+
+
 def design_toothed_train(relative: RelativeMotion, carrier_length: float, gearing: Gearing = Gearing(),
                          source: str = "<train>") -> ToothedTrain:
     """The planetary train realising ``relative`` with whole teeth on all four gears, cut and mesh-checked.
@@ -346,21 +394,7 @@ def design_toothed_train(relative: RelativeMotion, carrier_length: float, gearin
     """
     timings = {}
     start = time.perf_counter()
-    unit = design_train(relative, (1.0, 1.0), source)
-    shapes = (stage_shape(unit.stage_one, gearing), stage_shape(unit.stage_two, gearing))
-    module = gearing.module
-    if gearing.center_distances is not None:
-        counts = _given_counts(shapes, gearing, carrier_length, source)
-    elif gearing.layout == "straight":
-        *counts, module = _straight_module(shapes, module, carrier_length, source)
-    else:
-        try:
-            counts = _bent_counts(shapes, module, carrier_length)
-        except InfeasibleError as error:
-            raise InfeasibleError(f"{source}: {error}") from None
-    a1, a2 = (z * np.pi * module / s.perimeter for z, s in zip(counts, shapes))
-    if gearing.layout == "straight":
-        a2 = carrier_length - a1
+    shapes, counts, (a1, a2), module, _ = _sizes(relative, carrier_length, gearing, source)
     train = design_train(relative, (a1, a2), source)
     delta = bend_angle(a1, a2, carrier_length)
     shaft = a1 * np.array([np.cos(delta), np.sin(delta)])

@@ -1,0 +1,159 @@
+"""Pitch curves with corners (seed 004): curvature centres, corners seen by the driven gear.
+
+Notation. A polar pitch curve r(phi) about the gear centre, point P = r u(phi) with
+u = (cos phi, sin phi); slope r' and bend r'' are derivatives with respect to phi.
+
+- Curvature centre (seed 004 eq 1, there written with y(x)): with P' and P'' the phi-derivatives,
+  K = P + |P'|^2 / (P' x P'') * k x P' (k the unit normal to the plane). The cross product
+  P' x P'' = r^2 + 2 r'^2 - r r'' is the convexity of ``gears.polar_convexity``: a straight
+  segment has it identically zero, so the package marks straight segments and gives them an
+  infinite radius instead of dividing by a rounding error (``polar_curvature_center``).
+- Corners. The tangent makes the angle mu = atan2(r, r') with the radius, so the tangent's
+  direction is phi + mu; at a joint where r is continuous and r' jumps, the tangent turns by
+  the jump of mu (a cusp; positive is a left turn, a convex corner on a counterclockwise curve).
+- The driven curve at a driver corner. Pure rolling (``gears.conjugate_derivatives``) gives
+  r2 = a - r1 and dphi2/dphi1 = r1 / r2. The driven curve in its own counterclockwise angle
+  theta2 = -phi2 has dr2/dtheta2 = -dr2/dphi2, and its radius-tangent angle
+  mu2 = atan2(r2, dr2/dtheta2) reduces to atan2(r1, r1') = mu1 (``corner_angles``; a test
+  checks the identity). Its counterclockwise direction runs against phi1, so the driven
+  curve turns by -(the driver's turn): a convex corner of the driver meets a concave corner
+  of the same angle on the driven gear, at the same place on the line of centres.
+
+Incomplete cycloid flanks near a corner (seed 004 eq 7-12, re-derived):
+
+- A circle of radius r rolling outside a base line (contact at arc sigma, frame T, outward n)
+  carries the point P = B(sigma) + r n - r (cos(theta) n + side sin(theta) T), theta = sigma / r
+  (side +1 rolling towards +T, -1 towards -T): at theta = 0 the point touches the base, at
+  theta = pi it is at the top, 2 r above the contact (``cycloid_trace``). On a curved base with
+  the same (B, T, n) at each contact this is the roulette of seed 004 eq (9-12) with a1 = b1 = 1,
+  and the rolling circle of eq (7) is r_gy = S / (2 pi n) for S rolled in n turns.
+- The arch leans theta/2 off the normal at theta (dP/dtheta ~ (sin(theta/2), cos(theta/2)) in
+  (T, n)), so it starts normal to the pitch curve: a pressure angle of 0 against the involute's
+  alpha, the kink of seed 004 Figure 8. The arch from theta0 = 2 alpha (where it leans alpha, as
+  the involute does at the pitch point) to the top is the package's incomplete cycloid: it rolls on
+  the base lowered by the depth r (1 - cos 2 alpha), so that its first point lies on the pitch
+  curve, and stops at theta1 with its rolling contact on the corner: over a zone of pitch arc S
+  from the pitch point to the corner, S = r (theta1 - 2 alpha + sin 2 alpha)
+  (``incomplete_cycloid``; alpha = 0 gives eq 7's r_gy = S / (2 pi n) with theta1 = 2 pi n).
+  Its normal at theta passes through its rolling contact, so while the pair's pitch point runs
+  from A to the corner the contact climbs the arch with a pressure angle from alpha to theta1 / 2;
+  seed 004's n = 0.5 (theta1 = pi) ends at 90 deg on the corner, where no torque passes.
+- Seed 004's elliptic rolling curve, eq (7) r(theta) = r_gy / sqrt((a1 cos theta)^2 + (b1 sin theta)^2)
+  put into eq (12), starts (theta = 0) with the velocity (1 - 1/a1) T per unit rolled arc
+  (``paper_variable_cycloid_start``): along the pitch curve, a pressure angle of 90 deg, for any
+  a1 != 1; for a1 = 1 it starts along the normal like the circle (pressure angle 0) whatever b1.
+  No eccentricity gives an intermediate starting pressure angle, so the package joins the flanks
+  with the incomplete arch above instead.
+"""
+from __future__ import annotations
+
+import sympy as sp
+
+from derivations.gears import _replace_derivatives, conjugate_derivatives, phi
+from derivations.spec import Derived, symbol_group
+
+
+def polar_point(r):
+    return sp.Matrix([r * sp.cos(phi), r * sp.sin(phi)])
+
+
+def curvature_center(r_of_phi):
+    """Curvature centre K = P + |P'|^2 / (P' x P'') k x P' of the polar curve r(phi) (seed 004 eq 1)."""
+    point = polar_point(r_of_phi)
+    d1, d2 = point.diff(phi), point.diff(phi, 2)
+    cross = d1[0] * d2[1] - d1[1] * d2[0]
+    speed2 = d1[0] ** 2 + d1[1] ** 2
+    return point + speed2 / cross * sp.Matrix([-d1[1], d1[0]]), cross
+
+
+def driven_radius_and_rate(center_distance, r1_of_phi):
+    """(r2, dr2/dtheta2) of the driven curve in its own counterclockwise angle theta2 = -phi2."""
+    r2, slope2, _, _ = conjugate_derivatives(center_distance, r1_of_phi)
+    return r2, -slope2
+
+
+def _curvature_center() -> Derived:
+    r, slope, bend = (symbol_group(name, 1)[0] for name in ("radius", "slope", "bend"))
+    angle = symbol_group("phi", 1)[0]
+    f = sp.Function("r")(phi)
+    center, cross = curvature_center(f)
+    center = [sp.simplify(_replace_derivatives(c, f, r, slope, bend)).subs(phi, angle) for c in center]
+    return Derived(
+        name="polar_curvature_center",
+        doc="Curvature centre (seed 004 eq 1) of a polar pitch curve from r, r', r'' at phi, and P' x P'' (zero on a line).",
+        inputs=(("radius", (r,)), ("slope", (slope,)), ("bend", (bend,)), ("phi", (angle,))),
+        outputs=(("center", tuple(center)), ("cross", (sp.simplify(_replace_derivatives(cross, f, r, slope, bend)),))),
+    )
+
+
+def _corner_angles() -> Derived:
+    a = symbol_group("center_distance", 1)[0]
+    r, slope = symbol_group("radius", 1)[0], symbol_group("slope", 1)[0]
+    f = sp.Function("r1")(phi)
+    r2, rate2 = (sp.simplify(_replace_derivatives(e, f, r, slope, 0)) for e in driven_radius_and_rate(a, f))
+    return Derived(
+        name="corner_angles",
+        doc=("Radius-tangent angles mu1 = atan2(r1, r1') of the driver and mu2 of the driven curve in its own "
+             "counterclockwise angle (equal: the driven corner turns the other way)."),
+        inputs=(("center_distance", (a,)), ("radius", (r,)), ("slope", (slope,))),
+        outputs=(("driver_angle", (sp.atan2(r, slope),)), ("driven_angle", (sp.atan2(r2, rate2),))),
+    )
+
+
+def cycloid_trace(base_x, base_y, tangent_angle, radius, theta, side):
+    """Point carried by a circle of ``radius`` rolling outside the base at (base_x, base_y) with tangent
+    direction ``tangent_angle`` after turning ``theta`` (seed 004 eq 9-12 with a circle)."""
+    t = sp.Matrix([sp.cos(tangent_angle), sp.sin(tangent_angle)])
+    n = sp.Matrix([sp.sin(tangent_angle), -sp.cos(tangent_angle)])     # outward on a counterclockwise curve
+    return sp.Matrix([base_x, base_y]) + radius * n - radius * (sp.cos(theta) * n + side * sp.sin(theta) * t)
+
+
+def incomplete_cycloid(alpha, zone, end_angle):
+    """(start angle theta0, radius r, depth of the rolling base below the pitch curve, height of the last point
+    above it) of the arch that leans ``alpha`` off the normal at its first point (on the pitch curve) and ends
+    at ``end_angle`` with its rolling contact on the corner, a ``zone`` of pitch arc after its first point."""
+    r, theta = sp.symbols("r theta", positive=True)
+    x, y = cycloid_trace(r * theta, 0, 0, r, theta, 1)
+    y = -y                                          # tangent angle 0: the outward normal is -y; height above is -y
+    lean = sp.atan2(sp.diff(x, theta), sp.diff(y, theta))
+    theta0 = sp.solve(sp.Eq(sp.tan(lean), sp.tan(alpha)), theta)[0].subs(sp.atan(sp.tan(alpha)), alpha)
+    radius = sp.solve(sp.Eq(r * end_angle - x.subs(theta, theta0), zone), r)[0]
+    depth = sp.simplify(y.subs(theta, theta0).subs(r, radius))
+    top = sp.simplify(y.subs(theta, end_angle).subs(r, radius) - depth)
+    return sp.simplify(theta0), sp.simplify(radius), depth, top
+
+
+def paper_variable_cycloid_start(a1, b1):
+    """Velocity per unit rolled arc at theta = 0 of seed 004 eq (7) + (12) on a straight base (components along T, n)."""
+    s, r_gy = sp.symbols("s r_gy", positive=True)
+    theta = s / r_gy
+    radius = r_gy / sp.sqrt((a1 * sp.cos(theta)) ** 2 + (b1 * sp.sin(theta)) ** 2)
+    # base along the x axis, outward normal +y (theta0 = pi/2); eq (12) turns the point counterclockwise with
+    # theta, which is rolling towards -x: I2 = (-s, r) and P = I2 + r (cos(theta + theta0 + pi), sin(...))
+    center = sp.Matrix([-s, radius])
+    point = center + radius * sp.Matrix([sp.cos(theta + sp.pi / 2 + sp.pi), sp.sin(theta + sp.pi / 2 + sp.pi)])
+    along, normal = (sp.simplify(sp.limit(sp.diff(c, s), s, 0)) for c in point)
+    return -along, normal
+
+
+def _cycloid() -> Derived:
+    base, angle = symbol_group("base", 2), symbol_group("tangent_angle", 1)[0]
+    radius, theta, side = (symbol_group(name, 1)[0] for name in ("radius", "theta", "side"))
+    alpha, zone, end = (symbol_group(name, 1)[0] for name in ("pressure_angle", "zone", "end_angle"))
+    theta0, r, depth, top = incomplete_cycloid(alpha, zone, end)
+    return [
+        Derived(name="cycloid_trace",
+                doc="Point of a circle rolling outside the pitch curve (seed 004 eq 9-12, a1 = b1 = 1) at a base point and tangent angle.",
+                inputs=(("base", base), ("tangent_angle", (angle,)), ("radius", (radius,)), ("theta", (theta,)),
+                        ("side", (side,))),
+                outputs=(("point", tuple(cycloid_trace(*base, angle, radius, theta, side))),)),
+        Derived(name="incomplete_cycloid",
+                doc=("Start angle, rolling radius, depth of the rolling base and height of the last point of the arch "
+                     "joining the involute at pressure angle alpha, over a zone S to the corner, ending at end_angle."),
+                inputs=(("pressure_angle", (alpha,)), ("zone", (zone,)), ("end_angle", (end,))),
+                outputs=(("start_angle", (theta0,)), ("radius", (r,)), ("depth", (depth,)), ("top_height", (top,)))),
+    ]
+
+
+def derive() -> list[Derived]:
+    return [_curvature_center(), _corner_angles(), *_cycloid()]

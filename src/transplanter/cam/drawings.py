@@ -1,0 +1,70 @@
+"""Drawings of a cam in millimetres, in the cam's own frame (centre at the origin, cam angle 0):
+
+- ``cam_profile.csv``: per cam angle, the follower's motion, the pitch curve and the profile, the
+  pressure angle and both curvature radii.
+- ``cam.dxf`` (INSUNITS mm): the profile (PROFILE, closed), the pitch curve (PITCH, closed; none for a
+  flat-faced follower), the base circle (BASE_CIRCLE) and the bore (BORE).
+- ``cam.svg``: the profile, the pitch curve dashed and the bore.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import ezdxf
+import numpy as np
+
+from transplanter.cam.result import CamResult
+from transplanter.gears.drawings import default_bore_radius, write_svg
+
+LAYERS = ("PROFILE", "PITCH", "BASE_CIRCLE", "BORE")
+
+
+def bore_radius(result: CamResult) -> float:
+    """The problem's bore radius, else 0.4 of the profile's smallest radius (mm)."""
+    given = result.problem.bore_radius
+    return default_bore_radius(result.geometry.profile) if given is None else given
+
+
+def write_csv(result: CamResult, path: Path) -> Path:
+    g = result.geometry
+    unit = "deg" if result.problem.oscillating else "mm"
+    scale = np.degrees(1.0) if result.problem.oscillating else 1.0
+    columns = {
+        "cam_angle_deg": np.degrees(g.angle), f"displacement_{unit}": g.motion[0] * scale,
+        f"velocity_{unit}_per_rad": g.motion[1] * scale, f"acceleration_{unit}_per_rad2": g.motion[2] * scale,
+        f"jerk_{unit}_per_rad3": g.motion[3] * scale,
+        **({"face_offset_mm": g.center[:, 0]} if result.problem.follower.kind == "flat_faced" else
+           {"pitch_x_mm": g.pitch[:, 0], "pitch_y_mm": g.pitch[:, 1]}),
+        "profile_x_mm": g.profile[:, 0],
+        "profile_y_mm": g.profile[:, 1], "pressure_angle_deg": np.degrees(g.pressure_angle),
+        "pitch_curvature_radius_mm": g.curvature_radius, "profile_curvature_radius_mm": g.profile_curvature_radius,
+    }
+    np.savetxt(path, np.column_stack(list(columns.values())), delimiter=",", header=",".join(columns), comments="",
+               fmt="%.12g")
+    return path
+
+
+def write_dxf(result: CamResult, path: Path) -> Path:
+    document = ezdxf.new("R2010", setup=False)
+    document.units = ezdxf.units.MM
+    for layer in LAYERS:
+        document.layers.add(layer)
+    space = document.modelspace()
+    space.add_lwpolyline(result.geometry.profile.tolist(), close=True, dxfattribs={"layer": "PROFILE"})
+    if result.problem.follower.kind != "flat_faced":
+        space.add_lwpolyline(result.geometry.pitch.tolist(), close=True, dxfattribs={"layer": "PITCH"})
+    space.add_circle((0.0, 0.0), result.base_radius, dxfattribs={"layer": "BASE_CIRCLE"})
+    space.add_circle((0.0, 0.0), bore_radius(result), dxfattribs={"layer": "BORE"})
+    document.saveas(path)
+    return path
+
+
+def write_drawings(result: CamResult, folder: str | Path) -> list[Path]:
+    """``cam_profile.csv``, ``cam.dxf`` and ``cam.svg`` in ``folder`` (made if missing); the files written."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    svg = folder / "cam.svg"
+    pitch = None if result.problem.follower.kind == "flat_faced" else np.vstack([result.geometry.pitch,
+                                                                                 result.geometry.pitch[:1]])
+    write_svg(result.geometry.profile, svg, pitch_curve=pitch, bore_radius=bore_radius(result))
+    return [write_csv(result, folder / "cam_profile.csv"), write_dxf(result, folder / "cam.dxf"), svg]

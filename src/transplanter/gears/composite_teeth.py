@@ -1,0 +1,309 @@
+"""Composite teeth of a pitch curve with corners (seed 004 sec 2-3): variable involute on the smooth
+stretches, incomplete cycloids on the tooth that stands on each corner, the driven gear by envelope.
+
+Layout. No cutter can roll round a corner, so a tooth straddles each (convex) corner J: its
+flanks cross the pitch curve at A = J - u and D = J + w, and between corners the regular teeth and
+spaces keep the pitch p = pi m. Going round from corner j to corner j + 1 (arc L_j) there is a
+space, k_j regular teeth and spaces, so w_j + u_(j+1) = L_j - p/2 - k_j p; k_j is the count that
+leaves about one pitch and the remainder is split evenly, so the corner tooth is about a pitch
+thick (seed 004 sec 2.3 asks h_vc in [0.8, 1.2] of the involute pitch h; the package refuses a
+tooth count that leaves a corner tooth outside, naming counts that fit).
+
+Flanks. Each smooth stretch is cut by the library's shaper (``swept_teeth.shaper_profile``: a
+pinion cutter rolling on the pitch curve, the variable involute of seed 004 eq 1-6) with its teeth
+on that stretch's grid; the corner tooth keeps the shaper's flanks below the pitch curve and
+rises from A and D on incomplete cycloids (``cycloid_teeth``) to the tip, one module above the
+pitch curve. The driven gear is cut by the driver's outline in the pair's motion
+(``swept_teeth.mate_profile``), so the pair is conjugate wherever the driver is.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+import shapely.affinity
+
+from transplanter.errors import InfeasibleError
+from transplanter.gears.composite_curve import CompositeCurve, cusps
+from transplanter.gears.cycloid_teeth import CycloidArch, arch, arch_min_curvature_radius, arch_pressure_range
+from transplanter.gears.mesh_check import MeshCheck, check_mesh
+from transplanter.gears.pair import GearPairDesign, driven_angle
+from transplanter.gears.rack_teeth import ADDENDUM
+from transplanter.gears.swept_teeth import BIN_MODULES, shaper_profile
+from transplanter.gears.teeth import driver_table, self_intersections
+from transplanter.gears.tooth_contact import ContactRatio, measure_contact_ratio
+
+#: The driven gear is carved by the driver's teeth within this many pitches of the contact, at positions this
+#: many modules of pitch arc apart, the teeth's outline simplified within this many modules.
+CARVE_REACH_PITCHES, CARVE_STEP_MODULES, CARVE_SIMPLIFY_MODULES = 1.5, 0.05, 1e-4
+#: The corner tooth's thickness at the pitch curve, as a fraction of the pitch (seed 004 sec 2.3).
+THICKNESS_BAND = (0.8, 1.2)
+
+
+@dataclass(frozen=True)
+class CornerTooth:
+    """The tooth on one corner: pitch arc (mm) of the corner and of its flanks' pitch points, its arches."""
+
+    corner_arc: float
+    start_arc: float            # A
+    end_arc: float              # D
+    pitch: float
+    arches: tuple[CycloidArch, CycloidArch]
+    joint_kinks_deg: tuple[float, float]    # turn of the outline where each arch meets the involute below it
+    joint_gaps_mm: tuple[float, float]
+
+    @property
+    def thickness_ratio(self) -> float:
+        return (self.end_arc - self.start_arc) / self.pitch
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Corner arcs (mm), their zones u (before) and w (after), regular teeth k between corners."""
+
+    corners: np.ndarray
+    before: np.ndarray
+    after: np.ndarray
+    between: np.ndarray
+    pitch: float
+
+    @property
+    def thickness_ratios(self) -> np.ndarray:
+        return (self.before + self.after) / self.pitch
+
+    def space_centers(self, perimeter: float) -> np.ndarray:
+        """Pitch arcs (mm, ascending in [0, perimeter)) of the driver's tooth-space centres."""
+        ends = self.corners + self.after
+        centers = [end + self.pitch / 4 + i * self.pitch for end, k in zip(ends, self.between) for i in range(k + 1)]
+        return np.sort(np.mod(centers, perimeter))
+
+
+def layout(corners: np.ndarray, perimeter: float, pitch: float) -> Layout:
+    """Split the pitch curve among corner teeth and regular teeth (module docstring)."""
+    gaps = np.diff(np.r_[corners, corners[0] + perimeter])
+    between = np.maximum(0, np.round((gaps - 1.5 * pitch) / pitch)).astype(int)
+    rest = gaps - pitch / 2 - between * pitch
+    return Layout(corners, np.roll(rest, 1) / 2, rest / 2, between, pitch)
+
+
+def _check_layout(plan: Layout, teeth: int, segment_arcs: list[tuple[float, float]], source: str):
+    low, high = THICKNESS_BAND
+    ratios = plan.thickness_ratios
+    if ((ratios < low) | (ratios > high)).any():
+        k = int(np.argmax(np.abs(ratios - 1)))
+        fits = [z for z in range(max(3, teeth - 12), teeth + 13) if _fits(plan, teeth, z)]
+        raise InfeasibleError(
+            f"{source}: pair.teeth = {teeth}: the tooth on the corner at pitch arc {plan.corners[k]:.3f} mm would be "
+            f"{ratios[k]:.3f} pitches thick, outside [{low}, {high}] (seed 004 sec 2.3); tooth counts that fit: "
+            f"{', '.join(map(str, fits)) or 'none within 12 of it'}")
+    for k, (corner, (before, after)) in enumerate(zip(plan.corners, segment_arcs)):
+        for zone, room, name in ((plan.before[k], before, "before"), (plan.after[k], after, "after")):
+            if zone >= room:
+                raise InfeasibleError(
+                    f"{source}: pair.teeth = {teeth}: the cusp zone of {zone:.3f} mm {name} the corner at pitch arc "
+                    f"{corner:.3f} mm is wider than the segment there ({room:.3f} mm); use more teeth or a longer segment")
+
+
+def _fits(plan: Layout, teeth: int, candidate: int) -> bool:
+    """Whether ``candidate`` teeth (the curve scaled to pi m candidate) keep every corner tooth in the band."""
+    scale = candidate / teeth
+    perimeter = teeth * plan.pitch * scale
+    ratios = layout(plan.corners * scale, perimeter, plan.pitch).thickness_ratios
+    return bool(((ratios >= THICKNESS_BAND[0]) & (ratios <= THICKNESS_BAND[1])).all())
+
+
+@dataclass(frozen=True)
+class CompositeTeeth:
+    """Both outlines (mm, each gear's frame) and what was built and measured on the way."""
+
+    outlines: tuple[np.ndarray, np.ndarray]
+    counts: tuple[int, int]
+    plan: Layout
+    corner_teeth: tuple[CornerTooth, ...]
+    self_intersections: tuple[int, int]
+    mesh: MeshCheck
+    contact: ContactRatio
+    cutter: str = "composite"
+
+    @property
+    def contact_ratio(self) -> tuple[float, float]:
+        return float(np.nanmin(self.contact.ratios)), float(np.nanmax(self.contact.ratios))
+
+    @property
+    def failures(self) -> list[str]:
+        """Contact lost on a flank side somewhere in the cycle, self-intersections, and the mesh check's failures."""
+        found = []
+        where = self.contact.where()
+        if self.contact.minimum < 1:
+            found.append(f"contact ratio {self.contact.minimum:.3f} below 1 on the {where['flank']} flank of the "
+                         f"tooth at {where['phi_deg']:.2f} deg")
+        for flank, angles in zip(("low-arc", "high-arc"), self.contact.uncovered_deg):
+            if angles.size:
+                found.append(f"no {flank} flank touches (contact ratio below 1) at {angles.size} of the sampled "
+                             f"positions, first at driver angle {angles[0]:.2f} deg")
+        if any(self.self_intersections):
+            found.append(f"self-intersecting tooth outlines: {list(self.self_intersections)} crossings")
+        return found + self.mesh.failures
+
+    @property
+    def passed(self) -> bool:
+        return not self.failures
+
+
+def _pitch_heights(points: np.ndarray, pitch_curve: shapely.Polygon) -> np.ndarray:
+    """Distance (mm) of points outside the pitch curve from it (0 inside)."""
+    return shapely.distance(pitch_curve, shapely.points(points))
+
+
+def _to_tip(arch_points: np.ndarray, heights: np.ndarray, tip: float) -> np.ndarray:
+    """The arch up to where it reaches the tip height (the crossing interpolated)."""
+    above = np.flatnonzero(heights > tip)
+    if not above.size:
+        return arch_points
+    k = int(above[0])
+    w = (tip - heights[k - 1]) / (heights[k] - heights[k - 1])
+    return np.r_[arch_points[:k], (arch_points[k - 1] + w * (arch_points[k] - arch_points[k - 1]))[None]]
+
+
+def _turn_deg(first: np.ndarray, second: np.ndarray) -> float:
+    cross = first[0] * second[1] - first[1] * second[0]
+    return float(np.degrees(np.arctan2(cross, np.dot(first, second))))
+
+
+def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float, teeth: int, cutter_teeth: int,
+                             source: str, corner_pressure: float = np.radians(60)) -> CompositeTeeth:
+    """Driver outline of shaper-cut stretches and corner teeth, the driven outline by envelope (module docstring).
+
+    Raises
+    ------
+    InfeasibleError
+        When a corner is concave, a corner tooth leaves the thickness band, or a cusp zone is wider than its segment.
+    """
+    curve: CompositeCurve = design.driver
+    perimeter, pitch = design.perimeters[0], np.pi * module
+    corners = sorted(cusps(curve), key=lambda c: c["phi_deg"])
+    concave = [c for c in corners if c["turn_deg"] < 0]
+    if concave:
+        raise InfeasibleError(f"{source}: driver.segments: the corner at {concave[0]['phi_deg']:.3f} deg turns "
+                              f"{concave[0]['turn_deg']:.3f} deg (concave): composite teeth stand on convex corners only")
+    starts = [float(np.mod(s.start, 2 * np.pi)) for s in curve.segments]
+    joint_index = [int(np.argmin(np.abs(np.radians(c["phi_deg"]) - np.array(starts)))) for c in corners]
+    edge_arc = {float(phi): float(arc) for phi, arc in zip(design.phi1, design.arc)}
+    segment_start = np.array([edge_arc[min(edge_arc, key=lambda e: abs(e - start))] for start in starts])
+    segment_length = np.mod(np.roll(segment_start, -1) - segment_start, perimeter)
+    segment_length[segment_length == 0] = perimeter
+    corner_arc = np.array([segment_start[k] for k in joint_index])
+    plan = layout(corner_arc, perimeter, pitch)
+    _check_layout(plan, teeth, [(segment_length[k - 1], segment_length[k]) for k in joint_index], source)
+
+    def arc_to_phi(s):
+        return np.interp(np.mod(s, perimeter), design.arc, design.phi1)
+
+    table = driver_table(design)
+    count = int(np.ceil(perimeter / (BIN_MODULES * module)))
+    bins = (np.arange(count) + 0.5) * perimeter / count
+    pitch_curve = shapely.Polygon(design.points[0])
+    tip = ADDENDUM * module
+    pieces, corner_teeth = [], []
+    for j, k in enumerate(joint_index):
+        start, end = corner_arc[j] - plan.before[j], corner_arc[j] + plan.after[j]
+        left = arch(curve, arc_to_phi, corner_arc[j], plan.before[j], k - 1, +1, alpha, 2 * corner_pressure)
+        right = arch(curve, arc_to_phi, corner_arc[j], plan.after[j], k, -1, alpha, 2 * corner_pressure)
+        rising = [_to_tip(a.points, _pitch_heights(a.points, pitch_curve), tip) for a in (left, right)]
+        pieces.append(np.r_[rising[0], rising[1][::-1]])
+        next_start = corner_arc[(j + 1) % len(corners)] - plan.before[(j + 1) % len(corners)]
+        run = np.mod(bins - end, perimeter)
+        keep = np.flatnonzero(run <= np.mod(next_start - end, perimeter))
+        with np.errstate(invalid="ignore"):
+            stretch = shaper_profile(table, module, alpha, cutter_teeth, first_tooth_at=end - pitch / 4)[keep]
+        if not np.isfinite(stretch).all():
+            raise InfeasibleError(
+                f"{source}: pair.teeth = {teeth}: the shaper path (swept_teeth) returned non-finite tooth heights on the "
+                f"stretch after the corner at pitch arc {corner_arc[j]:.3f} mm; try another tooth count")
+        pieces.append(stretch[np.argsort(run[keep])])
+        corner_teeth.append((j, start, end, (left, right), rising))
+    driver = np.concatenate(pieces)
+    corner_teeth = tuple(_corner_tooth(driver, corner_arc[j], start, end, pitch, arches, rising)
+                         for j, start, end, arches, rising in corner_teeth)
+    driven = carved_mate(design, driver, module)
+    count = int(plan.between.sum()) + len(corners)
+    outlines = (driver, driven)
+    return CompositeTeeth(outlines, (count, int(round(count * design.orders[1] / design.orders[0]))), plan,
+                          corner_teeth, (self_intersections(driver), self_intersections(driven)),
+                          check_mesh(design, outlines, module),
+                          measure_contact_ratio(design, outlines, module, plan.space_centers(perimeter)))
+
+
+def carved_mate(design: GearPairDesign, driver: np.ndarray, module: float) -> np.ndarray:
+    """The driven outline as its blank (the pitch curve grown by the addendum) less the driver's teeth placed
+    in the driven gear's frame at positions CARVE_STEP_MODULES of pitch arc apart through one driven turn.
+
+    The driver's outline, simplified within CARVE_SIMPLIFY_MODULES, is cut to a disc of CARVE_REACH_PITCHES
+    about the contact at each position. ``swept_teeth.mate_profile`` bins the cut along the driven pitch
+    curve's normals instead; at the concave corner that every driver corner makes on the driven curve
+    (derivations/cusp.py) those normals cross above the pitch curve and fan apart below it, so bins there
+    collect cuts from the wrong side or none (overlaps of 0.03 mm at module 2 on the example). Polygon
+    differences have no such frame.
+    """
+    perimeter = design.perimeters[0]
+    n1, n2 = design.orders
+    arcs = np.arange(0.0, perimeter * n2 / n1, CARVE_STEP_MODULES * module)
+    phi1 = np.interp(np.mod(arcs, perimeter), design.arc, design.phi1) + 2 * np.pi * np.floor(arcs / perimeter)
+    phi2 = driven_angle(design, phi1)
+    contact = np.interp(np.mod(arcs, perimeter), design.arc, np.arange(len(design.arc)))
+    body = shapely.simplify(shapely.Polygon(driver), CARVE_SIMPLIFY_MODULES * module)
+    shapely.prepare(body)
+    centers = design.points[0][np.round(contact).astype(int)]
+    discs = shapely.buffer(shapely.points(centers), CARVE_REACH_PITCHES * np.pi * module, quad_segs=8)
+    teeth = shapely.intersection(body, discs)
+    placed = []
+    for tooth, a, b in zip(teeth, phi1, phi2):
+        points = shapely.get_coordinates(tooth)
+        c1, s1 = np.cos(-a), np.sin(-a)
+        world = points @ np.array([[c1, s1], [-s1, c1]]) - [design.center_distance, 0.0]
+        c2, s2 = np.cos(-b), np.sin(-b)
+        placed.append(shapely.transform(tooth, lambda _: world @ np.array([[c2, s2], [-s2, c2]])))
+    blank = shapely.Polygon(design.points[1][:-1]).buffer(ADDENDUM * module, quad_segs=64)
+    driven = blank.difference(shapely.union_all(placed))
+    if driven.geom_type == "MultiPolygon":
+        driven = max(driven.geoms, key=lambda g: g.area)
+    return shapely.get_coordinates(driven.exterior)[:-1]
+
+
+def _corner_tooth(outline, corner, start, end, pitch, arches, rising) -> CornerTooth:
+    """The joints of a corner tooth's arches with the involute below them: the outline's turn and gap there."""
+    kinks, gaps = [], []
+    n = len(outline)
+    for points, after in ((rising[0], False), (rising[1], True)):
+        at = int(np.argmin(np.linalg.norm(outline - points[0], axis=1)))      # the arch's pitch point in the outline
+        if after:       # outline runs down the arch to D, then down the involute
+            arch_way, involute_way = points[0] - points[1], outline[(at + 4) % n] - outline[(at + 1) % n]
+            kinks.append(abs(_turn_deg(arch_way, involute_way)))
+            gaps.append(float(np.linalg.norm(outline[(at + 1) % n] - points[0])))
+        else:           # outline runs up the involute to A, then up the arch
+            involute_way, arch_way = outline[at - 1] - outline[at - 4], points[1] - points[0]
+            kinks.append(abs(_turn_deg(involute_way, arch_way)))
+            gaps.append(float(np.linalg.norm(outline[at - 1] - points[0])))
+    return CornerTooth(float(corner), float(start), float(end), pitch, arches, tuple(kinks), tuple(gaps))
+
+
+def composite_teeth_json(teeth: CompositeTeeth) -> dict:
+    """The composite teeth's part of report.json (mm, degrees)."""
+    mesh, contact = teeth.mesh, teeth.contact
+    return {
+        "tooth_counts_built": list(teeth.counts),
+        "contact_ratio_min": contact.minimum,
+        "contact_ratio_where": contact.where(),
+        "contact_lost_at_deg": {"low-arc": contact.uncovered_deg[0].tolist(), "high-arc": contact.uncovered_deg[1].tolist()},
+        "mesh_check": {"max_overlap_mm": mesh.max_overlap_mm, "min_clearance_mm": mesh.min_clearance_mm,
+                       "transmission_error_deg": float(np.degrees(mesh.max_transmission_error_rad)),
+                       "transmission_error_mm": mesh.max_transmission_error_mm, "passed": mesh.passed},
+        "corner_teeth": [{"corner_arc_mm": t.corner_arc, "thickness_pitches": t.thickness_ratio,
+                          "rolling_radii_mm": [a.radius for a in t.arches],
+                          "base_depths_mm": [a.depth for a in t.arches],
+                          "joint_kinks_deg": list(t.joint_kinks_deg), "joint_gaps_mm": list(t.joint_gaps_mm),
+                          "arch_pressure_angles_deg": [list(arch_pressure_range(a)) for a in t.arches],
+                          "arch_min_curvature_radius_mm": [arch_min_curvature_radius(a) for a in t.arches]}
+                         for t in teeth.corner_teeth],
+    }

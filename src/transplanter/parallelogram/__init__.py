@@ -1,0 +1,30 @@
+"""The onion transplanter of seed 001: a parallelogram planting mechanism driven by a pair of
+denatured Pascal limacon gears, designed by NSGA-II and polished by an NLP.
+
+Public API: ``load_problem`` / ``parse_problem`` (TOML file or dict, mm and degrees) ->
+``ParallelogramProblem`` (mm, radians); ``load_design`` / ``parse_design`` -> ``DesignFile``;
+``evaluate_design(problem, design)`` -> ``DesignReport`` (``to_json()``);
+``draw_design_figures(problem, design)`` -> matplotlib Figures by file stem; ``synthesize(problem)``
+-> ``ParallelogramResult`` (NSGA-II, the knee evaluated again, its gear pair; ``to_json()``);
+``draw_figures(result)`` -> Figures by file stem; ``write_tables(result, folder)`` -> CSV files.
+"""
+from transplanter.lazy_exports import lazy_exports
+
+__all__ = ["DesignFile", "DesignReport", "ParallelogramProblem", "ParallelogramResult", "draw_design_figures",
+           "draw_figures", "evaluate_design", "load_design", "load_problem", "parse_design", "parse_problem",
+           "synthesize", "write_tables"]
+__getattr__, __dir__ = lazy_exports(__name__, {
+    "DesignFile": "evaluation",
+    "load_design": "evaluation",
+    "parse_design": "evaluation",
+    "ParallelogramProblem": "problem",
+    "load_problem": "problem",
+    "parse_problem": "problem",
+    "DesignReport": "result",
+    "ParallelogramResult": "result",
+    "evaluate_design": "synthesis",
+    "synthesize": "synthesis",
+    "draw_design_figures": "figures",
+    "draw_figures": "figures",
+    "write_tables": "tables",
+})
