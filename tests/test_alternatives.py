@@ -16,7 +16,7 @@ from transplanter.errors import ProblemError, SolverError
 from transplanter.fivebar.alternatives import (ACTIVE_TOLERANCE, ANGLE_TIE, MERGE_TOLERANCE, Failure, active_bounds,
                                                assess, merge, rank, reach, refine_all)
 from transplanter.fivebar.figures import draw_figures
-from transplanter.fivebar.nlp import CURVES
+from transplanter.fivebar.nlp import CONCAVITY_LIMIT, CURVES, DesignSolver, HollowError
 from transplanter.fivebar.problem import parse_problem
 from transplanter.fivebar.report import to_markdown
 from transplanter.fivebar.result import alternative_json
@@ -214,3 +214,28 @@ def test_figures_name_hinges_gears_and_show_the_trade_off(run):
     one, two = result.toothed.counts
     assert gear_labels == [f"sun (driver, stage 1), {one} teeth", f"first intermediate (driven, stage 1), {one} teeth",
                            f"second intermediate (driver, stage 2), {two} teeth", f"planet (driven, stage 2), {two} teeth"]
+
+
+def test_a_start_whose_curves_cannot_be_held_to_shaper_hollows_fails_with_the_unheld_numbers(run):
+    """When IPOPT fails with the curves held to a kappa >= -CONCAVITY_LIMIT, ``refine`` does not hand on a
+    design with hollows no cutter makes: it raises, naming the status and the least a kappa of each curve of
+    the design made without the hold (here computed again, by its own solve), and ``refine_all`` lists the
+    start as failed with that reason."""
+    result, _ = run
+    problem, start = result.problem, result.region.feasible[0]
+
+    class HeldFails(DesignSolver):
+        def solve(self, start, added_turns=(), warm=None, curvature_floor=None, iteration_limit=None):
+            if curvature_floor is not None:
+                raise SolverError("held", "Infeasible_Problem_Detected")
+            return super().solve(start, added_turns, warm, curvature_floor, iteration_limit)
+
+    unheld = DesignSolver(problem)._exchange(start, None)
+    with pytest.raises(HollowError) as caught:
+        HeldFails(problem).refine(start)
+    reason = caught.value.reason
+    assert "Infeasible_Problem_Detected" in reason and f"{-CONCAVITY_LIMIT:g}" in reason
+    for curve, value in zip(CURVES, unheld.min_curvature):
+        assert f"{curve} {value:.3f}" in reason
+    found, failed, _ = refine_all(problem, HeldFails(problem), [start])
+    assert found == [] and failed == [Failure(0, reason)]

