@@ -237,3 +237,45 @@ def test_plot_is_written_whole(tmp_path, monkeypatch):
 def test_reports_are_json_without_nan_or_infinity():
     text = report_json({"a": float("nan"), "b": [1.0, float("inf"), {"c": -float("inf")}], "d": 2.5})
     assert json.loads(text) == {"a": None, "b": [1.0, None, {"c": None}], "d": 2.5}
+
+
+@pytest.mark.parametrize("limits", [{"ratio": [0.9, 1.2]}, {"min_closure_margin": 0.3},
+                                    {"ratio": [0.8, 1.5], "min_closure_margin": 0.2}])
+def test_an_infeasible_five_bar_says_which_limit_to_move_and_that_value_admits_a_pair(limits):
+    """Limits no pair of the example meets: the message gives new [conditions] values, and a problem with
+    those values has a feasible pair (the hint's ground truth is the region judged again)."""
+    from transplanter.fivebar.problem import parse_problem
+    from transplanter.fivebar.region import solution_region
+    from transplanter.fivebar.relaxation import relaxation
+    from transplanter.errors import InfeasibleError
+    from transplanter.toml_fields import read_toml
+
+    data = read_toml(EXAMPLES / "vegetable_planting.toml")
+    data["region"]["samples"] = 300
+    data["conditions"].update(limits)
+    problem = parse_problem(data, "strict.toml")
+    with pytest.raises(InfeasibleError, match="fails only on limits; it passes with conditions") as caught:
+        fivebar.synthesize(problem)
+    assert "\n" not in str(caught.value)
+    change = relaxation(problem, solution_region(problem))
+    assert set(change) - {"candidate"} == {f"conditions.{key}" for key in limits} | (
+        {"conditions.min_closure_margin"} if "ratio" in limits else set())
+    for field, value in change.items():
+        if field != "candidate":
+            assert f"{field} = " in str(caught.value)
+            data["conditions"][field.split(".")[1]] = value
+    assert solution_region(parse_problem(data, "relaxed.toml")).feasible
+
+
+def test_an_infeasible_five_bar_with_no_limit_to_move_says_what_else_to_change():
+    """Ranges so tight that every pair fails on its geometry (return stroke, branch, crank): the hint
+    names the ranges, the region and the key poses, with the dyads kept."""
+    from transplanter.errors import InfeasibleError
+    from transplanter.toml_fields import read_toml
+
+    data = read_toml(EXAMPLES / "vegetable_planting.toml")
+    data["region"]["samples"] = 300
+    data["ranges"]["ep"] = [55.0, 80.0]
+    problem = fivebar.parse_problem(data, "tight.toml")
+    with pytest.raises(InfeasibleError, match=r"no limit changes; the ranges and region keep \d+ of \d+ B-E dyads"):
+        fivebar.synthesize(problem)

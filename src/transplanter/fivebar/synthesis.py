@@ -19,6 +19,7 @@ from transplanter.fivebar.alternatives import Alternative, Progress, refine_all,
 from transplanter.fivebar.nlp import DesignSolver
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import ChainFamily, Region, solution_region
+from transplanter.fivebar.relaxation import relaxation_hint
 from transplanter.fivebar.result import FiveBarResult
 from transplanter.fivebar.verification import verify
 from transplanter.trains.toothed_train import design_toothed_train
@@ -53,7 +54,8 @@ def _no_feasible_pair(problem: FiveBarProblem, region: Region):
     lines = "; ".join(f"[B ({c.mech.hinge_b[0]:.1f}, {c.mech.hinge_b[1]:.1f}), OA {c.mech.carrier_length:.1f}: "
                       f"{' / '.join(c.defects)}]" for c in closest)
     raise InfeasibleError(f"{problem.source}: none of the {len(region.candidates)} five-bars of the region is "
-                          f"feasible (first failing condition per pair: {counts}); closest: {lines}")
+                          f"feasible (first failing condition per pair: {counts}); closest: {lines}; "
+                          f"{relaxation_hint(problem, region)}")
 
 
 def _checked_pick(pick) -> int:
