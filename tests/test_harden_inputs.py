@@ -222,7 +222,7 @@ def test_a_write_that_fails_midway_is_one_line_and_keeps_the_earlier_output(tmp_
     monkeypatch.setattr(cli, "_save_figures", disk_full)
     assert main(["burmester", str(EXAMPLES / "burmester_4poses.toml"), "--out", str(out), "--quiet"]) == 2
     line = capsys.readouterr().err.strip()
-    assert line.endswith(f"burmester.png: cannot be written (No space left on device); {out} is left as it was")
+    assert line.endswith(f"burmester.png: No space left on device; {out} is left as it was")
     assert {p.name: p.read_bytes() for p in out.iterdir()} == earlier
     assert [p.name for p in tmp_path.iterdir()] == ["out"]
 

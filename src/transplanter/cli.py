@@ -312,8 +312,8 @@ def main(argv: list[str] | None = None) -> int:
     except TransplanterError as error:
         print(f"transplanter: error: {error}", file=sys.stderr)
         return 2
-    except OSError as error:            # a disk that fills or a folder that goes away under the run
-        print(f"transplanter: error: {error.filename or out}: cannot be written ({error.strerror})"
+    except OSError as error:            # a disk that fills or a file that goes away under the run
+        print(f"transplanter: error: {error.filename or out or 'a file'}: {error.strerror or error}"
               + (f"; {out} is left as it was" if out else ""), file=sys.stderr)
         return 2
     except KeyboardInterrupt:
