@@ -135,7 +135,10 @@ def _lower_envelope(table: PitchTable, tip_height: float, module: float, segment
         keep = h < tip_height
         low = np.flatnonzero(keep)
         np.minimum.at(height, np.minimum((s[low] / width).astype(int), count - 1), h[low])
-        a, b = a[keep[a] | keep[b]], b[keep[a] | keep[b]]
+        # a segment with an end never projected (outside the grown tip by the polar test, though made
+        # near by another segment of its other end) cuts only at that other end, recorded above
+        cuts = (keep[a] | keep[b]) & near[a] & near[b]
+        a, b = a[cuts], b[cuts]
         run = np.mod(s[b] - s[a] + perimeter / 2, perimeter) - perimeter / 2
         a, b, run = np.where(run < 0, b, a), np.where(run < 0, a, b), np.abs(run)
         first = np.floor(s[a] / width).astype(int)
