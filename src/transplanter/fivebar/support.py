@@ -76,6 +76,10 @@ class SupportDesign:
     @property
     def failures(self) -> list[str]:
         found = [f"support cam: {reason}" for reason in self.cam.failures]
+        stuck = ~np.isfinite(self.plate_height)
+        if stuck.any():
+            found.append(f"support rod G-H cannot reach the plate line at {int(stuck.sum())} of {stuck.size} carrier "
+                         f"turns, from {np.degrees(self.carrier_turns[stuck].min()):.1f} deg")
         if not self.clearance_mm >= 0:
             found.append(f"support plate at x_Z = {self.spec.linkage.plate_x:g} mm is {-self.clearance_mm:.3f} mm right "
                          f"of the receiving plate's hinge E at carrier turn {np.degrees(self.clearance_turn):.1f} deg")

@@ -31,7 +31,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from transplanter.cam.kinematics import oscillating_start
-from transplanter.cam.problem import LAWS, Follower, check_base_radius
+from transplanter.cam.problem import LAWS, TURN_TOLERANCE_DEG, Follower, check_base_radius
 from transplanter.cam.support_linkage import ASSEMBLIES, SupportLinkage, support_swing
 from transplanter.toml_fields import FieldReader
 
@@ -134,10 +134,10 @@ def parse_support(read: FieldReader, table, hinge_e_range: tuple[float, float] |
         distances = [float(np.linalg.norm(linkage.slider_point(h) - linkage.pivot)) for h in heights]
         read.fail("support.heights", heights.tolist(), f"heights at which C-G-H closes: |CH| = "
                   f"{distances[0]:.2f} and {distances[1]:.2f} mm, while l_CG and l_GH reach {near:g} to {far:g} mm")
-    for angle, height in ((low, heights[0]), (high, heights[1])):
-        g = linkage.joint_g(angle)
-        if abs(plate_x - g[0]) >= linkage.rod_length * (1 - 1e-9):
-            read.fail("support.assembly", assembly, f"an assembly whose rod G-H is not horizontal at height {height:g}")
+    sides = [np.sign(linkage.slider_point(h)[1] - linkage.joint_g(a)[1]) for a, h in ((low, heights[0]), (high, heights[1]))]
+    if sides[0] != sides[1]:
+        read.fail("support.assembly", assembly, f"an assembly in which H stays on one side of G between the heights "
+                  f"(with this one the rod G-H passes horizontal, a dead point; try assembly = {-assembly})")
     rise_sense = np.sign(np.angle(np.exp(1j * (high - low))))
     side = table.get("roller_side", "pulled")
     if side not in ("pulled", "pushed"):
@@ -146,7 +146,7 @@ def parse_support(read: FieldReader, table, hinge_e_range: tuple[float, float] |
     follower = Follower("oscillating", _length(read, table, "roller_radius", 6.0), pivot=linkage.pivot - center,
                         arm_length=_length(read, table, "arm_length", 58.0), pulled=side == "pulled")
     base = _length(read, table, "base_radius", 30.0)
-    check_base_radius_of(read, follower, base)
+    _check_cam_reach(read, follower, base)
     start, sense = oscillating_start(follower, base + follower.roller_radius, CAM_DIRECTION)
     if sense != rise_sense:
         other = "pushed" if side == "pulled" else "pulled"
@@ -164,7 +164,7 @@ def parse_support(read: FieldReader, table, hinge_e_range: tuple[float, float] |
     segments = None
     if "segments_deg" in table:
         segments = read.numbers(table, "segments_deg", "support", 4)
-        if len(segments) != 4 or np.any(segments <= 0) or abs(segments.sum() - 360.0) > 1e-6:
+        if len(segments) != 4 or np.any(segments <= 0) or abs(segments.sum() - 360.0) > TURN_TOLERANCE_DEG:
             read.fail("support.segments_deg", table["segments_deg"], "four positive cam angles (push, receive, return, "
                       f"rest) adding up to 360 deg (these add up to {float(np.sum(segments)):.6g})")
         segments = np.radians(segments)
@@ -172,7 +172,7 @@ def parse_support(read: FieldReader, table, hinge_e_range: tuple[float, float] |
                        float(np.radians(limit)), ratio, segments, low, high, float(np.angle(np.exp(1j * (low - start)))))
 
 
-def check_base_radius_of(read: FieldReader, follower: Follower, base: float):
+def _check_cam_reach(read: FieldReader, follower: Follower, base: float):
     """``cam.problem.check_base_radius`` with the support's field names."""
     names = {"follower.roller_radius": "support.roller_radius", "follower.arm_length": "support.arm_length"}
 
