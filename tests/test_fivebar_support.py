@@ -179,6 +179,9 @@ def test_without_support_nothing_changes(evaluation):
                          r"ranges\.x_e puts from x = -100 to 0 mm in pose 1"),
     ({"heights": [-188.0, -307.0]}, r"support\.heights = .*low < high"),
     ({"heights": [-400.0, -188.0]}, r"support\.heights = .*C-G-H closes"),
+    ({"heights": [-307.0, -80.0]}, r"support\.assembly = 1: expected an assembly in which H stays on one side of G "
+                                   r"between the heights \(with this one the rod G-H passes horizontal, a dead point; "
+                                   r"try assembly = -1\)"),
     ({"roller_side": "pushed"}, r"support\.roller_side = 'pushed': expected \"pulled\""),
     ({"arm_length": 5.0}, r"support\.arm_length = 5\.0: expected an arm whose roller reaches the cam"),
     ({"law": "cubic"}, r"support\.law = 'cubic': expected one of"),
@@ -189,6 +192,15 @@ def test_bad_support_fields_are_named(changes, words):
     with pytest.raises(ProblemError, match=words) as error:
         _problem(**changes)
     assert "\n" not in str(error.value)
+
+
+def test_dead_point_names_the_assembly_that_has_none():
+    """Up to -80 mm assembly 1 swings G past the height of H (the rod passes horizontal); assembly -1 does not."""
+    spec = _problem(heights=[-307.0, -80.0], assembly=-1).support
+    linkage = spec.linkage
+    sides = [np.sign(linkage.slider_point(h)[1] - linkage.joint_g(a)[1])
+             for a, h in ((spec.low_angle, -307.0), (spec.high_angle, -80.0))]
+    assert sides[0] == sides[1]
 
 
 def test_cli_design_out_lists_the_cam_files(tmp_path, capsys):
