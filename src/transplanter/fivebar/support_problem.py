@@ -6,18 +6,18 @@ Schema (docs/fivebar.md, "Seedling support"), mm and degrees:
 
     [support]
     plate_x = -200.0              # x_Z: the line the plate H-Z slides on, left of the receiving plate's hinge E
-    heights = [-305.0, -186.0]    # y_Z at the plate's lowest and highest
-    pivot = [65.4, -80.0]         # C, the oscillating bar's pivot
+    heights = [-307.0, -188.0]    # y_Z at the plate's lowest and highest
+    pivot = [-4.6, -80.0]         # C, the oscillating bar's pivot
     rocker_length = 200.0         # l_CG
     rod_length = 30.0             # l_GH
     plate_length = 116.0          # l_HZ
     plate_below_rod = false       # H = Z + (0, l_HZ) (eq 14 as printed); true: H = Z - (0, l_HZ)
     assembly = 1                  # which of eq 14's two rocker angles (1 or -1)
-    cam_center = [160.0, 30.0]    # D; the cam turns with the carrier (clockwise)
+    cam_center = [35.96, -16.91]  # D; the cam turns with the carrier (clockwise)
     arm_length = 58.0             # l_CK, pivot to roller centre
     base_radius = 30.0            # mm
     roller_radius = 6.0           # mm
-    roller_side = "pushed"        # or "pulled" (cam/problem.py)
+    roller_side = "pulled"        # or "pushed" (cam/problem.py): the side whose rise lifts the plate
     law = "harmonic"              # rise and return law
     pressure_angle_deg = 45.0     # the cam's limit
     drive_ratio = 1.0             # cam turns per carrier turn (the paper's chain: 1)
