@@ -112,9 +112,14 @@ def _fivebar(args) -> int:
     problem = fivebar.load_problem(args.file)
     if args.design:
         evaluation = fivebar.evaluate_design(problem, fivebar.load_design(args.design))
+        if args.folder and evaluation.support:
+            from transplanter.cam import write_drawings as write_cam_drawings
+
+            with progress.step("drawings"):
+                write_cam_drawings(evaluation.support.cam, args.folder)
         report = evaluation.to_json()
         return _publish(args, report, evaluation_markdown(report, problem.labels),
-                        evaluation_markdown(report, problem.labels), _failures(evaluation.candidate))
+                        evaluation_markdown(report, problem.labels), _failures(evaluation.candidate, evaluation.support))
     with progress.step("synthesis"):
         result = fivebar.synthesize(problem, pick=args.pick, progress=progress.report)
     report = result.to_json()

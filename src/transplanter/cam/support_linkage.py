@@ -66,6 +66,14 @@ class SupportLinkage:
         angle = np.asarray(rocker_angle, float)
         return self.pivot + self.rocker_length * np.stack([np.cos(angle), np.sin(angle)], -1)
 
+    def plate_height(self, rocker_angle, above: float) -> np.ndarray:
+        """y_Z (mm) for the rocker at ``rocker_angle`` (rad): eq (14) solved for the slider, with H above G
+        (``above`` = 1) or below it (-1); NaN where G-H cannot reach the line x = x_Z."""
+        g = self.joint_g(rocker_angle)
+        span = self.rod_length**2 - (self.plate_x - g[..., 0]) ** 2
+        h = g[..., 1] + above * np.sqrt(np.where(span >= 0, span, np.nan))
+        return h - (-1.0 if self.plate_below_rod else 1.0) * self.plate_length
+
     def closure_residual(self, plate_height, rocker_angle) -> np.ndarray:
         """|G - H| - l_GH (mm): an independent check of a solved rocker angle (zero when the loop closes)."""
         return np.linalg.norm(self.joint_g(rocker_angle) - self.slider_point(plate_height), axis=-1) - self.rod_length

@@ -4,7 +4,8 @@ The still parts are drawn once; each frame redraws only the moving artists (``mo
 
 Left, the ground frame (mm): the linkage O-A-F-E-B and the push plate E-F-P moving, P's path
 over the turn (from the verification) traced up to the frame, the key poses marked, the pitch
-curves turning on the carrier. Right, the carrier frame (mm): the four pitch curves meshing, and
+curves turning on the carrier, and with a seedling support its cam, arm C-K and C-G-H-Z moving with the
+carrier. Right, the carrier frame (mm): the four pitch curves meshing, and
 tooth outlines when given. Hinges and plate come from ``loop_closure``, gear turns from the design
 (``gears_on_carrier``).
 """
@@ -61,8 +62,15 @@ def _draw_frames(result: FiveBarResult, teeth: Teeth | None, frames: int):
     plate, = world.fill([], [], color="tab:green", alpha=0.5, label="plate E-F-P", animated=True)
     world_gears = [world.plot([], [], lw=0.8, animated=True)[0] for _ in outlines]
     gear_reach = max(np.linalg.norm(g.center) + np.linalg.norm(g.pitch_curve, axis=1).max() for g in gears)
-    every = np.vstack([check.trajectory, gear_reach * np.array([[-1, -1], [1, 1]]), mech.hinge_b[None], state["e"],
-                       state["f"]])
+    support, moving_support = result.support, []
+    extent = [check.trajectory, gear_reach * np.array([[-1, -1], [1, 1]]), mech.hinge_b[None], state["e"], state["f"]]
+    if support is not None:
+        joints = support.joints(turns)
+        moving_support = [world.plot([], [], "m-o", ms=3, lw=1.5, label="support C-G-H-Z", animated=True)[0],
+                          world.plot([], [], "c-o", ms=3, lw=1.2, label="arm C-K", animated=True)[0],
+                          world.plot([], [], "k-", lw=0.8, label="support cam", animated=True)[0]]
+        extent += [joints[name] for name in "CGHZ"] + [support.cam_outline(0.0)]
+    every = np.vstack(extent)
     low, high = np.nanmin(every, axis=0), np.nanmax(every, axis=0)
     pad = 0.05 * (high - low).max()
     world.set(xlim=(low[0] - pad, high[0] + pad), ylim=(low[1] - pad, high[1] + pad), aspect="equal",
@@ -97,7 +105,11 @@ def _draw_frames(result: FiveBarResult, teeth: Teeth | None, frames: int):
         for line, (outline, center, angle, _) in zip(carrier_teeth, toothed):
             line.set_data(*_placed(outline, center, angle, c).T)
         clock.set_text(_clock_text(c))
-        return [trace, chain, plate, clock, *world_gears, *carrier_curves, *carrier_teeth]
+        if moving_support:
+            moving_support[0].set_data(*np.array([joints[name][k] for name in "CGHZ"]).T)
+            moving_support[1].set_data(*np.array([joints["C"][k], joints["K"][k]]).T)
+            moving_support[2].set_data(*support.cam_outline(c).T)
+        return [trace, chain, plate, clock, *world_gears, *carrier_curves, *carrier_teeth, *moving_support]
 
     return fig, draw
 

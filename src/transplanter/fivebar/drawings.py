@@ -4,7 +4,10 @@ All in millimetres and degrees (DXF INSUNITS = mm). Files:
 
 - ``linkage.dxf``: links as centre lines (LINKS; the frame O-B on FRAME), hinge circles (HINGES,
   radius ``HINGE_FRACTION`` of the largest hinge distance), labels O A B E F P (LABELS, TEXT), the
-  plate triangle E-F-P (PLATE), P over a turn (TRAJECTORY) and the key poses (KEY_POSES, labelled).
+  plate triangle E-F-P (PLATE), P over a turn (TRAJECTORY) and the key poses (KEY_POSES, labelled); with a
+  seedling support, on SUPPORT: C-G-H-Z and the arm C-K at pose 1, hinges C, G, H and D, labels, and the cam's
+  profile and pitch curve about D.
+- with a seedling support, the cam's own ``cam_profile.csv``, ``cam.dxf`` and ``cam.svg`` (``cam.drawings``).
 - ``trajectory.csv``: P over a turn from the verification (gears rolling, loop closed): carrier turn
   (clockwise from pose 1) and carrier angle (counterclockwise from +x), x, y, plate angle.
 - ``relative_angle.csv``: rho (rod I against the carrier), rho' = drho/dc and the total ratio i0 = 1 / rho'.
@@ -21,7 +24,9 @@ import ezdxf
 import numpy as np
 
 from transplanter.fivebar.gears_on_carrier import gears_on_carrier, tooth_outlines
+from transplanter.cam.drawings import write_drawings as write_cam_drawings
 from transplanter.fivebar.result import FiveBarResult
+from transplanter.fivebar.support import SupportDesign
 from transplanter.gears.drawings import GearDrawing, default_bore_radius, write_gear_drawings
 
 #: Hinge circle radius and label height as fractions of the largest distance between two hinges in pose 1.
@@ -44,7 +49,8 @@ def write_linkage_dxf(result: FiveBarResult, path: Path) -> Path:
     span = float(np.linalg.norm(hinges[:, None] - hinges[None], axis=-1).max())
     document = ezdxf.new("R2010", setup=False)
     document.units = ezdxf.units.MM
-    for layer in ("LINKS", "FRAME", "HINGES", "LABELS", "PLATE", "TRAJECTORY", "KEY_POSES"):
+    for layer in ("LINKS", "FRAME", "HINGES", "LABELS", "PLATE", "TRAJECTORY", "KEY_POSES") + (
+            ("SUPPORT",) if result.support else ()):
         document.layers.add(layer)
     space = document.modelspace()
     for start, end in ("OA", "AF", "BE"):
@@ -60,8 +66,25 @@ def write_linkage_dxf(result: FiveBarResult, path: Path) -> Path:
     for label, pose in zip(result.problem.labels, result.problem.poses):
         space.add_point(pose[:2].tolist(), dxfattribs={"layer": "KEY_POSES"})
         space.add_text(label, height=height, dxfattribs={"layer": "KEY_POSES", "insert": (pose[:2] - height).tolist()})
+    if result.support:
+        _support_entities(result.support, space, HINGE_FRACTION * span, height)
     document.saveas(path)
     return path
+
+
+def _support_entities(support: SupportDesign, space, radius: float, height: float):
+    """The support at pose 1 on layer SUPPORT: C-G-H-Z, the arm C-K, hinges, labels, the cam's profile and pitch."""
+    joints = {name: points[0] for name, points in support.joints([0.0]).items()}
+    attributes = {"layer": "SUPPORT"}
+    space.add_lwpolyline([joints[name].tolist() for name in "CGHZ"], dxfattribs=attributes)
+    space.add_line(joints["C"].tolist(), joints["K"].tolist(), dxfattribs=attributes)
+    for name in "CGHDK":
+        space.add_circle(joints[name].tolist(), support.spec.follower.roller_radius if name == "K" else radius,
+                         dxfattribs=attributes)
+    for name in "CGHZD":
+        space.add_text(name, height=height, dxfattribs={**attributes, "insert": (joints[name] + height).tolist()})
+    for curve in ("profile", "pitch"):
+        space.add_lwpolyline(support.cam_outline(0.0, curve).tolist(), close=True, dxfattribs=attributes)
 
 
 def _write_table(path: Path, columns: dict[str, np.ndarray]) -> Path:
@@ -91,12 +114,13 @@ def write_tables(result: FiveBarResult, folder: Path) -> list[Path]:
 
 
 def write_drawings(result: FiveBarResult, folder: str | Path) -> list[Path]:
-    """The linkage DXF, the CSV tables and each gear's DXF and SVG (teeth, pitch curve, bore, assembly mark)
-    of a five-bar design in ``folder`` (made if missing); the files written."""
+    """The linkage DXF, the CSV tables, each gear's DXF and SVG (teeth, pitch curve, bore, assembly mark) and the
+    support cam's files of a five-bar design in ``folder`` (made if missing); the files written."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     gears = write_gear_drawings(gear_drawings(result, tooth_outlines(result.toothed)), folder)
-    return [write_linkage_dxf(result, folder / "linkage.dxf"), *write_tables(result, folder), *gears]
+    cam = write_cam_drawings(result.support.cam, folder) if result.support else []
+    return [write_linkage_dxf(result, folder / "linkage.dxf"), *write_tables(result, folder), *gears, *cam]
 
 
 def gear_drawings(result: FiveBarResult, outlines: dict[str, np.ndarray]) -> list[GearDrawing]:

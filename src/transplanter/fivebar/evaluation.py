@@ -9,7 +9,7 @@ relative angle is the one that brings P closest to the key pose (what the best g
 could do). Reported: that position error of P, the plate-angle error there, and, with the
 plate placed exactly, how far each chain misses (|BE| - L4, |AF| - L2). The whole-turn
 conditions come from ``evaluate_candidate`` with the relative angle fitted through the
-key and return points, as in the paper.
+key and return points, as in the paper; with ``[support]``, the seedling support is timed to that motion.
 """
 from __future__ import annotations
 
@@ -22,6 +22,7 @@ from transplanter.fivebar.candidate import Candidate, evaluate_candidate
 from transplanter.fivebar.linkage import FiveBar, circle_intersection, from_hinges
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.result import design_json
+from transplanter.fivebar.support import SupportDesign, design_support
 from transplanter.errors import ProblemError
 from transplanter.toml_fields import FieldReader, read_toml, require_problem, shown
 
@@ -87,6 +88,8 @@ class DesignEvaluation:
         |BE| - L4 and |AF| - L2 at each key pose with the plate placed exactly (mm).
     alternatives : list of float
         Worst position error of each assembly tried (mm).
+    support : SupportDesign or None
+        The seedling support timed to the design (``[support]``), else None.
     """
 
     problem: FiveBarProblem
@@ -97,6 +100,7 @@ class DesignEvaluation:
     angle_errors_deg: np.ndarray
     chain_errors_mm: tuple[np.ndarray, np.ndarray]
     alternatives: list[float]
+    support: SupportDesign | None = None
 
     def to_json(self) -> dict:
         """The report as plain JSON types (mm, degrees; null where the whole-turn check was not
@@ -115,6 +119,7 @@ class DesignEvaluation:
             "ratio_range": [_finite_or_none(v) for v in candidate.ratio_range],
             "assemblies_worst_position_error_mm": self.alternatives,
             "design": design_json(self.mech, self.problem.poses[0]),
+            **({"support": self.support.to_json()} if self.support else {}),
         }
 
 
@@ -205,5 +210,13 @@ def evaluate_design(problem: FiveBarProblem, design: GivenDesign) -> DesignEvalu
     else:
         pick = int(np.argmin(worst))
     _, mech, errors = options[pick]
-    return DesignEvaluation(problem, design, mech, evaluate_candidate(problem, mech), errors[:, 0], errors[:, 1],
-                            mech.joint_chain_errors(problem.poses, problem.carrier_turns), worst)
+    candidate = evaluate_candidate(problem, mech)
+    support = None
+    if problem.support is not None:
+        if candidate.relative_angle is None:
+            raise ProblemError(f"{problem.source}: [support] needs the design's motion over a turn, which "
+                               f"{design.source} does not give: {'; '.join(candidate.defects)}")
+        support = design_support(problem.support, mech, candidate.relative_angle, problem.carrier_turns,
+                                 candidate.stroke.carrier_turns, problem.source)
+    return DesignEvaluation(problem, design, mech, candidate, errors[:, 0], errors[:, 1],
+                            mech.joint_chain_errors(problem.poses, problem.carrier_turns), worst, support)

@@ -9,8 +9,10 @@ import textwrap
 import numpy as np
 from matplotlib.figure import Figure
 
+from transplanter.cam.figures import draw_figures as draw_cam_figures
 from transplanter.fivebar.gears_on_carrier import gears_on_carrier, tooth_outlines
 from transplanter.fivebar.result import FiveBarResult
+from transplanter.fivebar.support import SupportDesign
 from transplanter.trains.figures import LEGEND_BESIDE
 
 
@@ -149,9 +151,51 @@ def draw_tradeoff(result: FiveBarResult) -> Figure:
     return fig
 
 
+def draw_support(support: SupportDesign) -> Figure:
+    """Left: the seedling support at pose 1 (plate low) and at its highest, the cam at pose 1, hinge E's path and the
+    plate line (mm). Right: the plate height and its clearance left of E against the carrier turn, stages shaded."""
+    fig = Figure(figsize=(14, 6), layout="constrained")
+    ground, timing = fig.subplots(1, 2)
+    turns = support.carrier_turns
+    high = turns[int(np.nanargmax(support.plate_height))]
+    for turn, style, when in ((0.0, "-", "pose 1"), (high, "--", f"highest, carrier turn {np.degrees(high):.0f} deg")):
+        joints = {name: points[0] for name, points in support.joints([turn]).items()}
+        ground.plot(*np.array([joints[n] for n in "CGHZ"]).T, "m" + style + "o", ms=3, label=f"C-G-H-Z ({when})")
+        ground.plot(*np.array([joints["C"], joints["K"]]).T, "c" + style + "o", ms=3, label=f"arm C-K ({when})")
+        ground.plot(*support.cam_outline(turn).T, "k" + style, lw=1, label=f"cam profile ({when})")
+    ground.plot(*support.cam_outline(0.0, "pitch").T, "k:", lw=0.8, label="pitch curve")
+    ground.plot(*support.hinge_e.T, "b-", lw=1, label="hinge E over a turn")
+    x_z = support.spec.linkage.plate_x
+    ground.axvline(x_z, color="m", lw=0.8, ls=":", label=f"plate line x_Z = {x_z:g}")
+    least = support.hinge_e[np.argmin(support.hinge_e[:, 0])]
+    ground.annotate(f"clearance {support.clearance_mm:.1f} mm", least, xytext=(8, -12), textcoords="offset points",
+                    fontsize=8)
+    for name in "CD":
+        point = support.joints([0.0])[name][0]
+        ground.annotate(name, point, xytext=(4, 4), textcoords="offset points", fontweight="bold")
+    ground.set(aspect="equal", xlabel="x (mm)", ylabel="y (mm)", title="seedling support (ground frame)")
+    ground.legend(fontsize=7, loc="upper left", bbox_to_anchor=(0, -0.1), ncols=3)
+    degrees = np.degrees(turns)
+    timing.plot(degrees, support.plate_height, "m-", label="plate height y_Z")
+    edges = np.degrees(np.cumsum(np.r_[0.0, support.stages]))
+    for (start, end), name, shade in zip(zip(edges[:-1], edges[1:]), ("push", "receive", "return", "rest"),
+                                         ("0.85", "0.95", "0.85", "0.95")):
+        timing.axvspan(start, end, color=shade)
+        timing.text((start + end) / 2, 1.0, name, transform=timing.get_xaxis_transform(), ha="center", va="bottom",
+                     fontsize=8)
+    timing.set(xlabel="carrier turn, clockwise from pose 1 (deg)", ylabel="y_Z (mm)")
+    gap = timing.twinx()
+    gap.plot(degrees, support.hinge_e[:, 0] - x_z, "b--", lw=1, label="x_E - x_Z")
+    gap.axhline(0.0, color="r", lw=0.8)
+    gap.set_ylabel("clearance left of hinge E (mm)", color="b")
+    lines = timing.get_lines() + gap.get_lines()[:1]
+    timing.legend(lines, [line.get_label() for line in lines], fontsize=8, loc="lower right")
+    return fig
+
+
 def draw_figures(result: FiveBarResult) -> dict[str, Figure]:
     """The figures of a five-bar design by file stem: ``region``, ``relative_angle``, ``gears``, ``trajectory``,
-    ``tradeoff``.
+    ``tradeoff``, and with a seedling support ``support`` and the cam's own (``cam_motion``, ...).
 
     Parameters
     ----------
@@ -163,5 +207,9 @@ def draw_figures(result: FiveBarResult) -> dict[str, Figure]:
     dict of str to matplotlib.figure.Figure
         Save with ``figure.savefig(f"{stem}.png")`` or show in a notebook.
     """
-    return {"region": draw_region(result), "relative_angle": draw_relative_angle(result),
-            "gears": draw_gears(result), "trajectory": draw_trajectory(result), "tradeoff": draw_tradeoff(result)}
+    figures = {"region": draw_region(result), "relative_angle": draw_relative_angle(result),
+               "gears": draw_gears(result), "trajectory": draw_trajectory(result), "tradeoff": draw_tradeoff(result)}
+    if result.support is not None:
+        figures["support"] = draw_support(result.support)
+        figures.update(draw_cam_figures(result.support.cam))
+    return figures

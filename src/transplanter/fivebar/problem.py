@@ -34,6 +34,7 @@ Schema (docs/fivebar.md, "Problem files"); the carrier pivot O is the origin:
     layout = "bent"               # "bent": intermediate shaft off O-A; "straight": a1 + a2 = |OA|
     first_center_distance = 93.8  # optional, both or neither: a1, a2 (mm) fixed instead of searched;
     second_center_distance = 122. # they must give whole teeth at the module
+    [support]                     # optional: the seedling support timed to the design (fivebar/support_problem.py)
 """
 from __future__ import annotations
 
@@ -43,12 +44,14 @@ from pathlib import Path
 import numpy as np
 
 from transplanter.burmester.problem import check_distinct
+from transplanter.fivebar.support_problem import SupportSpec, parse_support
 from transplanter.toml_fields import ClassFields, FieldReader, read_toml
 from transplanter.trains.toothed_train import (CUTTERS, LAYOUTS, MODULE_RANGE, PRESSURE_ANGLE_RANGE_DEG,
                                                SHAPER_TEETH_RANGE, Gearing)
 
 RANGE_FIELDS = {"ep": "|EP| (mm)", "fp": "|FP| (mm)", "x_e": "x of E in pose 1 (mm)", "x_f": "x of F in pose 1 (mm)"}
-_TOP_KEYS = {"title", "description", "key_poses", "return_points", "ranges", "conditions", "spline", "region", "gears"}
+_TOP_KEYS = {"title", "description", "key_poses", "return_points", "ranges", "conditions", "spline", "region", "gears",
+             "support"}
 
 
 @dataclass(frozen=True)
@@ -83,6 +86,8 @@ class FiveBarProblem:
     gearing : Gearing
         Module, pressure angle, cutter, carrier layout and optional fixed centre distances of the gear train
         (``trains.toothed_train``); ``center_distances`` gives its fixed centre distances (mm) or None.
+    support : SupportSpec or None
+        The seedling support to design with the five-bar (``[support]``); None: none.
     source, title : str
         Where the problem came from (file name or ``"<dict>"``) and its title.
 
@@ -105,6 +110,7 @@ class FiveBarProblem:
     samples: int = 1000
     radius_mm: float = 600.0
     gearing: Gearing = field(default_factory=Gearing)
+    support: SupportSpec | None = None
     source: str = "<dict>"
     title: str = ""
 
@@ -128,6 +134,8 @@ class FiveBarProblem:
         check.positive("radius_mm")
         if not isinstance(self.gearing, Gearing):
             check.fail("gearing", self.gearing, "a trains.toothed_train.Gearing")
+        if self.support is not None and not isinstance(self.support, SupportSpec):
+            check.fail("support", self.support, "None or a fivebar.support_problem.SupportSpec")
 
     @property
     def center_distances(self) -> tuple[float, float] | None:
@@ -290,6 +298,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
 
     gearing = _gearing(read, data.get("gears", {}))
     _check_return_points(read, rows[:, :2], points, radius)
+    support = parse_support(read, data["support"], ranges.get("x_e")) if "support" in data else None
 
     poses = rows[:, :3].copy()
     poses[:, 2] = np.radians(poses[:, 2])
@@ -297,4 +306,4 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
                           return_tolerance_mm=tolerance,
                           return_labels=tuple(return_labels), ranges=ranges, min_closure_margin=margin,
                           ratio_bounds=ratio, spline_count=count, samples=samples, radius_mm=radius,
-                          gearing=gearing, source=source, title=str(data.get("title", "")))
+                          gearing=gearing, support=support, source=source, title=str(data.get("title", "")))

@@ -55,6 +55,7 @@ def to_markdown(report: dict, labels: tuple[str, ...], figures: list[str]) -> st
               f"{region['carrier_dyads']} A-F dyads within ranges; {region['feasible_pairs']} of {region['pairs']} "
               f"five-bars feasible (removed by: {region['removed_by']}).", "",
               f"NLP: {report['nlp']['status']} in {report['nlp']['iterations']} iterations.", ""]
+    lines += support_markdown(report)
     lines += [f"![{name}]({name})" for name in figures]
     return "\n".join(lines) + "\n"
 
@@ -106,4 +107,28 @@ def evaluation_markdown(report: dict, labels: tuple[str, ...]) -> str:
              _row("BE length error (mm)", report["receiving_chain_errors_mm"]),
              _row("AF length error (mm)", report["carrier_chain_errors_mm"]), "",
              "Violations: " + ("; ".join(report["violations"]) or "none"), ""]
+    lines += support_markdown(report)
     return "\n".join(lines) + "\n"
+
+
+def support_markdown(report: dict) -> list[str]:
+    """The "Seedling support" section (none without ``[support]``)."""
+    if "support" not in report:
+        return []
+    s = report["support"]
+    cam, segments = s["cam"], s["segments"]
+    pressure, curvature = cam["max_pressure_angle_deg"], cam["min_curvature_radius_mm"]
+    angles = ", ".join(f"{name} {value:.2f}" for name, value in segments["cam_angles_deg"].items())
+    return ["## Seedling support (cam and rocker-slider, eq 14-15)", "",
+            f"- plate line x_Z = {s['plate_x_mm']:g} mm, heights {s['heights_mm'][0]:g} to {s['heights_mm'][1]:g} mm; "
+            f"rocker theta_CG {s['theta_cg_deg']['low']:.3f} to {s['theta_cg_deg']['high']:.3f} deg, swing psi = "
+            f"{s['swing_deg']:.3f} deg; bell crank KCG {s['bell_crank_kcg_deg']:.3f} deg",
+            f"- clearance to the receiving plate (min x_E - x_Z): {s['clearance_to_receiving_plate_mm']:.3f} mm at "
+            f"carrier turn {s['clearance_least_at_carrier_turn_deg']:.1f} deg",
+            f"- cam segments (deg of cam; drive ratio {s['drive_ratio']:g}, cam turning with the carrier): {angles}; "
+            f"from {segments['source']}",
+            f"- cam: base radius {cam['base_radius_mm']:g} mm; largest pressure angle rise "
+            f"{pressure['rise']:.3f} deg, return {pressure['return']:.3f} deg (limit {pressure['limit']:g}); smallest "
+            f"convex pitch radius {curvature['pitch']:.3f} mm; undercut: {'yes' if cam['undercut'] else 'no'}; "
+            f"{len(cam['acceleration_jumps'])} acceleration jumps ({', '.join(cam['laws'])})",
+            "- " + ("; ".join(s["failures"]) if s["failures"] else "passes its checks"), ""]

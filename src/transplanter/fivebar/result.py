@@ -12,6 +12,7 @@ from transplanter.fivebar.linkage import FiveBar
 from transplanter.fivebar.nlp import BENDING_WEIGHT, DesignSolution
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import Region
+from transplanter.fivebar.support import SupportDesign
 from transplanter.fivebar.verification import Verification
 from transplanter.trains.planetary import PlanetaryTrain, printed_correction
 from transplanter.trains.toothed_train import ToothedTrain, toothed_train_json
@@ -92,6 +93,8 @@ class FiveBarResult:
         The feasible candidates whose refinement failed, with the reason.
     picked : int
         Which alternative was built (1-based).
+    support : SupportDesign or None
+        The seedling support timed to the design (``[support]``), else None.
     """
 
     problem: FiveBarProblem
@@ -104,6 +107,7 @@ class FiveBarResult:
     alternatives: tuple[Alternative, ...]
     failed: tuple[Failure, ...]
     picked: int
+    support: SupportDesign | None = None
 
     @property
     def train(self) -> PlanetaryTrain:
@@ -112,8 +116,8 @@ class FiveBarResult:
 
     @property
     def failures(self) -> list[str]:
-        """Every check of the built mechanism it fails: verification, then the gears' mesh."""
-        return [*self.verification.failures, *self.toothed.failures]
+        """Every check of the built mechanism it fails: verification, the gears' mesh, then the support."""
+        return [*self.verification.failures, *self.toothed.failures, *(self.support.failures if self.support else [])]
 
     @property
     def passed(self) -> bool:
@@ -131,6 +135,7 @@ class FiveBarResult:
         relative = design.relative_angle
         k_printed, turn_printed = printed_correction(relative)
         region, chosen = self.region, self.chosen
+        support = {"support": self.support.to_json()} if self.support else {}
         return {
             "source": problem.source, "title": problem.title,
             "key_pose_position_errors_mm": check.key_position_errors_mm.tolist(),
@@ -173,5 +178,6 @@ class FiveBarResult:
             "nlp": {"status": design.status, "iterations": design.iterations, "objective": design.objective,
                     "bending_weight": BENDING_WEIGHT, "curvature_floor": design.curvature_floor,
                     "convexity_note": design.convexity_note},
+            **support,
             "timings_s": self.timings_s,
         }

@@ -3,7 +3,8 @@
 Region (``fivebar.region``) -> every feasible candidate refined by the design NLP (one solver
 per problem), judged, merged and ranked (``fivebar.alternatives``) -> the picked alternative's
 gear train with whole teeth, cut and mesh-checked (``trains.toothed_train``) -> independent
-verification (``fivebar.verification``).
+verification (``fivebar.verification``) -> with ``[support]``, the seedling support timed to it
+(``fivebar.support``).
 When the region is empty, the error names the condition that emptied it and the closest
 candidates.
 """
@@ -21,6 +22,7 @@ from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import ChainFamily, Region, solution_region
 from transplanter.fivebar.relaxation import relaxation_hint
 from transplanter.fivebar.result import FiveBarResult
+from transplanter.fivebar.support import design_support
 from transplanter.fivebar.verification import verify
 from transplanter.trains.toothed_train import design_toothed_train
 
@@ -96,7 +98,7 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
     progress : callable, optional
         ``progress(step, done, total)``, called with done = 0 when a step starts and after each
         unit of it; steps ``"region"``, ``"refinement"`` (one unit per candidate), ``"gears"``,
-        ``"verification"``.
+        ``"verification"``, ``"support"`` (with ``[support]``).
 
     Returns
     -------
@@ -147,8 +149,14 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
     start = _step(progress, "verification")
     verification = verify(problem, design.mech, design.relative_angle, toothed.train, design.stroke.carrier_turns)
     timings["verification"] = _done(progress, "verification", start)
+    support = None
+    if problem.support is not None:
+        start = _step(progress, "support")
+        support = design_support(problem.support, design.mech, design.relative_angle, problem.carrier_turns,
+                                 design.stroke.carrier_turns, problem.source)
+        timings["support"] = _done(progress, "support", start)
     return FiveBarResult(problem, region, region.feasible[chosen.starts[0]], design, toothed, verification, timings,
-                         tuple(alternatives), tuple(failed), pick)
+                         tuple(alternatives), tuple(failed), pick, support)
 
 
 def _step(progress: Progress | None, step: str) -> float:
