@@ -189,7 +189,8 @@ def draw_support(support: SupportDesign) -> Figure:
     gap.axhline(0.0, color="r", lw=0.8)
     gap.set_ylabel("clearance left of hinge E (mm)", color="b")
     lines = timing.get_lines() + gap.get_lines()[:1]
-    timing.legend(lines, [line.get_label() for line in lines], fontsize=8, loc="lower right")
+    timing.legend(lines, [line.get_label() for line in lines], fontsize=8, loc="upper center",
+                  bbox_to_anchor=(0.5, -0.12), ncols=2)
     return fig
 
 
