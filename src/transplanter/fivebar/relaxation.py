@@ -38,8 +38,8 @@ def relaxation(problem: FiveBarProblem, region: Region) -> dict:
     low, high = problem.ratio_bounds
     for index, candidate in enumerate(region.candidates):
         kinds = {defect.split(":")[0] for defect in candidate.defects}
-        if not kinds or not kinds <= LIMITS:
-            continue
+        if not kinds or not kinds <= LIMITS or ("closure" in kinds and not candidate.min_margin > 0):
+            continue            # a margin <= 0: the loop does not close somewhere, which no floor admits
         change, cost = {"candidate": index}, 0.0
         if "ratio" in kinds:
             wanted = (min(low, candidate.ratio_range[0]), max(high, candidate.ratio_range[1]))
