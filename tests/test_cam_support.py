@@ -110,6 +110,30 @@ def test_cam_moved_along_cd_and_the_square_layout(report):
     assert pushed["passed"] and not pulled["passed"] and not pushed["undercut"]
 
 
+def test_only_the_pulled_roller_of_the_square_layout_lifts_the_plate(report):
+    """The rocker lifts the plate turning clockwise (theta_CG falls from its low-plate to its high-plate value in
+    every reading); the arm's turn over the rise, read from the roller centres the cam tool computes at the
+    rise's start and end, is clockwise only on the pulled side. So the side that passes the 45 deg limit (pushed)
+    lowers the plate, and the one that lifts it fails on the return."""
+    from transplanter.cam.synthesis import synthesize
+    from transplanter.cam.table5 import PIVOT_C, _cam_problem, perpendicular_layout
+
+    for entry in report["heights_from_datum"]:
+        assert entry["theta_cg_deg"]["high"] < entry["theta_cg_deg"]["low"]
+    layout = report["perpendicular_layout"]
+    pivot = PIVOT_C - np.array(layout["center"])
+    for cam in layout["cams"]:
+        geometry = synthesize(_cam_problem(pivot, cam["roller_side"] == "pulled", np.radians(36.0))).geometry
+        rise = geometry.segment == 0
+        arm = geometry.center[rise] - pivot
+        turn = np.unwrap(np.arctan2(arm[:, 1], arm[:, 0]))
+        assert np.degrees(abs(turn[-1] - turn[0])) == pytest.approx(36.0, abs=0.5)
+        assert cam["lifts_plate"] == (turn[-1] < turn[0]) == (cam["roller_side"] == "pulled")
+    pulled = layout["cams"][0]
+    assert pulled["failures"] and pulled["max_pressure_angle_deg"]["return"] > 45.0
+    assert perpendicular_layout(1.0)["cams"][1]["lifts_plate"]      # a plate lifted counterclockwise: pushed
+
+
 def test_timed_segments_from_the_paper_stages():
     """The paper's stages (110, 80, 85, 85 deg) with a 1:1 chain give its cam program, which the cam tool takes;
     stages that do not make a cam turn at the ratio are refused with the ratio that would."""

@@ -158,13 +158,20 @@ def cam_readings(low_angle: float, high_angle: float, swing: float) -> list[dict
     return out
 
 
-def perpendicular_layout(swing: float = SWING) -> dict:
+def perpendicular_layout(rise_sense: float, swing: float = SWING) -> dict:
     """The textbook layout nearest the table: the cam centre on the line C-D at sqrt(l_CK^2 + 36^2) from C, where
-    the arm is square to the cam radius on the base circle; the cam tool's verdict for each roller side."""
+    the arm is square to the cam radius on the base circle; the cam tool's verdict for each roller side, and
+    whether its rise turns the arm the way that lifts the plate (``rise_sense``: +1 counterclockwise, the
+    rocker's turn from the plate's low to its high position)."""
     distance = float(np.hypot(ARM_LENGTH, BASE_RADIUS + ROLLER_RADIUS))
     pivot = -distance * DIRECTION_CD
-    return {"distance_c_to_cam_mm": distance, "center": (PIVOT_C + distance * DIRECTION_CD).tolist(),
-            "cams": [_cam_verdict(_cam_problem(pivot, pulled, swing)) for pulled in (True, False)]}
+    cams = []
+    for pulled in (True, False):
+        problem = _cam_problem(pivot, pulled, swing)
+        _, sense = oscillating_start(problem.follower, BASE_RADIUS + ROLLER_RADIUS, problem.direction)
+        cams.append({**_cam_verdict(problem), "rise_turns_arm": "counterclockwise" if sense > 0 else "clockwise",
+                     "lifts_plate": bool(sense == rise_sense)})
+    return {"distance_c_to_cam_mm": distance, "center": (PIVOT_C + distance * DIRECTION_CD).tolist(), "cams": cams}
 
 
 @dataclass(frozen=True)
@@ -193,7 +200,7 @@ def evaluate_table5() -> Table5Evaluation:
                      "base_pitch_radius_mm": BASE_RADIUS + ROLLER_RADIUS},
     }
     report["cam_at_d"]["can_drive"] = bool(report["cam_at_d"]["nearest_roller_to_d_mm"] <= BASE_RADIUS + ROLLER_RADIUS)
-    report["perpendicular_layout"] = perpendicular_layout()
+    rise_senses = []
     for index, assembly in enumerate(ASSEMBLIES):
         datum = datum_for_swing(index)
         entry = {"assembly": assembly, "datum_y0_mm": datum}
@@ -203,5 +210,9 @@ def evaluate_table5() -> Table5Evaluation:
                                        "high": _degrees(swing.high_angle[index])[0]},
                          swing_deg=_degrees(swing.swing[index])[0], closure_residual_mm=swing.residual_mm,
                          cam_readings=cam_readings(swing.low_angle[index], swing.high_angle[index], swing.swing[index]))
+            rise_senses.append(float(np.sign(swing.high_angle[index] - swing.low_angle[index])))
         report["heights_from_datum"].append(entry)
+    if len(set(rise_senses)) != 1:
+        raise AssertionError(f"the rocker lifts the plate turning both ways in the readings: {rise_senses}")
+    report["perpendicular_layout"] = perpendicular_layout(rise_senses[0])
     return Table5Evaluation(report)
