@@ -216,7 +216,11 @@ def test_cli_design_out_lists_the_cam_files(tmp_path, capsys):
     for key in ("swing_deg", "theta_cg_deg", "clearance_to_receiving_plate_mm", "segments", "drive_ratio", "cam"):
         assert key in support
     assert {"max_pressure_angle_deg", "min_curvature_radius_mm", "undercut"} <= set(support["cam"])
-    assert "## Seedling support" in (out / "FAILED-report.md").read_text()
+    markdown = (out / "FAILED-report.md").read_text()
+    assert "## Seedling support" in markdown
+    from transplanter.cam.table5 import evaluate_table5
+    assert support["table5"] == json.loads(json.dumps(evaluate_table5().to_json()))   # the published support
+    assert "Table 5 as printed does not assemble" in markdown and "lifts the plate (pulled)" in markdown
 
 
 def test_cli_bad_support_exits_2(tmp_path, capsys):

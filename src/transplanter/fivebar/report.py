@@ -131,4 +131,18 @@ def support_markdown(report: dict) -> list[str]:
             f"{pressure['rise']:.3f} deg, return {pressure['return']:.3f} deg (limit {pressure['limit']:g}); smallest "
             f"convex pitch radius {curvature['pitch']:.3f} mm; undercut: {'yes' if cam['undercut'] else 'no'}; "
             f"{len(cam['acceleration_jumps'])} acceleration jumps ({', '.join(cam['laws'])})",
-            "- " + ("; ".join(s["failures"]) if s["failures"] else "passes its checks"), ""]
+            "- " + ("; ".join(s["failures"]) if s["failures"] else "passes its checks"),
+            f"- {table5_line(s['table5'])}", ""]
+
+
+def table5_line(table5: dict) -> str:
+    """One sentence on the published support (seed 000 Table 5) as ``cam.table5`` evaluates it."""
+    printed, datum = table5["printed"], table5["heights_from_datum"][0]
+    lifting = next(c for c in table5["perpendicular_layout"]["cams"] if c["lifts_plate"])
+    worst = max(lifting["max_pressure_angle_deg"][k] for k in ("rise", "return"))
+    return (f"Table 5 as printed {'assembles' if printed['assembles'] else 'does not assemble'} "
+            f"(|CH| {printed['distance_c_to_h_mm'][0]:.2f} / {printed['distance_c_to_h_mm'][1]:.2f} mm against a "
+            f"reach of {printed['reach_mm'][0]:g}-{printed['reach_mm'][1]:g} mm); heights from a datum "
+            f"y0 = {datum['datum_y0_mm']:.2f} mm give psi = {datum['swing_deg']:.2f} deg; on the square cam layout the "
+            f"roller side that lifts the plate ({lifting['roller_side']}) reaches a pressure angle of {worst:.2f} deg "
+            f"(docs/cam.md)")

@@ -17,6 +17,7 @@ from transplanter.cam.problem import parse_problem as parse_cam
 from transplanter.cam.result import CamResult
 from transplanter.cam.synthesis import synthesize as synthesize_cam
 from transplanter.cam.timing import STAGES, plate_clearance, timed_segments
+from transplanter.cam.table5 import evaluate_table5
 from transplanter.errors import ProblemError
 from transplanter.fivebar.linkage import FiveBar
 from transplanter.fivebar.loop_closure import close_loop
@@ -132,6 +133,7 @@ class SupportDesign:
                                               "roller_interference", "acceleration_jumps")},
             "cam_passed": self.cam.passed,
             "failures": self.failures,
+            "table5": evaluate_table5().to_json(),      # the published support, for comparison
         }
 
 
