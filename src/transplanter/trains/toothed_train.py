@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import math
 import time
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -402,11 +403,12 @@ def design_toothed_train(relative: RelativeMotion, carrier_length: float, gearin
 
     start = time.perf_counter()
     stages = (train.stage_one, train.stage_two)
-    teeth = tuple(generate_teeth(design, module, gearing.pressure_angle, source, shape.cutter, gearing.shaper_teeth)
-                  for design, shape in zip(stages, shapes))
-    timings["teeth"] = time.perf_counter() - start
-    start = time.perf_counter()
-    mesh = tuple(check_mesh(design, t.outlines, module) for design, t in zip(stages, teeth))
+    with ThreadPoolExecutor(2) as stage_pool:       # numpy and cKDTree release the GIL: 5.1 s -> 3.5 s on the example
+        teeth = tuple(stage_pool.map(lambda design, shape: generate_teeth(
+            design, module, gearing.pressure_angle, source, shape.cutter, gearing.shaper_teeth), stages, shapes))
+        timings["teeth"] = time.perf_counter() - start
+        start = time.perf_counter()
+        mesh = tuple(stage_pool.map(lambda design, cut: check_mesh(design, cut.outlines, module), stages, teeth))
     timings["mesh_check"] = time.perf_counter() - start
 
     line_one = delta                                                         # O -> shaft
