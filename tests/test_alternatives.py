@@ -209,6 +209,10 @@ def test_figures_name_hinges_gears_and_show_the_trade_off(run):
     second = result.alternatives[1]
     assert picked.get_xdata()[0] == pytest.approx(np.degrees(second.transmission_angle))
     assert picked.get_ydata()[0] == pytest.approx(second.largest_miss_mm)
+    feasible = len(result.region.feasible)
+    assert f"refined from {feasible - len(result.failed)} of {feasible} region candidates" in ax.get_title()
+    one_failed = replace(result, failed=(Failure(0, "a reason"),))
+    assert "(1 failed: see the report)" in draw_figures(one_failed)["tradeoff"].axes[0].get_title()
     assert {"O", "A", "B", "E", "F", "P"} <= {text.get_text() for text in figures["trajectory"].axes[0].texts}
     gear_labels = [text.get_text() for text in figures["gears"].axes[1].get_legend().get_texts()]
     one, two = result.toothed.counts

@@ -143,7 +143,9 @@ def draw_tradeoff(result: FiveBarResult) -> Figure:
     ax.set_xlabel("smallest transmission angle EBF over the turn (deg)")
     ax.set_ylabel("largest return-point miss (mm)")
     starts = sum(len(a.starts) for a in alternatives)
-    ax.set_title(f"{len(alternatives)} distinct designs refined from {starts} region candidates", fontsize=9)
+    count, failed = len(alternatives), len(result.failed)
+    ax.set_title(f"{count} distinct design{'s' if count > 1 else ''} refined from {starts} of {starts + failed} "
+                 f"region candidates" + (f" ({failed} failed: see the report)" if failed else ""), fontsize=9)
     bounds = ", ".join(map(str, result.chosen.active_bounds)) or "no bound"
     fig.text(0.01, 0.0, textwrap.fill(f"The picked design sits on: {bounds}", 110), fontsize=8, va="bottom")
     fig.get_layout_engine().set(rect=(0, 0.08, 1, 0.92))
