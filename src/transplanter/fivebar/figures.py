@@ -69,7 +69,7 @@ def draw_relative_angle(result: FiveBarResult) -> Figure:
 
 
 def draw_gears(result: FiveBarResult) -> Figure:
-    """Stage ratios against the carrier turn (deg), and the four cut gears with their pitch curves on the carrier at
+    """Stage ratios against the carrier turn (deg), and the four cut gears on the carrier at
     pose 1 (mm)."""
     train = result.train
     grid = result.verification.carrier_turns
@@ -87,13 +87,13 @@ def draw_gears(result: FiveBarResult) -> Figure:
                            np.repeat(result.toothed.counts, 2)):
         line, = right.plot(*gear.placed(outlines[gear.name], 0.0)[0].T, lw=0.7,
                            label=f"{gear.name.replace('_', ' ')} ({gear.role}), {teeth} teeth")
-        right.plot(*gear.placed(gear.pitch_curve, 0.0)[0].T, ":", lw=0.8, color=line.get_color())
         right.plot(*gear.center, "k+")
     right.set_aspect("equal")
     right.set_xlabel("x along the carrier O-A (mm)")
     right.set_ylabel("y on the carrier (mm)")
     right.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncols=2)
-    right.set_title("the gears on the carrier (O at the origin, A on +x) at pose 1; dotted: pitch curves", fontsize=9)
+    right.set_title("the cut gears on the carrier (O at the origin, A on +x) at pose 1\n(pitch curves: each gear's "
+                    "DXF, layer PITCH, and CSV)", fontsize=9)
     return fig
 
 
