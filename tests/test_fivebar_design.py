@@ -12,7 +12,10 @@ from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.fivebar.candidate import evaluate_candidate
 from transplanter.fivebar.evaluation import evaluate_design, load_design
 from transplanter.fivebar.linkage import FiveBar
-from transplanter.fivebar.nlp import SLOT_ROWS, DesignSolver, build_nlp, decision_vector, length_unit
+from transplanter.errors import SolverError
+from transplanter.fivebar import nlp as design_nlp
+from transplanter.fivebar.nlp import (SLOT_ROWS, DesignSolver, build_nlp, decision_vector, length_unit,
+                                     relative_violation)
 from transplanter.fivebar.problem import load_problem, parse_problem
 from transplanter.fivebar.region import ChainFamily
 from transplanter.fivebar.synthesis import _empty_family, synthesize
@@ -182,6 +185,45 @@ def test_one_solver_serves_every_start_and_round(result, problem):
         assert abs(getattr(reused.mech, name) - getattr(same_grid.mech, name)) < 1e-9
     for name in ("hinge_b", "e_local", "f_local"):
         assert np.abs(getattr(reused.mech, name) - getattr(same_grid.mech, name)).max() < 1e-9
+
+
+def test_relative_violation_is_the_farthest_row_outside_its_bounds_over_its_size():
+    lbg, ubg, scales = np.array([0.0, 1.0, -np.inf]), np.array([0.0, np.inf, 2.0]), np.array([1.0, 0.5, 4.0])
+    assert relative_violation(np.array([0.0, 1.5, -7.0]), lbg, ubg, scales) == 0.0
+    assert relative_violation(np.array([0.0, 0.9, 3.0]), lbg, ubg, scales) == pytest.approx(0.25)   # (3 - 2) / 4
+    assert relative_violation(np.array([-0.3, 0.9, 0.0]), lbg, ubg, scales) == pytest.approx(0.3)
+    assert relative_violation(np.array([0.0, np.nan, 0.0]), lbg, ubg, scales) == np.inf
+
+
+def test_a_solve_held_off_its_bounds_for_the_stall_window_is_stopped_and_says_so(result, problem, monkeypatch):
+    """Every iterate of a solve from a region candidate breaks some row by more than 1e-30 of its size, so
+    with that as the stall threshold and a window of 3 the solve stops after 3 iterations, and the error
+    names the stall, not IPOPT's own status."""
+    monkeypatch.setattr(design_nlp, "STALL_VIOLATION", 1e-30)
+    monkeypatch.setattr(design_nlp, "STALL_ITERATIONS", 3)
+    solver = DesignSolver(problem)
+    with pytest.raises(SolverError) as raised:
+        solver.solve(result.region.feasible[0])
+    assert solver.cap.count == 3 and solver.cap.stalled
+    assert "a stall" in raised.value.status and "100" not in raised.value.status
+
+
+def test_a_feasible_iterate_restarts_the_stall_count(problem):
+    solver = DesignSolver(problem)
+    nlp, cap = solver.nlp, solver.cap
+    lbg, ubg = nlp.bounds(0)
+    cap.watch(None, lbg, ubg, nlp.bound_scales)
+    order = ca.nlpsol_out()
+    inside, outside = np.where(np.isfinite(lbg), lbg, np.fmin(ubg, 0.0)), np.where(np.isfinite(lbg), lbg - 1.0, ubg + 1.0)
+
+    def iterate(g):
+        values = {"g": g, "f": 0.0, "x": np.zeros(nlp.x.shape[0]), "lam_x": np.zeros(nlp.x.shape[0]),
+                  "lam_g": np.zeros(len(g))}
+        return cap.eval([values.get(name, np.zeros(0)) for name in order])[0]
+
+    assert [iterate(outside) for _ in range(design_nlp.STALL_ITERATIONS - 1)] == [0] * (design_nlp.STALL_ITERATIONS - 1)
+    assert iterate(inside) == 0 and not cap.stalled
+    assert [iterate(outside) for _ in range(design_nlp.STALL_ITERATIONS)][-1] == 1 and cap.stalled
 
 
 def test_exchange_beyond_the_solver_room_rebuilds_it_larger(result, problem):
