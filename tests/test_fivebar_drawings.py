@@ -7,6 +7,7 @@ from pathlib import Path
 import ezdxf
 import numpy as np
 import pytest
+import shapely
 from matplotlib.figure import Figure
 from PIL import Image, ImageChops
 
@@ -14,7 +15,8 @@ from transplanter import fivebar, gears
 from transplanter.cli import main
 from transplanter.fivebar.animation import FRAMES, render_frames, write_animation
 from transplanter.fivebar.drawings import gear_drawings, write_drawings
-from transplanter.fivebar.gears_on_carrier import carrier_to_world, gears_on_carrier
+from transplanter.fivebar.gears_on_carrier import (DRAWN_WITHIN_MODULES, carrier_to_world, gears_on_carrier, thinned,
+                                                  tooth_outlines)
 from transplanter.fivebar.loop_closure import close_loop
 from transplanter.gears.drawings import GearDrawing, default_bore_radius, write_gear_drawings
 from transplanter.gears.teeth import driven_table, driver_table
@@ -187,6 +189,37 @@ def test_tooth_outlines_are_drawn_over_the_pitch_curves(result):
     teeth = {"sun": (1.05 * sun.pitch_curve, sun.center, sun.angle)}
     plain, toothed = render_frames(result, None, 2), render_frames(result, teeth, 2)
     assert ImageChops.difference(plain[1], toothed[1]).getbbox() is not None
+
+
+def _farthest_from_its_chord(outline: np.ndarray, drawn: np.ndarray) -> float:
+    """``drawn`` must keep a subsequence of ``outline``'s vertices; the largest distance of a dropped vertex
+    from the chord that replaced it (mm), a bound on its distance from the drawn outline."""
+    kept = np.flatnonzero(np.isin(outline @ [1, 1j], drawn @ [1, 1j]))
+    assert len(kept) == len(drawn) and kept[0] == 0
+    start = np.repeat(kept, np.diff(np.r_[kept, len(outline)]))
+    end = np.r_[kept[1:], 0][np.searchsorted(kept, np.arange(len(outline)), side="right") - 1]
+    a, b = outline[start], outline[end]
+    along = np.clip(np.einsum("ij,ij->i", outline - a, b - a) / np.einsum("ij,ij->i", b - a, b - a), 0, 1)
+    return float(np.hypot(*(a + along[:, None] * (b - a) - outline).T).max())
+
+
+def test_drawn_outlines_stay_within_their_tolerance_of_the_cut_ones_and_do_not_cross_themselves(result):
+    tolerance = DRAWN_WITHIN_MODULES * result.toothed.module
+    drawn = tooth_outlines(result.toothed)
+    for gear in result.toothed.gears:
+        outline = drawn[gear.name.replace(" ", "_")]
+        assert _farthest_from_its_chord(gear.outline, outline) <= tolerance
+        assert shapely.is_simple(shapely.linearrings(outline)) and len(outline) < len(gear.outline) / 4
+
+
+def test_thinning_keeps_an_outline_simple_where_plain_douglas_peucker_would_cross_it():
+    # a flat arch 0.04 high over a spike whose tip stands 0.02 high: the arch's chord would cut the spike
+    outline = np.array([(0, 0), (5, 0.04), (10, 0), (10, -1), (5.01, -1), (5.005, 0.02), (5, -1), (0, -1)])
+    plain = shapely.simplify(shapely.linearrings(outline), 0.05, preserve_topology=False)
+    assert not shapely.is_simple(plain)
+    kept = thinned(outline, 0.05)
+    assert shapely.is_simple(shapely.linearrings(kept))
+    assert shapely.distance(shapely.points(outline), shapely.linearrings(kept)).max() <= 0.05
 
 
 @pytest.fixture

@@ -88,11 +88,22 @@ def carrier_to_world(mech: FiveBar, points: np.ndarray, c) -> np.ndarray:
 def tooth_outlines(toothed: ToothedTrain) -> dict[str, np.ndarray]:
     """The cut outline (N, 2) mm of each gear of a toothed train, by the names of ``gears_on_carrier``
     (both place stage 1 mirrored and give each gear the same frame, so the outlines fit the pitch curves),
-    thinned (Douglas-Peucker) within ``DRAWN_WITHIN_MODULES`` of the module for drawings and pictures: a
-    shaper-cut outline has a vertex every 0.002 module, which CAD files and frames do not need."""
+    thinned within ``DRAWN_WITHIN_MODULES`` of the module for drawings and pictures: a shaper-cut outline
+    has a vertex every 0.002 module, which CAD files and frames do not need."""
     tolerance = DRAWN_WITHIN_MODULES * toothed.module
-    return {gear.name.replace(" ", "_"): shapely.get_coordinates(
-                shapely.simplify(shapely.linearrings(gear.outline), tolerance))[:-1] for gear in toothed.gears}
+    return {gear.name.replace(" ", "_"): thinned(gear.outline, tolerance) for gear in toothed.gears}
+
+
+def thinned(outline: np.ndarray, tolerance: float) -> np.ndarray:
+    """A closed outline (N, 2) within ``tolerance`` of itself with fewer vertices: Douglas-Peucker on the
+    outline opened at its first vertex (on a ring GEOS also drops that vertex, by a rule that can miss the
+    tolerance: 1.52e-3 against 1.5e-3 mm on the example's planet). Plain Douglas-Peucker takes a tenth of
+    the time of GEOS's topology-preserving thinning; that one serves where the plain result crosses itself."""
+    line = shapely.linestrings(np.vstack([outline, outline[:1]]))
+    thin = shapely.simplify(line, tolerance, preserve_topology=False)
+    if not shapely.is_simple(thin):
+        thin = shapely.simplify(line, tolerance)
+    return shapely.get_coordinates(thin)[:-1]
 
 
 def teeth_on_carrier(toothed: ToothedTrain, carrier_length: float) -> dict:
