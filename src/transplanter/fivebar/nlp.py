@@ -98,7 +98,7 @@ CURVATURE_GAP = 1e-3
 #: A row is on its bound when within this fraction of the bound's size (IPOPT stops at 1e-12), or when
 #: its multiplier exceeds MULTIPLIER_FLOOR (the objective's gradient in t is 1; IPOPT leaves ~1e-10 on
 #: rows far from their bounds).
-ACTIVE_TOLERANCE = 1e-6
+ROW_ON_BOUND_TOLERANCE = 1e-6
 MULTIPLIER_FLOOR = 1e-6
 #: The NLP's grid holds the curvature rows just left of each knot, this far (rad): the curvature is smooth
 #: on a span, so this is its left limit to ~1e-9 relative.
@@ -154,7 +154,7 @@ class DesignSolution:
         The least a kappa the curvature rows held: ``CURVATURE_FLOOR`` (convex), -``CONCAVITY_LIMIT``
         (shaper-cut hollows), None (rows off); ``convexity_note`` says why, with the numbers, when not convex.
     active_bounds : tuple of str
-        Every bound the solution sits on (within ``ACTIVE_TOLERANCE`` of its size).
+        Every bound the solution sits on (within ``ROW_ON_BOUND_TOLERANCE`` of its size).
     """
 
     mech: FiveBar
@@ -569,17 +569,17 @@ def whole_turn(mech: FiveBar, relative: RelativeAngle, turns: np.ndarray) -> dic
 
 def _active_bounds(nlp: DesignNLP, solution: dict, lbg: np.ndarray, ubg: np.ndarray) -> tuple:
     """Names of the bounds the solution sits on, each once, in row order: a bound counts when the row is
-    within ``ACTIVE_TOLERANCE`` of its size from it, or when IPOPT's multiplier on it exceeds
+    within ``ROW_ON_BOUND_TOLERANCE`` of its size from it, or when IPOPT's multiplier on it exceeds
     ``MULTIPLIER_FLOOR`` (an interior point stops a hair inside a bound that still binds)."""
     v, g = np.asarray(solution["x"]).ravel(), np.asarray(solution["g"]).ravel()
     lam_g, lam_x = np.asarray(solution["lam_g"]).ravel(), np.asarray(solution["lam_x"]).ravel()
     names = []
-    if v[-3] - nlp.lbx[-3] <= ACTIVE_TOLERANCE * nlp.lbx[-3] or lam_x[-3] < -MULTIPLIER_FLOOR:
+    if v[-3] - nlp.lbx[-3] <= ROW_ON_BOUND_TOLERANCE * nlp.lbx[-3] or lam_x[-3] < -MULTIPLIER_FLOOR:
         names.append("closure margin floor")
     for (lower, upper), value, low, high, scale, lam in zip(nlp.bound_names, g, lbg, ubg, nlp.bound_scales, lam_g):
-        if lower and np.isfinite(low) and (value - low <= ACTIVE_TOLERANCE * scale or lam < -MULTIPLIER_FLOOR):
+        if lower and np.isfinite(low) and (value - low <= ROW_ON_BOUND_TOLERANCE * scale or lam < -MULTIPLIER_FLOOR):
             names.append(lower)
-        if upper and np.isfinite(high) and (high - value <= ACTIVE_TOLERANCE * scale or lam > MULTIPLIER_FLOOR):
+        if upper and np.isfinite(high) and (high - value <= ROW_ON_BOUND_TOLERANCE * scale or lam > MULTIPLIER_FLOOR):
             names.append(upper)
     if nlp.exact_return_points:
         names += [name for (_, name) in nlp.bound_names if name and name.startswith("return point")]
