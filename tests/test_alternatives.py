@@ -198,46 +198,6 @@ def test_a_refined_design_that_breaks_a_condition_fails_with_the_reason(run):
     assert failed == [Failure(1, "the design NLP did not converge: Maximum_Iterations_Exceeded")]
 
 
-def test_lanes_refine_fixed_candidates_in_order_and_the_outcome_is_by_candidate(run):
-    """Lane k takes candidates k, k + 2, ... in order whatever the threads' timing (lane 1 here finishes its
-    first candidate before lane 0 does), the outcome lists starts by candidate, and progress is reported
-    from the calling thread, once per candidate."""
-    import threading
-    import time
-
-    result, _ = run
-    problem, candidates = result.problem, result.region.feasible[:5]
-    design = result.alternatives[0].design
-
-    class Lane:
-        def __init__(self, delay):
-            self.delay, self.seen = delay, []
-
-        def refine(self, candidate):
-            self.seen.append(next(k for k, c in enumerate(candidates) if c is candidate))
-            time.sleep(self.delay)
-            if self.seen[-1] == 3:
-                raise SolverError("no", "Maximum_Iterations_Exceeded")
-            return design
-
-        def make_convex(self, candidate, design):
-            return design
-
-    lanes, calls, caller = [Lane(0.2), Lane(0.0)], [], threading.get_ident()
-    found, failed, seconds = refine_all(problem, lanes, candidates,
-                                        lambda step, done, total: calls.append((done, threading.get_ident())))
-    assert lanes[0].seen == [0, 2, 4] and lanes[1].seen == [1, 3]
-    assert [a.starts for a in found] == [(0, 1, 2, 4)] and [f.start for f in failed] == [3]
-    assert len(seconds) == 5 and min(seconds[k] for k in (0, 2, 4)) >= 0.2
-    assert calls == [(done, caller) for done in range(6)]
-
-    class Broken(Lane):
-        def refine(self, candidate):
-            raise ValueError("a defect in a lane")
-    with pytest.raises(ValueError, match="a defect in a lane"):      # not lost in its thread, nor a hang
-        refine_all(problem, [Lane(0.0), Broken(0.0)], candidates)
-
-
 def test_figures_name_hinges_gears_and_show_the_trade_off(run):
     result, _ = run
     figures = draw_figures(result)
