@@ -193,7 +193,7 @@ def test_a_refined_design_that_breaks_a_condition_fails_with_the_reason(run):
         def make_convex(self, candidate, design):
             return design
 
-    found, failed, seconds = refine_all(problem, [Solver()], result.region.feasible[:3])
+    found, failed, seconds = refine_all(problem, Solver(), result.region.feasible[:3])
     assert [a.starts for a in found] == [(0, 2)] and len(seconds) == 3
     assert failed == [Failure(1, "the design NLP did not converge: Maximum_Iterations_Exceeded")]
 
@@ -241,5 +241,5 @@ def test_a_start_whose_curves_cannot_be_held_to_shaper_hollows_fails_with_the_un
     assert "Infeasible_Problem_Detected" in reason and f"{-CONCAVITY_LIMIT:g}" in reason
     for curve, value in zip(CURVES, unheld.min_curvature):
         assert f"{curve} {value:.3f}" in reason
-    found, failed, _ = refine_all(problem, [HeldFails(problem)], [start])
+    found, failed, _ = refine_all(problem, HeldFails(problem), [start])
     assert found == [] and failed == [Failure(0, reason)]

@@ -14,10 +14,7 @@ gentler ratio, i.e. the smaller spread i0_max / i0_min; then to the earlier star
 """
 from __future__ import annotations
 
-import queue
 import time
-from collections.abc import Sequence
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, replace
 from typing import Callable
 
@@ -54,10 +51,6 @@ RANKING_RULE = (f"Ranked by the smallest transmission angle EBF over the turn, l
                 f"{ANGLE_TIE:.1%} of each other tie, and a tie goes to the smaller largest return-point miss "
                 f"(misses within {MISS_TIE:g} of the reach, the farthest key pose or return point from O, tie), "
                 f"then to the gentler ratio (smaller i0 max / min), then to the earlier start candidate.")
-
-#: Refinement lanes side by side (``refine_all``): the 2 cores of the machines the package is made for.
-#: The lanes are fixed, not the cores: a machine with another count refines the same way.
-REFINEMENT_LANES = 2
 
 #: ``progress(step, done, total)``: called with done = 0 when a step starts and after each unit of it.
 Progress = Callable[[str, int, int], None]
@@ -277,51 +270,28 @@ def rank(alternatives: list[Alternative], size: float) -> list[Alternative]:
     return _tiered(sorted(alternatives, key=lambda a: a.starts[0]), keys)
 
 
-def refine_all(problem: FiveBarProblem, solvers: Sequence[DesignSolver], candidates: list[Candidate],
+def refine_all(problem: FiveBarProblem, solver: DesignSolver, candidates: list[Candidate],
                progress: Progress | None = None) -> tuple[list[Alternative], list[Failure], list[float]]:
-    """Refine every candidate, lane k of the ``solvers`` (each built for ``problem``) taking candidates
-    k, k + n, k + 2n, ... in order, the lanes side by side in threads (IPOPT runs without Python's lock);
-    the ranked, merged alternatives, the failures (by start), and the wall time of each refinement (s).
-    Which lane refines which candidate is fixed, so the outcome does not depend on the threads' timing."""
-    lanes = len(solvers)
-    finished: queue.Queue = queue.Queue()
-
-    def refine_lane(lane: int):
-        for index in range(lane, len(candidates), lanes):
-            start = time.perf_counter()
-            try:
-                outcome = assess(problem, solvers[lane].refine(candidates[index]), index)
-            except HollowError as error:
-                outcome = Failure(index, error.reason)
-            except SolverError as error:
-                outcome = Failure(index, f"the design NLP did not converge: {error.status}")
-            finished.put((index, outcome, time.perf_counter() - start))
-
+    """Refine every candidate with the one ``solver`` (built for ``problem``); the ranked, merged
+    alternatives, the failures (by start), and the wall time of each refinement (s)."""
+    found, failed, seconds = [], [], []
     if progress:
         progress("refinement", 0, len(candidates))
-    outcomes, seconds = [None] * len(candidates), [0.0] * len(candidates)
-    with ThreadPoolExecutor(lanes) as pool:
-        running = [pool.submit(refine_lane, lane) for lane in range(lanes)]
-        for done in range(1, len(candidates) + 1):     # progress from this thread: the caller's context holds its stream
-            index, outcomes[index], seconds[index] = _next_finished(finished, running)
-            if progress:
-                progress("refinement", done, len(candidates))
-    found = [outcome for outcome in outcomes if not isinstance(outcome, Failure)]
-    failed = [outcome for outcome in outcomes if isinstance(outcome, Failure)]
-    size = reach(problem)
-    merged = [_convex_if_possible(problem, solvers[0], candidates, alternative) for alternative in merge(found, size)]
-    return rank(merge(merged, size), size), failed, seconds
-
-
-def _next_finished(finished: queue.Queue, running: list):
-    """The next (index, outcome, seconds) a lane finishes; a lane's unexpected exception raised here."""
-    while True:
+    for index, candidate in enumerate(candidates):
+        start = time.perf_counter()
         try:
-            return finished.get(timeout=0.1)
-        except queue.Empty:
-            for lane in running:
-                if lane.done() and lane.exception() is not None:
-                    raise lane.exception()
+            outcome = assess(problem, solver.refine(candidate), index)
+        except HollowError as error:
+            outcome = Failure(index, error.reason)
+        except SolverError as error:
+            outcome = Failure(index, f"the design NLP did not converge: {error.status}")
+        seconds.append(time.perf_counter() - start)
+        (failed if isinstance(outcome, Failure) else found).append(outcome)
+        if progress:
+            progress("refinement", index + 1, len(candidates))
+    size = reach(problem)
+    merged = [_convex_if_possible(problem, solver, candidates, alternative) for alternative in merge(found, size)]
+    return rank(merge(merged, size), size), failed, seconds
 
 
 def _convex_if_possible(problem: FiveBarProblem, solver: DesignSolver, candidates: list[Candidate],

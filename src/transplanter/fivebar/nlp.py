@@ -66,7 +66,6 @@ for half the bending (int S''^2 = 22 instead of 40); 1e-4 would cost 1.5 %.
 from __future__ import annotations
 
 import dataclasses
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import casadi as ca
@@ -519,13 +518,6 @@ class DesignSolver:
             added = np.r_[added, worst]
         self.exchange_turns = added[-(self.nlp.capacity // 2):]     # room left for a new start's own rounds
         return solution
-
-
-def design_solvers(problem: FiveBarProblem, count: int) -> list[DesignSolver]:
-    """``count`` solvers of ``problem``'s design NLP, built side by side in threads (casadi releases
-    Python's lock for part of the build: two take 1.9 s instead of 2.4 s one after the other)."""
-    with ThreadPoolExecutor(count) as pool:
-        return list(pool.map(lambda _: DesignSolver(problem), range(count)))
 
 
 class HollowError(SolverError):

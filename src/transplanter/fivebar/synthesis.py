@@ -16,8 +16,8 @@ from numbers import Integral
 import numpy as np
 
 from transplanter.errors import InfeasibleError, ProblemError, SolverError
-from transplanter.fivebar.alternatives import REFINEMENT_LANES, Alternative, Progress, refine_all, with_gear_sizes
-from transplanter.fivebar.nlp import design_solvers
+from transplanter.fivebar.alternatives import Alternative, Progress, refine_all, with_gear_sizes
+from transplanter.fivebar.nlp import DesignSolver
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import ChainFamily, Region, solution_region
 from transplanter.fivebar.relaxation import relaxation_hint
@@ -129,10 +129,10 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
         _no_feasible_pair(problem, region)
 
     start = time.perf_counter()
-    solvers = design_solvers(problem, min(REFINEMENT_LANES, len(region.feasible)))
+    solver = DesignSolver(problem)
     timings["nlp_build"] = time.perf_counter() - start
     start = time.perf_counter()
-    alternatives, failed, seconds = refine_all(problem, solvers, region.feasible, progress)
+    alternatives, failed, seconds = refine_all(problem, solver, region.feasible, progress)
     timings["nlp"] = time.perf_counter() - start
     timings["nlp_per_candidate"] = seconds
     if not alternatives:
