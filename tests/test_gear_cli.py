@@ -50,9 +50,14 @@ def test_json_fields_and_drawings(tmp_path):
     polyline = next(iter(ezdxf.readfile(tmp_path / "driver.dxf").modelspace().query("LWPOLYLINE")))
     assert polyline.closed and len(polyline) == len(outline)
     assert np.allclose(np.array(polyline.get_points("xy")), outline, atol=1e-6)
+    pitch = np.loadtxt(tmp_path / "pitch_curves.csv", delimiter=",", skiprows=1)
+    drawing = ezdxf.readfile(tmp_path / "driver.dxf")
+    assert drawing.header["$INSUNITS"] == 4     # millimetres
+    on_pitch = list(drawing.modelspace().query('LWPOLYLINE[layer=="PITCH"]'))
+    assert len(on_pitch) == 1                   # the pitch curve, on its own layer, as in pitch_curves.csv
+    assert np.allclose(np.array(on_pitch[0].get_points("xy")), pitch[:, 4:6], atol=1e-6)
     svg = ElementTree.parse(tmp_path / "driven.svg").getroot()
     assert svg.get("width").endswith("mm")
-    pitch = np.loadtxt(tmp_path / "pitch_curves.csv", delimiter=",", skiprows=1)
     assert pitch.shape[1] == 13
     for name in ("gear_mesh.png", "gear_kinematics.png", "gear_curvature.png"):
         assert (tmp_path / name).read_bytes()[:4] == b"\x89PNG"

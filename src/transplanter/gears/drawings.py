@@ -165,14 +165,15 @@ def write_drawings(result: GearResult, folder: str | Path) -> list[Path]:
     Returns
     -------
     list of Path
-        The files written: CSV (pitch curves, outlines; mm), SVG and DXF (mm, INSUNITS set) per gear.
+        The files written: CSV (pitch curves, outlines; mm), SVG and DXF (mm, INSUNITS set) per gear, the DXF
+        with the outline on layer OUTLINE and the pitch curve on layer PITCH (dashed in the SVG).
     """
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     written = write_csv(result, folder)
-    for name, outline in outlines(result).items():
+    for (name, outline), pitch_curve in zip(outlines(result).items(), _pitch_curves(result)):
         for suffix, writer in ((".svg", write_svg), (".dxf", write_dxf)):
             path = folder / f"{name}{suffix}"
-            writer(outline, path)
+            writer(outline, path, pitch_curve=pitch_curve)
             written.append(path)
     return written
