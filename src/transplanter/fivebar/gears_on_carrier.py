@@ -15,9 +15,9 @@ from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
-import shapely
 
 from transplanter.fivebar.linkage import FiveBar
+from transplanter.geometry.outline_thinning import thinned
 from transplanter.geometry.poses import rotate_about, rotation
 from transplanter.trains.planetary import PlanetaryTrain
 from transplanter.trains.toothed_train import ToothedTrain, bend_angle
@@ -92,18 +92,6 @@ def tooth_outlines(toothed: ToothedTrain) -> dict[str, np.ndarray]:
     has a vertex every 0.002 module, which CAD files and frames do not need."""
     tolerance = DRAWN_WITHIN_MODULES * toothed.module
     return {gear.name.replace(" ", "_"): thinned(gear.outline, tolerance) for gear in toothed.gears}
-
-
-def thinned(outline: np.ndarray, tolerance: float) -> np.ndarray:
-    """A closed outline (N, 2) within ``tolerance`` of itself with fewer vertices: Douglas-Peucker on the
-    outline opened at its first vertex (on a ring GEOS also drops that vertex, by a rule that can miss the
-    tolerance: 1.52e-3 against 1.5e-3 mm on the example's planet). Plain Douglas-Peucker takes a tenth of
-    the time of GEOS's topology-preserving thinning; that one serves where the plain result crosses itself."""
-    line = shapely.linestrings(np.vstack([outline, outline[:1]]))
-    thin = shapely.simplify(line, tolerance, preserve_topology=False)
-    if not shapely.is_simple(thin):
-        thin = shapely.simplify(line, tolerance)
-    return shapely.get_coordinates(thin)[:-1]
 
 
 def teeth_on_carrier(toothed: ToothedTrain, carrier_length: float) -> dict:

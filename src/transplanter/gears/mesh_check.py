@@ -30,6 +30,7 @@ import numpy as np
 import shapely
 
 from transplanter.gears.pair import GearPairDesign, driven_angle
+from transplanter.geometry.outline_thinning import thinned
 from transplanter.geometry.poses import rotate_about
 
 ORIGIN = (0.0, 0.0)
@@ -119,7 +120,7 @@ class _Outline:
 
     def __init__(self, outline: np.ndarray, spacing: float, simplify: float, cap: float):
         points = _counterclockwise(np.asarray(outline, float))
-        simple = shapely.get_coordinates(shapely.simplify(shapely.linearrings(points), simplify))[:-1]
+        simple = thinned(points, simplify)
         tangent = np.roll(simple, -1, axis=0) - simple
         self.normals = np.c_[tangent[:, 1], -tangent[:, 0]] / np.linalg.norm(tangent, axis=1, keepdims=True)
         self.grid = _SegmentGrid(simple, cap)

@@ -25,6 +25,7 @@ import shapely
 from scipy.spatial import cKDTree
 
 from transplanter.gears.pair import GearPairDesign, driven_angle
+from transplanter.geometry.outline_thinning import thinned
 from transplanter.geometry.poses import rotate_about
 from transplanter.gears.rack_teeth import ADDENDUM, DEDENDUM, PitchTable, pitch_table, rack_profile
 
@@ -199,6 +200,5 @@ def mate_profile(design: GearPairDesign, driver_outline: np.ndarray, driven: Pit
         return rotate_about(world - [design.center_distance, 0.0], ORIGIN, -phi2[rows, None])
 
     # the driver's one-per-bin vertices, thinned where they stay within a hair of their chords
-    ring = shapely.simplify(shapely.linearrings(driver_outline), SIMPLIFY_MODULES * module)
-    cutter = _short_edges(shapely.get_coordinates(ring)[:-1], driven, module)
+    cutter = _short_edges(thinned(driver_outline, SIMPLIFY_MODULES * module), driven, module)
     return _lower_envelope(driven, ADDENDUM * module, module, _segments(cutter, phi1, reach, place))
