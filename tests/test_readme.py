@@ -34,7 +34,7 @@ def test_every_job_has_an_example():
 
 
 @pytest.fixture
-def synthesis_once(request, monkeypatch):
+def synthesis_once(request, monkeypatch, example_result):
     """``fivebar.synthesize`` of the bundled main-job example, as the block calls it, is the test process's
     one synthesis of that file (``example_result``: deterministic, and tested on its own elsewhere) instead
     of a second one of the same tens of seconds; any other call runs as it is."""
@@ -43,10 +43,10 @@ def synthesis_once(request, monkeypatch):
     if "fivebar.synthesize(" not in request.node.callspec.params["block"]:
         return
     synthesize, example = fivebar.synthesize, (ROOT / "examples/vegetable_planting.toml").resolve()
-    result = request.getfixturevalue("example_result")
 
     def once(problem, **options):
-        return result if not options and Path(problem.source).resolve() == example else synthesize(problem, **options)
+        same = not options and Path(problem.source).resolve() == example
+        return example_result if same else synthesize(problem, **options)
     monkeypatch.setattr(fivebar, "synthesize", once)
 
 
