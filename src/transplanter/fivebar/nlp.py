@@ -82,7 +82,7 @@ from transplanter.geometry.periodic_bspline import CASADI, TWO_PI, basis, basis_
 from transplanter.geometry.turn_quadrature import NODES, panels
 from transplanter.trains.planetary import correction_factor
 
-GRID_POINTS = 90
+GRID_POINTS = 72
 CHECK_POINTS = 7200
 EXCHANGE_ROUNDS = 4
 BENDING_WEIGHT = 1e-5
