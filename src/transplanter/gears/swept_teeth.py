@@ -98,7 +98,7 @@ def _short_edges(outline: np.ndarray, table: PitchTable, module: float) -> np.nd
 def _normal_coordinates(table: PitchTable, samples: cKDTree, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Arc length s of the foot of each point's normal on the pitch curve, and its height h along that
     normal (outward positive): from the nearest table sample (``samples``, its points), two Newton steps."""
-    _, nearest = samples.query(points, workers=-1)
+    _, nearest = samples.query(points, workers=1)
     offset = points - table.points[nearest]
     s = table.arc[nearest] + np.sum(offset * table.tangents[nearest], axis=1)
     for _ in range(2):
