@@ -14,7 +14,6 @@ gentler ratio, i.e. the smaller spread i0_max / i0_min; then to the earlier star
 """
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, replace
 from typing import Callable
 
@@ -23,6 +22,7 @@ import numpy as np
 from transplanter.errors import SolverError, TransplanterError
 from transplanter.fivebar.candidate import (GRID, Candidate, closure_defect, monotonic_defect, range_defect,
                                             range_values, ratio_defect)
+from transplanter.fivebar.lanes import refine_in_lanes
 from transplanter.fivebar.linkage import FiveBar
 from transplanter.fivebar.nlp import CURVES, DesignSolution, DesignSolver, HollowError, concavity_text, reach
 from transplanter.fivebar.problem import FiveBarProblem
@@ -272,23 +272,29 @@ def rank(alternatives: list[Alternative], size: float) -> list[Alternative]:
 
 def refine_all(problem: FiveBarProblem, solver: DesignSolver, candidates: list[Candidate],
                progress: Progress | None = None) -> tuple[list[Alternative], list[Failure], list[float]]:
-    """Refine every candidate with the one ``solver`` (built for ``problem``); the ranked, merged
-    alternatives, the failures (by start), and the wall time of each refinement (s)."""
-    found, failed, seconds = [], [], []
+    """Refine every candidate in the fixed lanes of ``fivebar.lanes``, lane 0 on ``solver`` (built for
+    ``problem``); the ranked, merged alternatives, the failures (by start), and the wall time of each
+    refinement (s)."""
+    outcomes, seconds = [None] * len(candidates), [0.0] * len(candidates)
+
+    def refine(lane_solver: DesignSolver, index: int) -> Alternative | Failure:
+        try:
+            return assess(problem, lane_solver.refine(candidates[index]), index)
+        except HollowError as error:
+            return Failure(index, error.reason)
+        except SolverError as error:
+            return Failure(index, f"the design NLP did not converge: {error.status}")
+
+    def finished(index: int, outcome: Alternative | Failure, wall: float):
+        outcomes[index], seconds[index] = outcome, wall
+        if progress:
+            progress("refinement", sum(o is not None for o in outcomes), len(candidates))
+
     if progress:
         progress("refinement", 0, len(candidates))
-    for index, candidate in enumerate(candidates):
-        start = time.perf_counter()
-        try:
-            outcome = assess(problem, solver.refine(candidate), index)
-        except HollowError as error:
-            outcome = Failure(index, error.reason)
-        except SolverError as error:
-            outcome = Failure(index, f"the design NLP did not converge: {error.status}")
-        seconds.append(time.perf_counter() - start)
-        (failed if isinstance(outcome, Failure) else found).append(outcome)
-        if progress:
-            progress("refinement", index + 1, len(candidates))
+    refine_in_lanes(len(candidates), refine, solver, lambda: DesignSolver(problem), finished)
+    found = [outcome for outcome in outcomes if not isinstance(outcome, Failure)]
+    failed = [outcome for outcome in outcomes if isinstance(outcome, Failure)]
     size = reach(problem)
     merged = [_convex_if_possible(problem, solver, candidates, alternative) for alternative in merge(found, size)]
     return rank(merge(merged, size), size), failed, seconds
