@@ -27,3 +27,23 @@ def example_result():
 
     path = Path(__file__).resolve().parents[1] / "examples/vegetable_planting.toml"
     return fivebar.synthesize(fivebar.load_problem(path))
+
+
+
+def pytest_xdist_make_scheduler(config, log):
+    """``--dist loadfile``, with every file that reads ``example_result`` in one unit: one worker
+    synthesises the example for all of them (about 17 s of CPU), and the other takes the rest file by file."""
+    if config.getvalue("dist") != "loadfile":
+        return None
+    from pathlib import Path
+
+    from xdist.scheduler import LoadFileScheduling
+
+    readers = {path.name for path in Path(__file__).parent.glob("test_*.py") if "example_result" in path.read_text()}
+
+    class ExampleReadersTogether(LoadFileScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            file = super()._split_scope(nodeid)
+            return "example_result readers" if Path(file).name in readers else file
+
+    return ExampleReadersTogether(config, log)
