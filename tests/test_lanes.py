@@ -70,3 +70,14 @@ def test_a_defect_in_the_forked_lane_is_raised_in_the_caller(monkeypatch):
     with pytest.raises(ValueError, match="lane 1 broke on candidate 3"):
         refine_in_lanes(5, faulty, Solver(), Solver, lambda *_: None)
     assert lanes._forked is None
+
+
+def test_a_system_that_refuses_the_process_runs_the_lanes_here(monkeypatch):
+    """A sandbox without semaphores or fork: the pool's OSError leaves lane 1 to this process, same outcome."""
+    def refused(*args, **kwargs):
+        raise OSError(38, "Function not implemented")
+
+    monkeypatch.setattr(lanes, "ProcessPoolExecutor", refused)
+    solver, built, reported = run(5, True, monkeypatch)
+    assert len(built) == 1 and {outcome[2] for _, outcome, *_ in reported} == {os.getpid()}
+    assert {index: earlier for index, (_, earlier, _), *_ in reported} == {0: (), 2: (0,), 4: (0, 2), 1: (), 3: (1,)}

@@ -12,6 +12,7 @@ lanes in threads contended for the interpreter lock (7 % gained, measured).
 """
 from __future__ import annotations
 
+import contextlib
 import multiprocessing
 import time
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
@@ -35,26 +36,38 @@ def refine_in_lanes(count: int, refine: Refine, solver: DesignSolver, new_solver
     with lane 0's exchange turns), lane 1 on a fork of it or on ``new_solver()``."""
     global _forked
     own, other = range(0, count, LANES), range(1, count, LANES)
-    if not other or "fork" not in multiprocessing.get_all_start_methods():
-        for index in own:
-            finished(index, *_timed(refine, solver, index))
-        if other:
-            second = new_solver()
-            for index in other:
-                finished(index, *_timed(refine, second, index))
-        return
     _forked = (refine, solver)
     try:
-        # the fork happens at the first submit, before lane 0 touches the solver
-        with ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork")) as pool:
-            pending = {pool.submit(_forked_lane, index): index for index in other}
+        pool, pending = _fork_lane(other)
+        with pool or contextlib.nullcontext():
             for index in own:
                 finished(index, *_timed(refine, solver, index))
                 _collect(pending, finished, timeout=0)
             while pending:
                 _collect(pending, finished, timeout=None)
+        if pool is None and other:
+            second = new_solver()
+            for index in other:
+                finished(index, *_timed(refine, second, index))
     finally:
         _forked = None
+
+
+def _fork_lane(other: range) -> tuple[ProcessPoolExecutor | None, dict[Future, int]]:
+    """A forked process refining the candidates ``other`` of lane 1, and their futures; (None, {}) where
+    there is no lane 1, the platform does not fork, or the system refuses the process or its
+    semaphores (a sandbox): lane 1 then runs here."""
+    if not other or "fork" not in multiprocessing.get_all_start_methods():
+        return None, {}
+    pool = None
+    try:
+        pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork"))
+        # the fork happens at the first submit, before lane 0 touches the solver
+        return pool, {pool.submit(_forked_lane, index): index for index in other}
+    except OSError:
+        if pool is not None:
+            pool.shutdown(wait=False, cancel_futures=True)
+        return None, {}
 
 
 def _forked_lane(index: int) -> tuple[object, float]:
