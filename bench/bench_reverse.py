@@ -27,7 +27,7 @@ import numpy as np
 from scipy.integrate import cumulative_trapezoid, simpson
 from scipy.interpolate import BSpline
 
-from fresh_process import cli_seconds  # bench/ is the script's own folder
+from fresh_process import cli_run  # bench/ is the script's own folder
 from transplanter.reverse.problem import load_problem
 from transplanter.reverse.synthesis import synthesize
 
@@ -93,7 +93,7 @@ def main():
               f"trip {miss:.2e} mm ({miss / result.verification.max_error_mm:.0e}x the package's), stage 1 closure "
               f"{closure:.1e} rad")
 
-    print(f"CLI in a fresh process, with report and figures: {cli_seconds('reverse', str(EXAMPLE)):.2f} s")
+    print(f"CLI in a fresh process, with report and figures: {cli_run('reverse', str(EXAMPLE))[0]:.2f} s")
 
 if __name__ == "__main__":
     main()
