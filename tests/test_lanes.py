@@ -1,6 +1,5 @@
 """The refinement lanes: fixed candidates per lane, each lane's solver fresh when it starts, the same
 outcome forked or not, results reported in the caller's thread, a lane's defect raised."""
-import multiprocessing
 import os
 import threading
 
@@ -26,7 +25,7 @@ def refine(solver, index):
 
 def run(count, forks: bool, monkeypatch):
     if not forks:
-        monkeypatch.setattr(multiprocessing, "get_all_start_methods", lambda: ["spawn"])
+        monkeypatch.setattr(lanes, "FORKS", False)
     solver, built, reported = Solver(), [], []
 
     def new_solver():

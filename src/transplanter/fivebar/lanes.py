@@ -3,9 +3,9 @@ lane on its own design solver, fresh when the lane starts (``DesignSolver`` carr
 turns of one candidate to the next, which makes later candidates of a lane about three times
 cheaper than its first).
 
-Where the platform forks (Linux), lane 1 runs in a forked process beside lane 0 in this one, on
-the solver this process built, copied unused at the fork. Elsewhere lane 1 runs after lane 0 here,
-on a second solver built for it. Which lane refines which candidate from which solver state is the
+On Linux lane 1 runs in a forked process beside lane 0 in this one, on the solver this process
+built, copied unused at the fork. Elsewhere, or where the system refuses the process, lane 1 runs
+after lane 0 here, on a second solver built for it. Which lane refines which candidate from which solver state is the
 same either way, so the outcome depends neither on the platform nor on timing. Processes, not
 threads: IPOPT's iteration callback and the whole-turn checks between solves are Python, and two
 lanes in threads contended for the interpreter lock (7 % gained, measured).
@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import contextlib
 import multiprocessing
+import sys
 import time
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from typing import Callable
@@ -21,6 +22,9 @@ from typing import Callable
 from transplanter.fivebar.nlp import DesignSolver
 
 LANES = 2
+#: Lane 1 in a forked process: on Linux only (macOS lists fork, but its system libraries are not
+#: safe to use in a forked child).
+FORKS = sys.platform.startswith("linux")
 
 #: refine(solver, index) -> outcome: one candidate's refinement (its failures returned, not raised).
 Refine = Callable[[DesignSolver, int], object]
@@ -57,7 +61,7 @@ def _fork_lane(other: range) -> tuple[ProcessPoolExecutor | None, dict[Future, i
     """A forked process refining the candidates ``other`` of lane 1, and their futures; (None, {}) where
     there is no lane 1, the platform does not fork, or the system refuses the process or its
     semaphores (a sandbox): lane 1 then runs here."""
-    if not other or "fork" not in multiprocessing.get_all_start_methods():
+    if not other or not FORKS:
         return None, {}
     pool = None
     try:
