@@ -2,7 +2,9 @@
 
 The pair is turned by its designed motion, positions ``SAMPLES_PER_PITCH`` per pitch of driver
 pitch arc. At each position the driver's outline points near the contact are put in the driven
-gear's frame; a point within ``TOUCH_MODULES`` of the driven outline touches. Each touching point
+gear's frame; a point within ``TOUCH_MODULES`` of the driven outline touches. Tip points (within
+``TIP_MODULES`` of the addendum) are left out: the driven root was carved by them and they graze it
+whatever the flanks do. Each touching point
 belongs to a driver tooth (the tooth whose pitch-curve span, from one space centre to the next,
 holds the foot of the point on the pitch curve) and to its low-arc or high-arc flank; one flank
 side drives when the driver turns one way, the other when it turns back (seed 004 sec 3.2: the
@@ -15,16 +17,20 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import shapely
 from scipy.spatial import cKDTree
 
 from transplanter.gears.mesh_check import GAP_MODULES
 from transplanter.gears.pair import GearPairDesign, driven_angle
+from transplanter.gears.rack_teeth import ADDENDUM
 
 SAMPLES_PER_PITCH = 24
 #: A driver point this close to the driven outline (modules) touches it: the backlash ``mesh_check`` allows.
 TOUCH_MODULES = GAP_MODULES
 #: Driver points within this many pitches of the contact, about this many modules apart, are measured.
 REACH_PITCHES, SPACING_MODULES = 1.5, 0.01
+#: Driver points this close (modules) to the tip height are the tip, not a flank: they are not measured.
+TIP_MODULES = 0.05
 
 
 @dataclass(frozen=True)
@@ -67,6 +73,9 @@ def measure_contact_ratio(design: GearPairDesign, outlines: tuple[np.ndarray, np
     driver = _densified(outlines[0], SPACING_MODULES * module)
     driver = driver[np.r_[0, np.flatnonzero(np.diff(np.floor(np.r_[0.0, np.cumsum(np.linalg.norm(
         np.diff(driver, axis=0), axis=1))] / (SPACING_MODULES * module)))) + 1]]
+    # the tips graze the mate's root, which they carved: only flanks count
+    height = shapely.distance(shapely.Polygon(design.points[0]), shapely.points(driver))
+    driver = driver[height < (ADDENDUM - TIP_MODULES) * module]
     foot = cKDTree(design.points[0][:-1]).query(driver)[1]
     arc = design.arc[foot]                                           # pitch arc of each driver point's foot
     driven = cKDTree(_densified(outlines[1], TOUCH_MODULES * module / 2))
@@ -87,7 +96,7 @@ def measure_contact_ratio(design: GearPairDesign, outlines: tuple[np.ndarray, np
                               <= REACH_PITCHES * pitch)
         c1, s1, c2, s2 = np.cos(a), np.sin(a), np.cos(b), np.sin(b)
         world = driver[near] @ np.array([[c1, -s1], [s1, c1]]) - [design.center_distance, 0.0]
-        local = world @ np.array([[c2, s2], [-s2, c2]])
+        local = world @ np.array([[c2, -s2], [s2, c2]])
         hit = near[driven.query(local, distance_upper_bound=TOUCH_MODULES * module)[0] <= TOUCH_MODULES * module]
         touching[side[hit], tooth[hit], k] = True
     spacing = np.diff(np.r_[unwrapped[-1] - perimeter, unwrapped, unwrapped[0] + perimeter])
