@@ -29,15 +29,19 @@ Incomplete cycloid flanks near a corner (seed 004 eq 7-12, re-derived):
   and the rolling circle of eq (7) is r_gy = S / (2 pi n) for S rolled in n turns.
 - The arch leans theta/2 off the normal at theta (dP/dtheta ~ (sin(theta/2), cos(theta/2)) in
   (T, n)), so it starts normal to the pitch curve: a pressure angle of 0 against the involute's
-  alpha, the kink of seed 004 Figure 8. The arch from theta0 = 2 alpha (where it leans alpha, as
-  the involute does at the pitch point) to the top is the package's incomplete cycloid: it rolls on
-  the base lowered by the depth r (1 - cos 2 alpha), so that its first point lies on the pitch
-  curve, and stops at theta1 with its rolling contact on the corner: over a zone of pitch arc S
-  from the pitch point to the corner, S = r (theta1 - 2 alpha + sin 2 alpha)
-  (``incomplete_cycloid``; alpha = 0 gives eq 7's r_gy = S / (2 pi n) with theta1 = 2 pi n).
-  Its normal at theta passes through its rolling contact, so while the pair's pitch point runs
-  from A to the corner the contact climbs the arch with a pressure angle from alpha to theta1 / 2;
-  seed 004's n = 0.5 (theta1 = pi) ends at 90 deg on the corner, where no torque passes.
+  alpha, the kink of seed 004 Figure 8. The package's incomplete cycloid keeps the rolling on the
+  pitch curve itself, so that its normal at theta, through the rolling contact, meets the pitch
+  curve there and the arch is conjugate to its envelope; it joins the flank where the arch leans
+  alpha as the involute does (theta0 = 2 alpha). From the pitch point A the flank goes on
+  straight, leaning alpha as a rack's flank does, up to that joint, r (1 - cos 2 alpha) above the
+  pitch curve; the arch's circle then rolls on, and its contact reaches the corner, a zone S after
+  A, when the circle has turned theta_J: S = r (theta_J - 2 alpha + 2 tan alpha)
+  (``incomplete_cycloid``). At the corner the circle pivots about J through the tangent's turn
+  (its point draws an arc about J) and rolls on along the next segment until the arch reaches the
+  tip, so the flank drives past the corner. The pair's contact meets the arch with pressure angle
+  theta / 2: alpha at the joint, theta_J / 2 as the corner passes the line of centres. A lowered
+  rolling base (an earlier version) put the joint on the pitch curve but its normals missed the
+  pitch point, and the pair lost 0.02 mm of transmission at the corners.
 - Seed 004's elliptic rolling curve, eq (7) r(theta) = r_gy / sqrt((a1 cos theta)^2 + (b1 sin theta)^2)
   put into eq (12), starts (theta = 0) with the velocity (1 - 1/a1) T per unit rolled arc
   (``paper_variable_cycloid_start``): along the pitch curve, a pressure angle of 90 deg, for any
@@ -108,19 +112,25 @@ def cycloid_trace(base_x, base_y, tangent_angle, radius, theta, side):
     return sp.Matrix([base_x, base_y]) + radius * n - radius * (sp.cos(theta) * n + side * sp.sin(theta) * t)
 
 
-def incomplete_cycloid(alpha, zone, end_angle):
-    """(start angle theta0, radius r, depth of the rolling base below the pitch curve, height of the last point
-    above it) of the arch that leans ``alpha`` off the normal at its first point (on the pitch curve) and ends
-    at ``end_angle`` with its rolling contact on the corner, a ``zone`` of pitch arc after its first point."""
-    r, theta = sp.symbols("r theta", positive=True)
-    x, y = cycloid_trace(r * theta, 0, 0, r, theta, 1)
+def incomplete_cycloid(alpha, zone, corner_angle):
+    """(start angle theta0, radius r, cusp offset c, joint height, height over the corner) of the arch that
+    goes on from a straight flank leaning ``alpha`` off the normal at its pitch point A, rolling on the pitch
+    curve itself, with its rolling contact on the corner, a ``zone`` of pitch arc after A, at ``corner_angle``.
+
+    On the base line through A = 0 (run towards +x) the arch is the cycloid of cusp c; it leans alpha, as the
+    straight flank x = h tan(alpha) does, at theta0, where it must lie on that flank."""
+    r, theta, c = sp.symbols("r theta c", real=True)
+    x, y = cycloid_trace(c + r * theta, 0, 0, r, theta, 1)
     y = -y                                          # tangent angle 0: the outward normal is -y; height above is -y
     lean = sp.atan2(sp.diff(x, theta), sp.diff(y, theta))
     theta0 = sp.solve(sp.Eq(sp.tan(lean), sp.tan(alpha)), theta)[0].subs(sp.atan(sp.tan(alpha)), alpha)
-    radius = sp.solve(sp.Eq(r * end_angle - x.subs(theta, theta0), zone), r)[0]
-    depth = sp.simplify(y.subs(theta, theta0).subs(r, radius))
-    top = sp.simplify(y.subs(theta, end_angle).subs(r, radius) - depth)
-    return sp.simplify(theta0), sp.simplify(radius), depth, top
+    cusp = sp.solve(sp.Eq(x.subs(theta, theta0), y.subs(theta, theta0) * sp.tan(alpha)), c)[0]
+    radius = sp.solve(sp.Eq(cusp + r * corner_angle, zone), r)[0]
+    def tidy(expression):                           # in sines and cosines, which the generated code knows
+        return sp.simplify(expression.subs(sp.tan(alpha), sp.sin(alpha) / sp.cos(alpha)))
+
+    return (sp.simplify(theta0), tidy(radius), tidy(cusp.subs(r, radius)), tidy(y.subs(theta, theta0).subs(r, radius)),
+            tidy(y.subs(theta, corner_angle).subs(r, radius)))
 
 
 def paper_variable_cycloid_start(a1, b1):
@@ -139,8 +149,8 @@ def paper_variable_cycloid_start(a1, b1):
 def _cycloid() -> Derived:
     base, angle = symbol_group("base", 2), symbol_group("tangent_angle", 1)[0]
     radius, theta, side = (symbol_group(name, 1)[0] for name in ("radius", "theta", "side"))
-    alpha, zone, end = (symbol_group(name, 1)[0] for name in ("pressure_angle", "zone", "end_angle"))
-    theta0, r, depth, top = incomplete_cycloid(alpha, zone, end)
+    alpha, zone, corner = (symbol_group(name, 1)[0] for name in ("pressure_angle", "zone", "corner_angle"))
+    theta0, r, cusp, joint, over_corner = incomplete_cycloid(alpha, zone, corner)
     return [
         Derived(name="cycloid_trace",
                 doc="Point of a circle rolling outside the pitch curve (seed 004 eq 9-12, a1 = b1 = 1) at a base point and tangent angle.",
@@ -148,10 +158,12 @@ def _cycloid() -> Derived:
                         ("side", (side,))),
                 outputs=(("point", tuple(cycloid_trace(*base, angle, radius, theta, side))),)),
         Derived(name="incomplete_cycloid",
-                doc=("Start angle, rolling radius, depth of the rolling base and height of the last point of the arch "
-                     "joining the involute at pressure angle alpha, over a zone S to the corner, ending at end_angle."),
-                inputs=(("pressure_angle", (alpha,)), ("zone", (zone,)), ("end_angle", (end,))),
-                outputs=(("start_angle", (theta0,)), ("radius", (r,)), ("depth", (depth,)), ("top_height", (top,)))),
+                doc=("Start angle, rolling radius, cusp offset from A, joint height and height over the corner of the "
+                     "arch going on from a straight flank leaning alpha, rolling a zone S from A to the corner, where "
+                     "its circle has turned corner_angle."),
+                inputs=(("pressure_angle", (alpha,)), ("zone", (zone,)), ("corner_angle", (corner,))),
+                outputs=(("start_angle", (theta0,)), ("radius", (r,)), ("cusp", (cusp,)), ("joint_height", (joint,)),
+                         ("corner_height", (over_corner,)))),
     ]
 
 

@@ -28,10 +28,7 @@ def test_one_example_per_family():
                              cwd=ROOT) for path in EXAMPLES]
     outputs = [run.communicate() for run in runs]
     for path, run, (_, stderr) in zip(EXAMPLES, runs, outputs):
-        if path.name == "gear_cusp_composite.toml":     # known to fail its mesh check at the corners (docs/gear.md)
-            assert run.returncode == 1 and "transmission error" in stderr, (path.name, stderr)
-        else:
-            assert run.returncode == 0, (path.name, stderr)
+        assert run.returncode == 0, (path.name, stderr)
     families = {json.loads(stdout)["driver"]["family"] for stdout, _ in outputs}
     assert families == {"ellipse", "higher_order_ellipse", "denatured_ellipse", "limacon", "denatured_limacon",
                         "spline", "ratio", "composite"}

@@ -26,19 +26,23 @@ import shapely.affinity
 
 from transplanter.errors import InfeasibleError
 from transplanter.gears.composite_curve import CompositeCurve, cusps
-from transplanter.gears.cycloid_teeth import CycloidArch, arch, arch_min_curvature_radius, arch_pressure_range
+from transplanter.gears.cycloid_teeth import (STRAIGHT_POINTS, CycloidArch, arch, arch_pressure_range,
+                                              polyline_min_curvature_radius)
 from transplanter.gears.mesh_check import MeshCheck, check_mesh
 from transplanter.gears.pair import GearPairDesign, driven_angle
 from transplanter.gears.rack_teeth import ADDENDUM
 from transplanter.gears.swept_teeth import BIN_MODULES, shaper_profile
 from transplanter.gears.teeth import driver_table, self_intersections
 from transplanter.gears.tooth_contact import ContactRatio, measure_contact_ratio
+from transplanter.generated import numpy_twin
 
 #: The driven gear is carved by the driver's teeth within this many pitches of the contact, at positions this
 #: many modules of pitch arc apart, the teeth's outline simplified within this many modules.
 CARVE_REACH_PITCHES, CARVE_STEP_MODULES, CARVE_SIMPLIFY_MODULES = 1.5, 0.05, 1e-4
 #: The corner tooth's thickness at the pitch curve, as a fraction of the pitch (seed 004 sec 2.3).
 THICKNESS_BAND = (0.8, 1.2)
+
+_incomplete = numpy_twin("cusp", "incomplete_cycloid")
 
 
 @dataclass(frozen=True)
@@ -50,8 +54,11 @@ class CornerTooth:
     end_arc: float              # D
     pitch: float
     arches: tuple[CycloidArch, CycloidArch]
-    joint_kinks_deg: tuple[float, float]    # turn of the outline where each arch meets the involute below it
+    joint_kinks_deg: tuple[float, float]    # turn of the outline where each flank leaves the involute below it
     joint_gaps_mm: tuple[float, float]
+    flanks: tuple[np.ndarray, np.ndarray]   # each side's straight flank and arch from its pitch point, as cut at the tip
+    pressure_angles_deg: tuple[tuple[float, float], tuple[float, float]]   # each arch's, as cut at the tip
+    min_curvature_radius_mm: tuple[float, float]                           # each arch's, as cut at the tip
 
     @property
     def thickness_ratio(self) -> float:
@@ -166,13 +173,40 @@ def _to_tip(arch_points: np.ndarray, heights: np.ndarray, tip: float) -> np.ndar
     return np.r_[arch_points[:k], (arch_points[k - 1] + w * (arch_points[k] - arch_points[k - 1]))[None]]
 
 
+def _tip(first: np.ndarray, last: np.ndarray, pitch_curve: shapely.Polygon, tip: float, count: int = 40) -> np.ndarray:
+    """The tooth's top between its two arches' ends, on the addendum band (the pitch curve grown by ``tip``):
+    an arc about the corner where the corner is nearest, as a rack-cut tooth's tip would be."""
+    chord = first + np.linspace(0.0, 1.0, count + 2)[1:-1, None] * (last - first)
+    boundary = pitch_curve.exterior
+    nearest = shapely.get_coordinates(boundary.interpolate(boundary.project(shapely.points(chord))))
+    away = chord - nearest
+    return nearest + tip * away / np.linalg.norm(away, axis=1, keepdims=True)
+
+
 def _turn_deg(first: np.ndarray, second: np.ndarray) -> float:
     cross = first[0] * second[1] - first[1] * second[0]
     return float(np.degrees(np.arctan2(cross, np.dot(first, second))))
 
 
+def _check_arch_height(zone: float, alpha: float, corner_pressure: float, tip: float, corner: float, source: str):
+    """Refuse a corner pressure angle at which an arch over ``zone`` reaches the tip before its circle reaches the
+    corner (it could not drive past the corner), naming the largest angle that passes."""
+    height = float(_incomplete([alpha], [zone], [2 * corner_pressure])[4][0])
+    if height < tip:
+        return
+    angles = np.linspace(alpha, np.pi / 2, 2001)[1:]
+    low = _incomplete([np.full_like(angles, alpha)], [np.full_like(angles, zone)], [2 * angles])[4][0] < tip
+    fits = angles[:int(np.argmin(low))] if not low.all() else angles    # from alpha up to the first that fails
+    largest = (f"use at most {np.floor(np.degrees(fits.max()) * 10) / 10:.1f} deg" if fits.size
+               else "no angle fits: use more teeth")
+    raise InfeasibleError(
+        f"{source}: pair.corner_pressure_angle_deg = {np.degrees(corner_pressure):g}: the cycloid arch of the corner "
+        f"tooth at pitch arc {corner:.3f} mm would stand {height:.3f} mm high over the corner, above the tip "
+        f"({tip:.3f} mm), and stop short of it; {largest}")
+
+
 def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float, teeth: int, cutter_teeth: int,
-                             source: str, corner_pressure: float = np.radians(60)) -> CompositeTeeth:
+                             source: str, corner_pressure: float = np.radians(30)) -> CompositeTeeth:
     """Driver outline of shaper-cut stretches and corner teeth, the driven outline by envelope (module docstring).
 
     Raises
@@ -208,10 +242,11 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
     pieces, corner_teeth = [], []
     for j, k in enumerate(joint_index):
         start, end = corner_arc[j] - plan.before[j], corner_arc[j] + plan.after[j]
-        left = arch(curve, arc_to_phi, corner_arc[j], plan.before[j], k - 1, +1, alpha, 2 * corner_pressure)
-        right = arch(curve, arc_to_phi, corner_arc[j], plan.after[j], k, -1, alpha, 2 * corner_pressure)
+        _check_arch_height(max(plan.before[j], plan.after[j]), alpha, corner_pressure, tip, corner_arc[j], source)
+        left = arch(curve, arc_to_phi, corner_arc[j], plan.before[j], (k - 1, k), +1, alpha, 2 * corner_pressure)
+        right = arch(curve, arc_to_phi, corner_arc[j], plan.after[j], (k, k - 1), -1, alpha, 2 * corner_pressure)
         rising = [_to_tip(a.points, _pitch_heights(a.points, pitch_curve), tip) for a in (left, right)]
-        pieces.append(np.r_[rising[0], rising[1][::-1]])
+        pieces.append(np.r_[rising[0], _tip(rising[0][-1], rising[1][-1], pitch_curve, tip), rising[1][::-1]])
         next_start = corner_arc[(j + 1) % len(corners)] - plan.before[(j + 1) % len(corners)]
         run = np.mod(bins - end, perimeter)
         keep = np.flatnonzero(run <= np.mod(next_start - end, perimeter))
@@ -285,7 +320,10 @@ def _corner_tooth(outline, corner, start, end, pitch, arches, rising) -> CornerT
             involute_way, arch_way = outline[at - 1] - outline[at - 4], points[1] - points[0]
             kinks.append(abs(_turn_deg(involute_way, arch_way)))
             gaps.append(float(np.linalg.norm(outline[at - 1] - points[0])))
-    return CornerTooth(float(corner), float(start), float(end), pitch, arches, tuple(kinks), tuple(gaps))
+    used = [len(points) - STRAIGHT_POINTS for points in rising]
+    return CornerTooth(float(corner), float(start), float(end), pitch, arches, tuple(kinks), tuple(gaps), tuple(rising),
+                       tuple(arch_pressure_range(a, n) for a, n in zip(arches, used)),
+                       tuple(polyline_min_curvature_radius(points[STRAIGHT_POINTS:]) for points in rising))
 
 
 def composite_teeth_json(teeth: CompositeTeeth) -> dict:
@@ -301,9 +339,10 @@ def composite_teeth_json(teeth: CompositeTeeth) -> dict:
                        "transmission_error_mm": mesh.max_transmission_error_mm, "passed": mesh.passed},
         "corner_teeth": [{"corner_arc_mm": t.corner_arc, "thickness_pitches": t.thickness_ratio,
                           "rolling_radii_mm": [a.radius for a in t.arches],
-                          "base_depths_mm": [a.depth for a in t.arches],
+                          "joint_heights_mm": [a.joint_height for a in t.arches],
+                          "corner_heights_mm": [a.corner_height for a in t.arches],
                           "joint_kinks_deg": list(t.joint_kinks_deg), "joint_gaps_mm": list(t.joint_gaps_mm),
-                          "arch_pressure_angles_deg": [list(arch_pressure_range(a)) for a in t.arches],
-                          "arch_min_curvature_radius_mm": [arch_min_curvature_radius(a) for a in t.arches]}
+                          "arch_pressure_angles_deg": [list(p) for p in t.pressure_angles_deg],
+                          "arch_min_curvature_radius_mm": list(t.min_curvature_radius_mm)}
                          for t in teeth.corner_teeth],
     }

@@ -6,6 +6,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from transplanter.gears.composite_teeth import CompositeTeeth
+from transplanter.gears.cycloid_teeth import STRAIGHT_POINTS
 from transplanter.gears.pair import driven_angle
 from transplanter.gears.result import GearResult
 from transplanter.geometry.poses import rotate_about
@@ -28,8 +29,8 @@ def draw_cusps(result: GearResult) -> Figure:
         driven = rotate_about(teeth.outlines[1], (0.0, 0.0), phi2) + [d.center_distance, 0.0]
         corner = place(d.driver.evaluate(np.array([phi1]))[0][:1, None] * np.array([[np.cos(phi1), np.sin(phi1)]]))[0]
         ax.plot(*driver.T, color="tab:blue", lw=1.2, label="driver: variable involute (shaper)")
-        for k, arch in enumerate(tooth.arches):
-            ax.plot(*place(arch.points).T, color="tab:red", lw=1.8,
+        for k, flank in enumerate(tooth.flanks):
+            ax.plot(*place(flank[STRAIGHT_POINTS - 1:]).T, color="tab:red", lw=1.8,
                     label="driver: incomplete cycloid arches" if k == 0 else None)
         ax.plot(*driven.T, color="tab:orange", lw=1, label="driven gear (carved by the driver)")
         ax.plot(*pitch.T, "k--", lw=0.6, label="driver pitch curve")

@@ -1,12 +1,14 @@
 """Incomplete cycloid flanks of the tooth that stands on a corner of the pitch curve (seed 004 sec 2.2).
 
-Between the pitch point A of a flank and the corner J (a zone of pitch arc S), a circle rolls
-outside the pitch curve lowered by a depth d; the point it carries rises from A, where it leans
-alpha off the normal as the involute below A does, until the circle's contact reaches J
-(derivations/cusp.py, ``incomplete_cycloid``: theta from 2 alpha to theta1, r = S / (theta1 - 2 alpha
-+ sin 2 alpha), d = r (1 - cos 2 alpha)). The contact climbs the arch with a pressure angle from
-alpha to theta1 / 2, which the pair meets as the corner passes the line of centres. The rolling
-uses the frame of the corner's own side (``segment_frame``), continued past the corner.
+From the pitch point A of a flank the tooth rises straight, leaning alpha as a rack's flank does, to
+the joint where a circle rolling outside the pitch curve carries a point that leans alpha too
+(theta0 = 2 alpha). From there the circle rolls on the pitch curve itself: its contact reaches the
+corner J, a zone S after A, when it has turned theta_J, pivots about J through the tangent's turn and
+rolls on along the next segment until the point reaches the tip (derivations/cusp.py,
+``incomplete_cycloid``: r = S / (theta_J - 2 alpha + 2 tan alpha)). The normal of the arch always
+passes through the rolling contact on the pitch curve, so the arch is conjugate to its envelope and
+drives past the corner; the contact meets it with pressure angle theta / 2, theta_J / 2 as the
+corner passes the line of centres.
 """
 from __future__ import annotations
 
@@ -19,50 +21,73 @@ from transplanter.generated import numpy_twin
 
 _trace = numpy_twin("cusp", "cycloid_trace")
 _incomplete = numpy_twin("cusp", "incomplete_cycloid")
-#: Points per arch.
-ARCH_POINTS = 400
+#: Points per arch (rolling, pivot) and on the straight flank below it.
+ARCH_POINTS, PIVOT_POINTS, STRAIGHT_POINTS = 600, 60, 20
 
 
 @dataclass(frozen=True)
 class CycloidArch:
-    """One incomplete cycloid flank, from the pitch point to the top of its arch over the corner (mm, rad)."""
+    """One flank of a corner tooth from its pitch point A over the corner to past the tip (mm, rad)."""
 
-    points: np.ndarray          # (ARCH_POINTS, 2), pitch point first
+    points: np.ndarray          # pitch point A first, the straight flank, then the arch
     radius: float               # rolling radius r
-    depth: float                # the rolling base below the pitch curve
-    top_height: float           # last point's height above the pitch curve (straight base)
+    joint_height: float         # where the arch meets the straight flank, above the pitch curve
+    corner_height: float        # the arch's point as the circle pivots on the corner (straight base)
     start_angle: float          # theta0 = 2 alpha
-    contact_arc: np.ndarray     # pitch arc (mm, the design's arc length) of the rolling contact at each point
-    theta: np.ndarray           # the circle's turn at each point (rad)
-    normals: np.ndarray         # outward normal of the rolling base at each point's contact
+    corner_angle: float         # theta_J, the circle's turn when it reaches the corner
+    contact_arc: np.ndarray     # pitch arc (mm) of the rolling contact at each arch point
+    theta: np.ndarray           # the circle's turn at each arch point (rad)
 
 
-def arch(curve: CompositeCurve, arc_to_phi, corner_arc: float, zone: float, segment: int, side: int,
-         alpha: float, end_angle: float) -> CycloidArch:
-    """The arch over ``zone`` (mm of pitch arc) before the corner (``side`` +1, rising towards larger arc)
-    or after it (-1), rolling on ``segment`` up to ``end_angle`` (theta1, rad); ``arc_to_phi`` maps the
-    design's arc length to the angle."""
-    theta0, radius, depth, top = (float(v[0]) for v in _incomplete([alpha], [zone], [end_angle]))
-    theta = np.linspace(theta0, end_angle, ARCH_POINTS)
-    contact = corner_arc - side * radius * (end_angle - theta)    # arc rolled back from the corner
-    point, tangent, normal = segment_frame(curve, segment, arc_to_phi(contact))
-    base = point - depth * normal
+def _rolled(curve, arc_to_phi, segment, contact, theta, radius, side):
+    point, tangent, _ = segment_frame(curve, segment, arc_to_phi(contact))
     angle = np.arctan2(tangent[:, 1], tangent[:, 0])
-    (x, y), = _trace(base.T, [angle], [np.full_like(theta, radius)], [theta], [np.full_like(theta, float(side))])
-    return CycloidArch(np.c_[x, y], radius, depth, top, theta0, contact, theta, normal)
+    return _roulette(point, angle, radius, theta, side)
 
 
-def arch_pressure_range(arch: CycloidArch) -> tuple[float, float]:
-    """Smallest and largest angle (deg) between the arch's tangent and its base's normal (theta / 2 on a line)."""
-    tangent = np.gradient(arch.points, arch.theta, axis=0)
-    cosine = np.abs(np.sum(tangent * arch.normals, axis=1)) / np.linalg.norm(tangent, axis=1)
-    lean = np.degrees(np.arccos(np.clip(cosine, 0.0, 1.0)))
-    return float(lean.min()), float(lean.max())
+def _roulette(point, angle, radius, theta, side):
+    (x, y), = _trace(point.T, [angle], [np.full_like(theta, radius)], [theta], [np.full_like(theta, float(side))])
+    return np.c_[x, y]
 
 
-def arch_min_curvature_radius(arch: CycloidArch) -> float:
-    """Smallest radius of curvature (mm) along the arch (4 r sin(theta / 2) on a line), by differences in theta."""
-    first = np.gradient(arch.points, arch.theta, axis=0)
-    second = np.gradient(first, arch.theta, axis=0)
-    cross = np.abs(first[:, 0] * second[:, 1] - first[:, 1] * second[:, 0])
-    return float((np.linalg.norm(first, axis=1) ** 3 / cross)[1:-1].min())
+def arch(curve: CompositeCurve, arc_to_phi, corner_arc: float, zone: float, segments: tuple[int, int], side: int,
+         alpha: float, corner_angle: float) -> CycloidArch:
+    """The flank whose pitch point lies ``zone`` (mm of pitch arc) before the corner (``side`` +1, rising towards
+    larger arc) or after it (-1); ``segments`` are the segment on its own side of the corner and the one beyond;
+    ``corner_angle`` is theta_J (rad); ``arc_to_phi`` maps the design's arc length to the angle."""
+    theta0, radius, cusp, joint, over_corner = (float(v[0]) for v in _incomplete([alpha], [zone], [corner_angle]))
+    start = corner_arc - side * zone
+    theta = np.linspace(theta0, np.pi, ARCH_POINTS)
+    contact = start + side * (cusp + radius * theta)
+    near = side * (contact - corner_arc) <= 0
+    own, beyond = segments
+    pivot_from, pivot_to = (np.arctan2(t[0, 1], t[0, 0]) for t in
+                            (segment_frame(curve, k, arc_to_phi(np.array([corner_arc])))[1] for k in (own, beyond)))
+    turn = np.angle(np.exp(1j * (pivot_to - pivot_from)))
+    corner_point = segment_frame(curve, own, arc_to_phi(np.array([corner_arc])))[0]
+    pivot = pivot_from + np.linspace(0.0, 1.0, PIVOT_POINTS) * turn
+    rolled = [_rolled(curve, arc_to_phi, own, contact[near], theta[near], radius, side),
+              _roulette(np.repeat(corner_point, PIVOT_POINTS, axis=0), pivot, radius,
+                        np.full(PIVOT_POINTS, corner_angle), side),
+              _rolled(curve, arc_to_phi, beyond, contact[~near], theta[~near], radius, side)]
+    pitch_point = segment_frame(curve, own, arc_to_phi(np.array([start])))[0][0]
+    straight = pitch_point + np.linspace(0.0, 1.0, STRAIGHT_POINTS, endpoint=False)[:, None] * (rolled[0][0] - pitch_point)
+    return CycloidArch(np.concatenate([straight, *rolled]), radius, joint, over_corner, theta0, corner_angle,
+                       np.r_[contact[near], np.full(PIVOT_POINTS, corner_arc), contact[~near]],
+                       np.r_[theta[near], np.full(PIVOT_POINTS, corner_angle), theta[~near]])
+
+
+def arch_pressure_range(arch: CycloidArch, used: int) -> tuple[float, float]:
+    """Pressure angle (deg) at the first and last of the ``used`` arch points (the arch as cut at the tip): the
+    arch's normal makes theta / 2 with the pitch curve's tangent at the rolling contact (derivations/cusp.py)."""
+    theta = arch.theta[:max(1, used)]
+    return float(np.degrees(theta[0] / 2)), float(np.degrees(theta[-1] / 2))
+
+
+def polyline_min_curvature_radius(points: np.ndarray) -> float:
+    """Smallest radius (mm) of the circles through three consecutive points of a polyline."""
+    a, b, c = points[:-2], points[1:-1], points[2:]
+    ab, bc, ca = (np.linalg.norm(q - p, axis=1) for p, q in ((a, b), (b, c), (c, a)))
+    cross = np.abs((b - a)[:, 0] * (c - a)[:, 1] - (b - a)[:, 1] * (c - a)[:, 0])
+    keep = cross > 0
+    return float(np.min(ab[keep] * bc[keep] * ca[keep] / (2 * cross[keep])))

@@ -25,7 +25,7 @@
     driver_speed_rpm = 60.0
     cutter = "rack"               # "rack" or "shaper" for the tooth profiles
     shaper_teeth = 16             # shaper cutter teeth
-    corner_pressure_angle_deg = 60.0   # composite: pressure angle where a corner passes (cycloid arches' end)
+    corner_pressure_angle_deg = 30.0   # composite: pressure angle of the contact as a corner passes
 """
 from __future__ import annotations
 
@@ -118,7 +118,7 @@ class GearProblem:
     ratio: tuple | None = None
     correct_ratio: bool = False
     parameters: dict = field(default_factory=dict)
-    corner_pressure_angle: float = float(np.radians(60))
+    corner_pressure_angle: float = float(np.radians(30))
 
     def __post_init__(self):
         check = ClassFields(self)
@@ -299,7 +299,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> GearProblem:
         read.fail("pair.center_distance", None, "a center distance (or module and teeth): a ratio fixes the "
                                                 "shape of the pitch curves, not their size")
     correct = read.flag(data["driver"], "correct", "driver", False)
-    corner = read.number(pair, "corner_pressure_angle_deg", "pair") if "corner_pressure_angle_deg" in pair else 60.0
+    corner = read.number(pair, "corner_pressure_angle_deg", "pair") if "corner_pressure_angle_deg" in pair else 30.0
     if not pressure < corner < 80:
         read.fail("pair.corner_pressure_angle_deg", corner, f"an angle above pair.pressure_angle_deg ({pressure:g}) "
                                                              "and below 80 degrees (at 90 no torque passes the corner)")
