@@ -26,7 +26,7 @@ import shapely.affinity
 
 from transplanter.errors import InfeasibleError
 from transplanter.gears.composite_curve import CompositeCurve, cusps
-from transplanter.gears.cycloid_teeth import (STRAIGHT_POINTS, CycloidArch, arch, arch_pressure_range,
+from transplanter.gears.cycloid_teeth import (STRAIGHT_POINTS, CycloidArch, arch, arch_pressure_range, corner_heights,
                                               polyline_min_curvature_radius)
 from transplanter.gears.mesh_check import MeshCheck, check_mesh
 from transplanter.gears.pair import GearPairDesign, driven_angle
@@ -34,15 +34,12 @@ from transplanter.gears.rack_teeth import ADDENDUM
 from transplanter.gears.swept_teeth import BIN_MODULES, shaper_profile
 from transplanter.gears.teeth import driver_table, self_intersections
 from transplanter.gears.tooth_contact import ContactRatio, measure_contact_ratio
-from transplanter.generated import numpy_twin
 
 #: The driven gear is carved by the driver's teeth within this many pitches of the contact, at positions this
 #: many modules of pitch arc apart, the teeth's outline simplified within this many modules.
 CARVE_REACH_PITCHES, CARVE_STEP_MODULES, CARVE_SIMPLIFY_MODULES = 1.5, 0.05, 1e-4
 #: The corner tooth's thickness at the pitch curve, as a fraction of the pitch (seed 004 sec 2.3).
 THICKNESS_BAND = (0.8, 1.2)
-
-_incomplete = numpy_twin("cusp", "incomplete_cycloid")
 
 
 @dataclass(frozen=True)
@@ -191,11 +188,11 @@ def _turn_deg(first: np.ndarray, second: np.ndarray) -> float:
 def _check_arch_height(zone: float, alpha: float, corner_pressure: float, tip: float, corner: float, source: str):
     """Refuse a corner pressure angle at which an arch over ``zone`` reaches the tip before its circle reaches the
     corner (it could not drive past the corner), naming the largest angle that passes."""
-    height = float(_incomplete([alpha], [zone], [2 * corner_pressure])[4][0])
+    height = float(corner_heights(zone, alpha, 2 * corner_pressure)[0])
     if height < tip:
         return
     angles = np.linspace(alpha, np.pi / 2, 2001)[1:]
-    low = _incomplete([np.full_like(angles, alpha)], [np.full_like(angles, zone)], [2 * angles])[4][0] < tip
+    low = corner_heights(zone, alpha, 2 * angles) < tip
     fits = angles[:int(np.argmin(low))] if not low.all() else angles    # from alpha up to the first that fails
     largest = (f"use at most {np.floor(np.degrees(fits.max()) * 10) / 10:.1f} deg" if fits.size
                else "no angle fits: use more teeth")

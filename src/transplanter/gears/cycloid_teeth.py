@@ -77,6 +77,12 @@ def arch(curve: CompositeCurve, arc_to_phi, corner_arc: float, zone: float, segm
                        np.r_[theta[near], np.full(PIVOT_POINTS, corner_angle), theta[~near]])
 
 
+def corner_heights(zone: float, alpha: float, corner_angles: np.ndarray) -> np.ndarray:
+    """Height (mm, above a straight pitch line) of the arch's point as its circle reaches the corner, for each theta_J."""
+    angles = np.atleast_1d(np.asarray(corner_angles, float))
+    return _incomplete([np.full_like(angles, alpha)], [np.full_like(angles, zone)], [angles])[4][0]
+
+
 def arch_pressure_range(arch: CycloidArch, used: int) -> tuple[float, float]:
     """Pressure angle (deg) at the first and last of the ``used`` arch points (the arch as cut at the tip): the
     arch's normal makes theta / 2 with the pitch curve's tangent at the rolling contact (derivations/cusp.py)."""
