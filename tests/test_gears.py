@@ -17,6 +17,7 @@ from transplanter.gears.teeth import driven_table, generate_teeth
 from transplanter.generated import casadi_function, numpy_twin
 from transplanter.gears.pitch_curves import denatured_limacon, denatured_partner, ellipse, limacon
 from transplanter.gears.rack_teeth import pitch_table, rack_profile, _flank
+from transplanter.gears.pinion_cutter import shaper_cutter, shaper_cutter_radii
 from transplanter.gears.swept_teeth import mate_profile, shaper_profile
 
 ellipse_center = casadi_function("gears", "ellipse_center_distance")
@@ -397,3 +398,28 @@ def test_analytic_ratio_is_corrected_to_close():
     assert np.allclose(d.ratio, result.ratio_correction * formula, rtol=1e-12)
     assert result.ratio_correction != pytest.approx(1.0, abs=1e-3)
     assert abs(d.closure_error) < 1e-10 and d.center_distance == 80.0
+
+
+@pytest.mark.parametrize("teeth", [8, 16, 60])
+def test_pinion_cutter_flanks_are_involutes_of_its_base_circle(teeth):
+    """Every edge of a flank between the base and tip circles has its normal tangent to the base circle, the teeth
+    are as thick as the spaces on the pitch circle, and the outline is simple."""
+    module, alpha = 2.0, np.radians(20)
+    outline = shaper_cutter(module, alpha, teeth)
+    radius, tip, lowest = shaper_cutter_radii(module, alpha, teeth)
+    base = radius * np.cos(alpha)
+    assert shapely.LinearRing(outline).is_simple
+    edges = np.roll(outline, -1, axis=0) - outline
+    middle = outline + edges / 2
+    ends = np.hypot(*outline.T), np.hypot(*np.roll(outline, -1, axis=0).T)
+    flank = (np.fmin(*ends) >= lowest - 1e-9) & (np.abs(ends[1] - ends[0]) > 1e-9)     # edges that climb, above the base
+    normal = np.c_[edges[:, 1], -edges[:, 0]] / np.hypot(*edges.T)[:, None]
+    # distance from the centre to the normal through the edge's middle: the base radius, to second order in the edge
+    reach_of_normal = np.abs(normal[flank, 0] * middle[flank, 1] - normal[flank, 1] * middle[flank, 0])
+    assert flank.sum() >= 2 * teeth * 20 and np.abs(reach_of_normal - base).max() < 1e-3 * module
+    pitch_circle = shapely.Point(0, 0).buffer(radius, quad_segs=4096).exterior
+    crossings = shapely.get_coordinates(shapely.intersection(pitch_circle, shapely.LinearRing(outline)))
+    angles = np.sort(np.mod(np.arctan2(crossings[:, 1], crossings[:, 0]), 2 * np.pi))
+    widths = np.diff(np.r_[angles, angles[0] + 2 * np.pi])
+    # on the pitch circle, to the sag of the flank's 40-point polyline (3e-4 mm at module 2)
+    assert np.abs(widths - np.pi / teeth).max() * radius < 1e-3 * module

@@ -13,8 +13,8 @@ position and its vertices' chords between positions), at their ends and wherever
 bin's edge, so positions can be a tenth of a module apart and no bin is missed between them.
 
 Two uses:
-- a shaper cutter (an involute pinion, here a rack-cut circular gear with a 1.25-module
-  addendum) whose pitch circle rolls without slip on the pitch curve, center on the normal;
+- a shaper cutter (an involute pinion with a 1.25-module addendum, ``pinion_cutter``) whose pitch
+  circle rolls without slip on the pitch curve, center on the normal;
 - the mate of a cut gear, swept by that gear's outline in the pair's relative motion, which
   makes the pair conjugate (two shaper-cut non-circular gears would not be).
 """
@@ -27,7 +27,8 @@ from scipy.spatial import cKDTree
 from transplanter.gears.pair import GearPairDesign, driven_angle
 from transplanter.geometry.outline_thinning import thinned
 from transplanter.geometry.poses import rotate_about
-from transplanter.gears.rack_teeth import ADDENDUM, DEDENDUM, PitchTable, pitch_table, rack_profile
+from transplanter.gears.pinion_cutter import shaper_cutter
+from transplanter.gears.rack_teeth import ADDENDUM, DEDENDUM, PitchTable
 
 ORIGIN = (0.0, 0.0)
 
@@ -39,15 +40,6 @@ MARGIN_MODULES = 0.1
 SIMPLIFY_MODULES = 1e-4
 #: Most a straight cutter edge may bow (modules) in the normal coordinates of the gear it cuts.
 BOW_MODULES = 1e-4
-
-
-def shaper_cutter(module: float, alpha: float, teeth: int) -> np.ndarray:
-    """Outline of an involute pinion cutter, teeth 1.25 modules high, tooth 0 centered on +x."""
-    radius = module * teeth / 2
-    angle = np.linspace(0, 2 * np.pi, 20 * teeth * 8 + 1)
-    table = pitch_table(radius * np.c_[np.cos(angle), np.sin(angle)], radius * angle,
-                        np.c_[-np.sin(angle), np.cos(angle)])
-    return rack_profile(table, teeth, module, alpha, addendum=DEDENDUM, dedendum=DEDENDUM)
 
 
 def _polar(points: np.ndarray):
