@@ -48,6 +48,31 @@ Incomplete cycloid flanks near a corner (seed 004 eq 7-12, re-derived):
   a1 != 1; for a1 = 1 it starts along the normal like the circle (pressure angle 0) whatever b1.
   No eccentricity gives an intermediate starting pressure angle, so the package joins the flanks
   with the incomplete arch above instead.
+
+Variable involute (seed 004 eq 1-6, re-derived):
+
+- A pinion cutter of pitch radius r_j and base radius r_b = r_j cos(alpha) rolls outside the pitch curve.
+  In the frame of the current contact M2 (tangent T, outward normal n) its centre is I = r_j n, and
+  it turns relative to that frame by the rolled arc over r_j (the frame itself turns with the
+  tangent). Take the cutter's involute whose pitch point lies an arc delta along the pitch circle
+  from M2 (delta = s_f - s: s_f where the gear flank crosses the pitch curve, s the contact). The
+  gear flank point it generates is the involute point whose normal passes through M2
+  (r_j sin(beta + t) + r_b = 0 for the involute I + r_b (e(beta + t) - t e'(beta + t))), and it is
+  X - M2 = delta cos^2(alpha) T - side delta sin(alpha) cos(alpha) n (``shaper_contact``): r_j drops
+  out. The variable involute is the same curve whatever the cutter's size, and it is the rack's
+  (``gears.rack_teeth``). The printed steps of eq 5 hold: |S I| = sqrt(r_b^2 + S N^2) with
+  S N = r_b (tan(alpha) + phi_s), tan(alpha_s) = tan(alpha) + phi_s and the angle S I M2 = alpha_s - alpha,
+  with phi_s = side delta / r_j and the slip coefficient f(mu) = 1.
+- Eq 2-3 put the cutter's centre at P + r_j (P - Q) / rho, Q the curvature centre: outside the gear on a
+  convex stretch only. On a concave stretch Q lies outside, so (P - Q) / rho points into the gear; the
+  cutter belongs on the other side, which eq 10's judgement coefficient f = -1 gives for the rolling
+  circle but eq 2-3 leave out. On a straight segment eq 1 divides by y'' = 0.
+- The cutter's involute runs from its base circle (or its root circle, if higher) to its tip circle, so
+  it generates the flank while q = -side delta lies in [r_j (tan(alpha) - t_tip), r_j (tan(alpha) - t_low)]
+  with t = sqrt((R / r_b)^2 - 1) at those radii (``shaper_reach``): the contact then stays between the
+  line of action's tangent point on the base circle, r_j sin(alpha) outward from M2, and the tip circle.
+  Beyond the outward end the cutter's radial root trims the gear's tip: on a straight segment above
+  r_j sin^2(alpha), 0.94 modules for 16 teeth at 20 deg.
 """
 from __future__ import annotations
 
@@ -146,6 +171,51 @@ def paper_variable_cycloid_start(a1, b1):
     return -along, normal
 
 
+def shaper_contact(alpha, rolled, cutter_radius, side):
+    """(X - M2) in (T, n) of the flank point a pinion cutter of pitch radius ``cutter_radius`` generates while the
+    involute's pitch point lies ``rolled`` = s_f - s along the pitch circle from the contact (module docstring);
+    ``side`` +1 for the flank on the low-arc side of a gear tooth, -1 for the other. Also the cutter's roll
+    parameter t there and the envelope condition's residual (zero)."""
+    base = cutter_radius * sp.cos(alpha)
+    sense = -side                                   # the cutter involute unwinds counterclockwise for side -1
+    involute_function = sp.tan(alpha) - alpha
+    beta = -sp.pi / 2 + rolled / cutter_radius - sense * involute_function   # pitch point rolled along from M2
+    t = sense * (-sp.pi / 2 + sense * alpha - beta)  # the root of r_j sin(beta + sense t) + r_b = 0 near the pitch point
+    angle = beta + sense * t
+    involute = base * sp.Matrix([sp.cos(angle) + sense * t * sp.sin(angle), sp.sin(angle) - sense * t * sp.cos(angle)])
+    point = sp.Matrix([0, cutter_radius]) + involute
+    residual = cutter_radius * sp.sin(angle) + base
+    return sp.simplify(sp.expand_trig(point)), sp.simplify(t), sp.simplify(sp.expand_trig(residual))
+
+
+def shaper_reach(alpha, cutter_radius, tip_radius, lowest_radius):
+    """(low, high) of q = -side (s_f - s) over which the cutter's involute, from ``lowest_radius`` to ``tip_radius``,
+    generates the flank: q < 0 below the pitch curve, q > 0 above it."""
+    base = cutter_radius * sp.cos(alpha)
+    roll = [sp.sqrt((radius / base) ** 2 - 1) for radius in (tip_radius, lowest_radius)]
+    return tuple(cutter_radius * (sp.sin(alpha) / sp.cos(alpha) - t) for t in roll)   # sines and cosines for the printer
+
+
+def _variable_involute() -> list[Derived]:
+    alpha, rolled, side = (symbol_group(name, 1)[0] for name in ("pressure_angle", "rolled", "side"))
+    cutter, tip, lowest = (symbol_group(name, 1)[0] for name in ("cutter_radius", "tip_radius", "lowest_radius"))
+    point, _, _ = shaper_contact(alpha, rolled, sp.Symbol("r_j", positive=True), -1)
+    along, normal = point                           # side -1; the side +1 flank is its mirror image in n
+    return [
+        Derived(name="variable_involute",
+                doc=("Flank point minus the contact point, in the contact's (T, n), of the variable involute (seed 004 "
+                     "eq 1-6) whose pitch point lies rolled = s_f - s ahead; side +1 on a tooth's low-arc side."),
+                inputs=(("pressure_angle", (alpha,)), ("rolled", (rolled,)), ("side", (side,))),
+                outputs=(("offset", (along, -side * normal)),)),
+        Derived(name="shaper_reach",
+                doc=("Range (low, high) of q = -side (s_f - s) over which a pinion cutter's involute, from lowest_radius "
+                     "to tip_radius, generates the variable involute."),
+                inputs=(("pressure_angle", (alpha,)), ("cutter_radius", (cutter,)), ("tip_radius", (tip,)),
+                        ("lowest_radius", (lowest,))),
+                outputs=(("reach", shaper_reach(alpha, cutter, tip, lowest)),)),
+    ]
+
+
 def _cycloid() -> Derived:
     base, angle = symbol_group("base", 2), symbol_group("tangent_angle", 1)[0]
     radius, theta, side = (symbol_group(name, 1)[0] for name in ("radius", "theta", "side"))
@@ -168,4 +238,4 @@ def _cycloid() -> Derived:
 
 
 def derive() -> list[Derived]:
-    return [_curvature_center(), _corner_angles(), *_cycloid()]
+    return [_curvature_center(), _corner_angles(), *_cycloid(), *_variable_involute()]

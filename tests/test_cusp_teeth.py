@@ -10,7 +10,7 @@ from transplanter.gears.composite_teeth import _check_layout, carved_mate, layou
 from transplanter.gears.mesh_check import check_mesh
 from transplanter.gears.pair import arc_length, design_pair
 from transplanter.gears.pitch_curves import ellipse
-from transplanter.gears.swept_teeth import shaper_profile
+from transplanter.gears.swept_teeth import BIN_MODULES, shaper_profile
 from transplanter.gears.teeth import driver_table
 from transplanter.gears.tooth_contact import SAMPLES_PER_PITCH, measure_contact_ratio
 from transplanter.generated import numpy_twin
@@ -121,6 +121,10 @@ def test_composite_teeth_of_the_ellipse_and_chord(example):
             # as its circle pivots there, at the corner's pressure angle (30 deg, the default)
     assert report["mesh_check"]["passed"] and report["mesh_check"]["max_overlap_mm"] < 0.005 * 2.0
     assert report["contact_ratio_min"] >= 1.0 and not any(report["contact_lost_at_deg"].values())
+    # every space's two flanks against the closed-form variable involute (the corner teeth's above the pitch curve
+    # are cycloid arches), within one bin of the shaper's envelope
+    involute = report["variable_involute"]
+    assert involute["flanks_compared"] == 2 * 29 and involute["largest_mm"] < BIN_MODULES * 2.0
     assert example.passed
     assert set(report) >= {"cusps", "contact_ratio_min", "contact_ratio_where", "mesh_check"}
 

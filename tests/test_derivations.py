@@ -72,6 +72,15 @@ PARALLELOGRAM_INPUTS = {
     "center_distance": lambda rng: rng.uniform(90, 130, size=1),
 }
 
+# a pinion cutter: its tip and the lowest radius of its involute (base or root circle) above the base circle
+SHAPER_REACH_INPUTS = {
+    "pressure_angle": lambda rng: rng.uniform(0.2, 0.45, size=1),
+    "cutter_radius": lambda rng: rng.uniform(10, 20, size=1),
+    "tip_radius": lambda rng: rng.uniform(21, 25, size=1),
+    "lowest_radius": lambda rng: rng.uniform(20, 21, size=1),
+}
+INPUT_DOMAINS = {("cusp", "shaper_reach"): SHAPER_REACH_INPUTS}
+
 
 @pytest.mark.parametrize("module,name", GENERATED_FUNCTIONS)
 def test_generated_matches_lambdify(derived, module, name, rng):
@@ -83,7 +92,8 @@ def test_generated_matches_lambdify(derived, module, name, rng):
     assert function.name_out() == [n for n, _ in d.outputs]
     for _ in range(4):
         # positive values keep square roots and ratios real (radii, distances, eccentricities < 1, rho' below)
-        groups = [PARALLELOGRAM_INPUTS[n](rng) if module == "parallelogram" and n in PARALLELOGRAM_INPUTS
+        domain = PARALLELOGRAM_INPUTS if module == "parallelogram" else INPUT_DOMAINS.get((module, name), {})
+        groups = [domain[n](rng) if n in domain
                   else rng.uniform(0.1, 1.0, size=len(g)) if module in POSITIVE_INPUTS else rng.normal(size=len(g))
                   for n, g in d.inputs]
         expected = np.array(reference(*np.concatenate(groups)), float)

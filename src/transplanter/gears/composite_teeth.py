@@ -18,7 +18,7 @@ pitch curve. The driven gear is cut by the driver's outline in the pair's motion
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 
 import numpy as np
 import shapely
@@ -34,6 +34,7 @@ from transplanter.gears.rack_teeth import ADDENDUM
 from transplanter.gears.swept_teeth import BIN_MODULES, shaper_profile
 from transplanter.gears.teeth import driver_table, self_intersections
 from transplanter.gears.tooth_contact import ContactRatio, measure_contact_ratio
+from transplanter.gears.variable_involute import InvoluteDeviation, involute_deviation
 
 #: The driven gear is carved by the driver's teeth within this many pitches of the contact, at positions this
 #: many modules of pitch arc apart, the teeth's outline simplified within this many modules.
@@ -128,6 +129,7 @@ class CompositeTeeth:
     self_intersections: tuple[int, int]
     mesh: MeshCheck
     contact: ContactRatio
+    involute: InvoluteDeviation     # the shaper-cut stretches against the closed-form variable involute
     cutter: str = "composite"
 
     @property
@@ -264,7 +266,22 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
     return CompositeTeeth(outlines, (count, int(round(count * design.orders[1] / design.orders[0]))), plan,
                           corner_teeth, (self_intersections(driver), self_intersections(driven)),
                           check_mesh(design, outlines, module),
-                          measure_contact_ratio(design, outlines, module, plan.space_centers(perimeter)))
+                          measure_contact_ratio(design, outlines, module, plan.space_centers(perimeter)),
+                          _against_closed_form(table, driver, plan, perimeter, module, alpha, cutter_teeth))
+
+
+def _against_closed_form(table, driver: np.ndarray, plan: Layout, perimeter: float, module: float, alpha: float,
+                         cutter_teeth: int) -> InvoluteDeviation:
+    """The shaper-cut flanks (every space's two; at a corner tooth's A and D only below the pitch curve, where the
+    shaper cut them) against the closed-form variable involute."""
+    pitch = np.pi * module
+    centers = plan.space_centers(perimeter)
+    flanks = np.mod(np.r_[centers - pitch / 4, centers + pitch / 4], perimeter)
+    sides = np.r_[-np.ones(len(centers)), np.ones(len(centers))]
+    corner_flanks = np.mod(np.r_[plan.corners - plan.before, plan.corners + plan.after], perimeter)
+    apart = np.abs(np.mod(flanks[:, None] - corner_flanks[None] + perimeter / 2, perimeter) - perimeter / 2)
+    return involute_deviation(table, driver, flanks, sides, apart.min(axis=1) > 1e-6 * pitch, plan.corners, module,
+                              alpha, cutter_teeth)
 
 
 def carved_mate(design: GearPairDesign, driver: np.ndarray, module: float) -> np.ndarray:
@@ -331,6 +348,7 @@ def composite_teeth_json(teeth: CompositeTeeth) -> dict:
         "contact_ratio_min": contact.minimum,
         "contact_ratio_where": contact.where(),
         "contact_lost_at_deg": {"low-arc": contact.uncovered_deg[0].tolist(), "high-arc": contact.uncovered_deg[1].tolist()},
+        "variable_involute": asdict(teeth.involute),
         "mesh_check": {"max_overlap_mm": mesh.max_overlap_mm, "min_clearance_mm": mesh.min_clearance_mm,
                        "transmission_error_deg": float(np.degrees(mesh.max_transmission_error_rad)),
                        "transmission_error_mm": mesh.max_transmission_error_mm, "passed": mesh.passed},

@@ -11,7 +11,8 @@ delta = s_f - s this is
 at depth v = side delta sin(alpha) cos(alpha) below the pitch curve; ``side`` = +1 for the
 flank on the low-s side of a tooth, -1 for the other. The rack's addendum and dedendum
 lines envelope the offset curves at -h_f (root) and +h_a (tip). On a circle this is the
-involute (tests check it).
+involute (tests check it). It is also seed 004's variable involute, the flank a pinion cutter of
+any size generates (eq 1-6, re-derived in ``derivations/cusp.py``, which generates the offset).
 
 Each flank is clipped between the tip and root offset curves and joined to its neighbours
 along them. The rack's tip-corner trochoid below the flank is drawn as that join.
@@ -22,6 +23,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from transplanter.generated import numpy_twin
+
+_VARIABLE_INVOLUTE = numpy_twin("cusp", "variable_involute")
 ADDENDUM, DEDENDUM = 1.0, 1.25  # in modules
 
 
@@ -67,17 +71,23 @@ def pitch_table(points: np.ndarray, arc: np.ndarray, tangents: np.ndarray) -> Pi
     return PitchTable(arc, points, tangents, sign * np.stack([tangents[:, 1], -tangents[:, 0]], -1), sign)
 
 
+def flank_points(table: PitchTable, s_f, side, alpha: float, rolled) -> np.ndarray:
+    """Points (mm) of the variable involute (module docstring; ``derivations/cusp.py`` derives it as the flank any
+    pinion cutter generates, seed 004 eq 1-6) whose pitch point is at arc ``s_f``, where the contact has
+    rolled ``rolled`` = s_f - s short of it; arrays broadcast, points on a last axis of 2."""
+    point, tangent, normal = table.at(s_f - rolled)
+    (along, outward), = _VARIABLE_INVOLUTE([alpha], [rolled], [side])
+    return point + along[..., None] * tangent + outward[..., None] * normal
+
+
 def _flank(table: PitchTable, s_f, side, alpha: float, module: float, count: int = 40,
            addendum: float = ADDENDUM, dedendum: float = DEDENDUM):
     """Flank points (mm), tip to root, of the rack flanks with pitch points at arc lengths ``s_f``
     (mm) on sides ``side`` (+1 or -1); arrays of flanks give an array of point rows, (..., count, 2)."""
     s_f, side = np.asarray(s_f, float)[..., None], np.asarray(side, float)[..., None]
-    sc = np.sin(alpha) * np.cos(alpha)
-    # depth v from -h_a (tip) to +h_f (root): delta = side v / sc
+    # depth v from -h_a (tip) to +h_f (root): delta = side v / (sin(alpha) cos(alpha))
     depth = np.linspace(-addendum * module, dedendum * module, count)
-    delta = side * depth / sc
-    c, t, n = table.at(s_f - delta)
-    return c + (delta * np.cos(alpha) ** 2)[..., None] * t - (side * delta * sc)[..., None] * n
+    return flank_points(table, s_f, side, alpha, side * depth / (np.sin(alpha) * np.cos(alpha)))
 
 
 class _OffsetCurve:
