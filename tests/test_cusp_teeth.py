@@ -6,7 +6,7 @@ import sympy as sp
 from derivations import cusp as derivation
 from transplanter.errors import InfeasibleError
 from transplanter.gears import parse_problem, synthesize
-from transplanter.gears.composite_teeth import _check_layout, carved_mate, layout
+from transplanter.gears.composite_teeth import _check_arches_apart, _check_layout, carved_mate, layout
 from transplanter.gears.mesh_check import check_mesh
 from transplanter.gears.pair import arc_length, design_pair
 from transplanter.gears.pitch_curves import ellipse
@@ -157,6 +157,17 @@ def test_corner_pressure_angle_that_stops_the_arch_short_of_the_corner_is_refuse
                 {"kind": "ellipse", "phi_deg": [-150, 150], "semi_major_axis": 30.0, "eccentricity": 0.3},
                 {"kind": "line", "phi_deg": [150, 210]}]},
             "pair": {"module": 2.0, "teeth": 30, "corner_pressure_angle_deg": 60.0}}))
+
+
+def test_cycloid_flanks_that_cross_are_refused():
+    """Two rising flanks that cross below the tip (constructed: the left leans over the right) are refused with the
+    field, its value and the angles that fit; flanks apart pass."""
+    left, right = np.array([[0.0, 0.0], [3.0, 2.0]]), np.array([[2.0, 0.0], [1.0, 2.0]])
+    alpha, tip = np.radians(20), 2.0
+    with pytest.raises(InfeasibleError, match=r"f.toml: pair.corner_pressure_angle_deg = 25: the two cycloid flanks "
+                                              r".* cross below its tip .* use at most \d+\.\d deg, or use more teeth"):
+        _check_arches_apart([left, right], (3.0, 3.0), 3.0, alpha, np.radians(25), tip, 80.0, "f.toml")
+    _check_arches_apart([left, np.array([[4.0, 0.0], [3.5, 2.0]])], (3.0, 3.0), 3.0, alpha, np.radians(25), tip, 80.0, "f.toml")
 
 
 def test_teeth_on_the_straight_segment_are_a_racks(example):
