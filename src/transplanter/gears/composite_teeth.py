@@ -29,7 +29,7 @@ from transplanter.gears.composite_curve import CompositeCurve, cusps
 from transplanter.gears.cycloid_teeth import (STRAIGHT_POINTS, CycloidArch, arch, arch_pressure_range, corner_heights,
                                               polyline_min_curvature_radius)
 from transplanter.gears.mesh_check import MeshCheck, check_mesh
-from transplanter.gears.pair import GearPairDesign, driven_angle
+from transplanter.gears.pair import GearPairDesign, arc_to_angle, driven_angle
 from transplanter.gears.rack_teeth import ADDENDUM
 from transplanter.gears.swept_teeth import BIN_MODULES, shaper_profile
 from transplanter.gears.teeth import driver_table, self_intersections
@@ -254,7 +254,7 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
     _check_layout(plan, teeth, [(segment_length[k - 1], segment_length[k]) for k in joint_index], source)
 
     def arc_to_phi(s):
-        return np.interp(np.mod(s, perimeter), design.arc, design.phi1)
+        return arc_to_angle(design, s)
 
     table = driver_table(design)
     count = int(np.ceil(perimeter / (BIN_MODULES * module)))
