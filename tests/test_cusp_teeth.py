@@ -117,8 +117,10 @@ def test_composite_teeth_of_the_ellipse_and_chord(example):
         assert max(tooth["joint_kinks_deg"]) < 3.0              # the straight flank leans alpha as the shaper's does
         assert max(tooth["joint_gaps_mm"]) < 0.01 * 2.0       # within the mesh check's backlash
         for low, high in tooth["arch_pressure_angles_deg"]:     # alpha at the joint; the arch reaches the corner and
-            assert low == pytest.approx(20.0, abs=1e-9) and high == pytest.approx(30.0, abs=1e-9)   # leaves the tip band
-            # as its circle pivots there, at the corner's pressure angle (30 deg, the default)
+            assert low == pytest.approx(20.0, abs=1e-9) and high == pytest.approx(22.0, abs=1e-9)   # leaves the tip band
+            # as its circle pivots there, at the corner's pressure angle (22 deg, the first one tried)
+    assert report["corner_pressure_angle_deg"] == 22.0
+    assert report["corner_pressure_trials"] == [{"corner_pressure_angle_deg": 22.0, "passed": True, "failures": []}]
     assert report["mesh_check"]["passed"] and report["mesh_check"]["max_overlap_mm"] < 0.005 * 2.0
     assert report["contact_ratio_min"] >= 1.0 and not any(report["contact_lost_at_deg"].values())
     # every space's two flanks against the closed-form variable involute (the corner teeth's above the pitch curve
@@ -151,6 +153,22 @@ def test_arch_normals_pass_through_the_rolling_contact_on_the_pitch_curve(exampl
             pivot = np.flatnonzero(np.diff(arch.theta) == 0)[1:-1]
             assert np.allclose(np.linalg.norm(points[pivot] - contact[pivot], axis=1),
                                2 * arch.radius * np.sin(arch.corner_angle / 2), rtol=1e-9)
+
+
+def test_without_a_corner_pressure_angle_the_first_that_passes_is_kept():
+    """Corners turning 31 deg (the ellipse from -140 to 140 deg): at 22 deg the transmission error peaks just before
+    each corner beyond the tolerance, so 26 deg is tried next and passes; the report keeps both trials."""
+    result = synthesize(parse_problem({
+        "driver": {"family": "composite", "segments": [
+            {"kind": "ellipse", "phi_deg": [-140, 140], "semi_major_axis": 30.0, "eccentricity": 0.3},
+            {"kind": "line", "phi_deg": [140, 220]}]},
+        "pair": {"module": 2.0, "teeth": 30}}))
+    report = result.to_json()
+    first, second = report["corner_pressure_trials"]
+    assert first["corner_pressure_angle_deg"] == 22.0 and not first["passed"]
+    assert any(failure.startswith("transmission error") for failure in first["failures"])
+    assert second == {"corner_pressure_angle_deg": 26.0, "passed": True, "failures": []}
+    assert report["corner_pressure_angle_deg"] == 26.0 and result.passed
 
 
 def test_corner_pressure_angle_that_stops_the_arch_short_of_the_corner_is_refused():

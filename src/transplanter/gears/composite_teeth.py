@@ -18,12 +18,14 @@ pitch curve. The driven gear is cut by the driver's outline in the pair's motion
 """
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import asdict, dataclass
 
 import numpy as np
 import shapely
 import shapely.affinity
 
+from transplanter import progress
 from transplanter.errors import InfeasibleError
 from transplanter.gears.composite_curve import CompositeCurve, cusps
 from transplanter.gears.cycloid_teeth import (STRAIGHT_POINTS, CycloidArch, arch, arch_pressure_range, corner_heights,
@@ -41,9 +43,14 @@ from transplanter.gears.variable_involute import InvoluteDeviation, involute_dev
 #: transmission error up to 0.014 mm), the teeth's outline simplified within this many modules.
 CARVE_REACH_PITCHES, CARVE_STEP_MODULES, CARVE_SIMPLIFY_MODULES = 1.5, 0.025, 1e-4
 #: Mesh-check positions per tooth. Past a corner the transmission error can rise and fall within 2-4 deg of driver
-#: turn: at the default 8 per tooth (1.5 deg apart on the example) the check read the example's peak as 0.0046 mm,
-#: at 16 and 32 as 0.0088 mm.
+#: turn: at the default 8 per tooth (1.5 deg apart on the example) the check read the example's peak with a 30-deg
+#: corner pressure angle as 0.0046 mm, at 16 and 32 as 0.0088 mm.
 MESH_SAMPLES_PER_TOOTH = 32
+#: Corner pressure angles (deg) tried in turn when the problem gives none (docs/gear.md, the limits measured on the
+#: ellipse-and-chord family): at 23-deg corners 22 passes for 28-32 teeth, where 30 fails past the corner for 31 and
+#: 32; at 31-deg corners 22 fails just before the corner and 26 passes; at 39-deg corners with 28 and 29 teeth only 38
+#: passes. An angle whose arch would stand above the tip is refused before any cutting, so trying it costs nothing.
+CORNER_PRESSURE_TRIALS_DEG = (22.0, 26.0, 30.0, 34.0, 38.0)
 #: The corner tooth's thickness at the pitch curve, as a fraction of the pitch (seed 004 sec 2.3).
 THICKNESS_BAND = (0.8, 1.2)
 
@@ -135,6 +142,8 @@ class CompositeTeeth:
     mesh: MeshCheck
     contact: ContactRatio
     involute: InvoluteDeviation     # the shaper-cut stretches against the closed-form variable involute
+    corner_pressure_deg: float      # theta_J / 2 of the arches
+    trials: tuple[dict, ...] = ()   # the corner pressure angles tried when none was given, and how each did
     cutter: str = "composite"
 
     @property
@@ -227,14 +236,19 @@ def _check_arches_apart(rising: list[np.ndarray], radii: tuple[float, float], zo
 
 
 def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float, teeth: int, cutter_teeth: int,
-                             source: str, corner_pressure: float = np.radians(30)) -> CompositeTeeth:
+                             source: str, corner_pressure: float | None = None) -> CompositeTeeth:
     """Driver outline of shaper-cut stretches and corner teeth, the driven outline by envelope (module docstring).
+
+    ``corner_pressure`` (rad) sets theta_J / 2 of every corner's arches; None tries ``CORNER_PRESSURE_TRIALS_DEG``
+    in turn (smallest first: the contact passes the corner most squarely) and keeps the first pair that passes every
+    check, or, when none does, the one with the smallest transmission error.
 
     Raises
     ------
     InfeasibleError
         When a corner is concave, a corner tooth leaves the thickness band, a cusp zone is wider than its segment,
-        an arch stands above the tip over its corner, or a corner tooth's two cycloid flanks cross.
+        or, at the given corner pressure angle (at every one tried), an arch stands above the tip over its corner or
+        a corner tooth's two cycloid flanks cross.
     """
     curve: CompositeCurve = design.driver
     perimeter, pitch = design.perimeters[0], np.pi * module
@@ -261,16 +275,9 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
     bins = (np.arange(count) + 0.5) * perimeter / count
     pitch_curve = shapely.Polygon(design.points[0])
     tip = ADDENDUM * module
-    pieces, corner_teeth = [], []
-    for j, k in enumerate(joint_index):
-        start, end = corner_arc[j] - plan.before[j], corner_arc[j] + plan.after[j]
-        _check_arch_height(max(plan.before[j], plan.after[j]), alpha, corner_pressure, tip, corner_arc[j], source)
-        left = arch(curve, arc_to_phi, corner_arc[j], plan.before[j], (k - 1, k), +1, alpha, 2 * corner_pressure)
-        right = arch(curve, arc_to_phi, corner_arc[j], plan.after[j], (k, k - 1), -1, alpha, 2 * corner_pressure)
-        rising = [_to_tip(a.points, _pitch_heights(a.points, pitch_curve), tip) for a in (left, right)]
-        _check_arches_apart(rising, (left.radius, right.radius), max(plan.before[j], plan.after[j]), alpha,
-                            corner_pressure, tip, corner_arc[j], source)
-        pieces.append(np.r_[rising[0], _tip(rising[0][-1], rising[1][-1], pitch_curve, tip), rising[1][::-1]])
+    stretches = []
+    for j in range(len(corners)):
+        end = corner_arc[j] + plan.after[j]
         next_start = corner_arc[(j + 1) % len(corners)] - plan.before[(j + 1) % len(corners)]
         run = np.mod(bins - end, perimeter)
         keep = np.flatnonzero(run <= np.mod(next_start - end, perimeter))
@@ -280,19 +287,60 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
             raise InfeasibleError(
                 f"{source}: pair.teeth = {teeth}: the shaper path (swept_teeth) returned non-finite tooth heights on the "
                 f"stretch after the corner at pitch arc {corner_arc[j]:.3f} mm; try another tooth count")
-        pieces.append(stretch[np.argsort(run[keep])])
-        corner_teeth.append((j, start, end, (left, right), rising))
-    driver = np.concatenate(pieces)
-    corner_teeth = tuple(_corner_tooth(driver, corner_arc[j], start, end, pitch, arches, rising)
-                         for j, start, end, arches, rising in corner_teeth)
-    driven = carved_mate(design, driver, module)
-    count = int(plan.between.sum()) + len(corners)
-    outlines = (driver, driven)
-    return CompositeTeeth(outlines, (count, int(round(count * design.orders[1] / design.orders[0]))), plan,
-                          corner_teeth, (self_intersections(driver), self_intersections(driven)),
-                          check_mesh(design, outlines, module, MESH_SAMPLES_PER_TOOTH),
-                          measure_contact_ratio(design, outlines, module, plan.space_centers(perimeter)),
-                          _against_closed_form(table, driver, plan, perimeter, module, alpha, cutter_teeth))
+        stretches.append(stretch[np.argsort(run[keep])])
+
+    def pair_at(corner_pressure: float) -> CompositeTeeth:
+        pieces, corner_teeth = [], []
+        for j, k in enumerate(joint_index):
+            start, end = corner_arc[j] - plan.before[j], corner_arc[j] + plan.after[j]
+            zone = max(plan.before[j], plan.after[j])
+            _check_arch_height(zone, alpha, corner_pressure, tip, corner_arc[j], source)
+            left = arch(curve, arc_to_phi, corner_arc[j], plan.before[j], (k - 1, k), +1, alpha, 2 * corner_pressure)
+            right = arch(curve, arc_to_phi, corner_arc[j], plan.after[j], (k, k - 1), -1, alpha, 2 * corner_pressure)
+            rising = [_to_tip(a.points, _pitch_heights(a.points, pitch_curve), tip) for a in (left, right)]
+            _check_arches_apart(rising, (left.radius, right.radius), zone, alpha, corner_pressure, tip, corner_arc[j],
+                                source)
+            pieces += [np.r_[rising[0], _tip(rising[0][-1], rising[1][-1], pitch_curve, tip), rising[1][::-1]],
+                       stretches[j]]
+            corner_teeth.append((j, start, end, (left, right), rising))
+        driver = np.concatenate(pieces)
+        corner_teeth = tuple(_corner_tooth(driver, corner_arc[j], start, end, pitch, arches, rising)
+                             for j, start, end, arches, rising in corner_teeth)
+        driven = carved_mate(design, driver, module)
+        built = int(plan.between.sum()) + len(corners)
+        outlines = (driver, driven)
+        return CompositeTeeth(outlines, (built, int(round(built * design.orders[1] / design.orders[0]))), plan,
+                              corner_teeth, (self_intersections(driver), self_intersections(driven)),
+                              check_mesh(design, outlines, module, MESH_SAMPLES_PER_TOOTH),
+                              measure_contact_ratio(design, outlines, module, plan.space_centers(perimeter)),
+                              _against_closed_form(table, driver, plan, perimeter, module, alpha, cutter_teeth),
+                              float(np.degrees(corner_pressure)))
+
+    if corner_pressure is not None:
+        return pair_at(corner_pressure)
+    return _first_that_passes(pair_at)
+
+
+def _first_that_passes(pair_at) -> CompositeTeeth:
+    """``pair_at(corner pressure angle)`` over ``CORNER_PRESSURE_TRIALS_DEG``: the first pair that passes, else the one
+    with the smallest transmission error, with every trial's outcome; the first refusal when every angle is refused."""
+    trials, built, refusal = [], [], None
+    for degrees in CORNER_PRESSURE_TRIALS_DEG:
+        try:
+            with progress.step(f"corner pressure angle {degrees:g} deg"):
+                teeth = pair_at(float(np.radians(degrees)))
+        except InfeasibleError as error:
+            refusal = refusal or error
+            trials.append({"corner_pressure_angle_deg": degrees, "refused": str(error).split(": ", 1)[-1]})
+            continue
+        trials.append({"corner_pressure_angle_deg": degrees, "passed": teeth.passed, "failures": teeth.failures})
+        built.append(teeth)
+        if teeth.passed:
+            break
+    if not built:
+        raise refusal
+    best = built[-1] if built[-1].passed else min(built, key=lambda t: t.mesh.max_transmission_error_mm)
+    return dataclasses.replace(best, trials=tuple(trials))
 
 
 def _against_closed_form(table, driver: np.ndarray, plan: Layout, perimeter: float, module: float, alpha: float,
@@ -374,6 +422,8 @@ def composite_teeth_json(teeth: CompositeTeeth) -> dict:
         "contact_ratio_where": contact.where(),
         "contact_lost_at_deg": {"low-arc": contact.uncovered_deg[0].tolist(), "high-arc": contact.uncovered_deg[1].tolist()},
         "variable_involute": asdict(teeth.involute),
+        "corner_pressure_angle_deg": teeth.corner_pressure_deg,
+        "corner_pressure_trials": list(teeth.trials),
         "mesh_check": {"max_overlap_mm": mesh.max_overlap_mm, "min_clearance_mm": mesh.min_clearance_mm,
                        "transmission_error_deg": float(np.degrees(mesh.max_transmission_error_rad)),
                        "transmission_error_mm": mesh.max_transmission_error_mm, "passed": mesh.passed},
