@@ -10,6 +10,7 @@ from transplanter.gears.composite_teeth import _check_arches_apart, _check_layou
 from transplanter.gears.mesh_check import check_mesh
 from transplanter.gears.pair import arc_length, arc_to_angle, design_pair
 from transplanter.gears.pitch_curves import ellipse
+from transplanter.gears.report import to_markdown
 from transplanter.gears.swept_teeth import BIN_MODULES, shaper_profile
 from transplanter.gears.teeth import driver_table
 from transplanter.gears.tooth_contact import SAMPLES_PER_PITCH, measure_contact_ratio
@@ -129,6 +130,11 @@ def test_composite_teeth_of_the_ellipse_and_chord(example):
     assert involute["flanks_compared"] == 2 * 29 and involute["largest_mm"] < BIN_MODULES * 2.0
     assert example.passed
     assert set(report) >= {"cusps", "contact_ratio_min", "contact_ratio_where", "mesh_check"}
+    markdown = to_markdown(report, [], [])                      # the report says what the checks found
+    assert "corner pressure angle 22 deg (tried: 22 deg passed)" in markdown
+    assert f"transmission error {report['mesh_check']['transmission_error_mm']:.4f} mm" in markdown
+    assert f"contact ratio at least {report['contact_ratio_min']:.3f}" in markdown
+    assert markdown.count("- corner tooth at pitch arc") == 2 and "positions without contact: none" in markdown
 
 
 def test_arch_normals_pass_through_the_rolling_contact_on_the_pitch_curve(example):

@@ -28,7 +28,41 @@ def to_markdown(report: dict, figures: list[str], drawings: list[str]) -> str:
         lines.append(f"- tooth profiles by {report['cutter']} envelope; self-intersections {report['self_intersections']}"
                      + ("" if contact is None else f"; local contact ratio {contact[0]:.3f} to {contact[1]:.3f} "
                         "(osculating spur pair, convex parts)"))
+    if "corner_teeth" in report:
+        lines += _composite_lines(report)
     if drawings:
         lines += ["", "Drawings: " + ", ".join(drawings)]
     lines += [""] + [f"![{f}]({f})" for f in figures]
     return "\n".join(lines) + "\n"
+
+
+def _composite_lines(report: dict) -> list[str]:
+    """The composite pair's checks and corner teeth (``composite_teeth_json``)."""
+    mesh, where, involute = report["mesh_check"], report["contact_ratio_where"], report["variable_involute"]
+    lost = [f"{flank} at {', '.join(f'{a:.2f}' for a in angles)} deg"
+            for flank, angles in report["contact_lost_at_deg"].items() if angles]
+    tried = "; ".join(f"{t['corner_pressure_angle_deg']:g} deg " + (
+        f"refused ({t['refused']})" if "refused" in t else "passed" if t["passed"] else
+        "failed (" + ", ".join(t["failures"]) + ")") for t in report["corner_pressure_trials"])
+    lines = [f"- corner pressure angle {report['corner_pressure_angle_deg']:g} deg"
+             + (f" (tried: {tried})" if tried else " (given)"),
+             f"- contact ratio at least {report['contact_ratio_min']:.3f} (tooth {where['tooth']}, "
+             f"{where['phi_deg']:.2f} deg, {where['flank']} flank); positions without contact: "
+             + ("; ".join(lost) if lost else "none"),
+             f"- mesh through a whole turn: largest overlap {mesh['max_overlap_mm']:.4f} mm, transmission error "
+             f"{mesh['transmission_error_mm']:.4f} mm ({mesh['transmission_error_deg']:.4f} deg), "
+             + ("passed" if mesh["passed"] else "FAILED"),
+             f"- shaper-cut flanks within {involute['largest_mm']:.4f} mm of the closed-form variable involute "
+             f"({involute['flanks_compared']} flanks, {involute['points_compared']} points)"]
+    for tooth in report["corner_teeth"]:
+        pressure = [angle for pair in tooth["arch_pressure_angles_deg"] for angle in pair]
+        lines.append(f"- corner tooth at pitch arc {tooth['corner_arc_mm']:.3f} mm: {tooth['thickness_pitches']:.3f} "
+                     f"pitch thick, rolling radii {_pair(tooth['rolling_radii_mm'])} mm, joints "
+                     f"{_pair(tooth['joint_heights_mm'])} mm above the pitch curve, arch pressure angles "
+                     f"{min(pressure):.1f}-{max(pressure):.1f} deg, kinks {_pair(tooth['joint_kinks_deg'])} deg, "
+                     f"smallest arch curvature radius {min(tooth['arch_min_curvature_radius_mm']):.3f} mm")
+    return lines
+
+
+def _pair(values: list[float]) -> str:
+    return " and ".join(f"{v:.3f}" for v in values)
