@@ -15,6 +15,7 @@ from transplanter.generated import numpy_twin
 from transplanter.geometry.turn_quadrature import panels
 
 reach = numpy_twin("cusp", "shaper_reach")
+variable_involute = numpy_twin("cusp", "variable_involute")
 
 
 @pytest.mark.parametrize("side", [1, -1])
@@ -40,6 +41,25 @@ def test_the_printed_steps_of_eq_5_hold(side):
     assert float(to_s.norm()) == pytest.approx(float(sp.sqrt(base ** 2 + (base * (sp.tan(alpha) + phi_s)) ** 2)), rel=1e-14)
     angle = sp.acos(to_s.dot(to_m2) / (to_s.norm() * radius))
     assert float(angle) == pytest.approx(float(abs(sp.atan(sp.tan(alpha) + phi_s) - alpha)), rel=1e-12)
+
+
+@pytest.mark.parametrize("side", [1, -1])
+def test_on_a_circle_the_variable_involute_is_the_involute_of_its_base_circle(side):
+    """Pitch circle R, one flank (its pitch point fixed at s_f) generated over 3 mm of roll each way: every point's
+    polar angle differs from the flank's by the involute function inv(t) = t - atan(t), t = sqrt(rho^2 / r_b^2 - 1),
+    with r_b = R cos(alpha): the flank is the involute of the base circle, unwinding against the tooth's side."""
+    radius, alpha, pitch_arc = 24.0, np.radians(20), 5.0
+    rolled = np.linspace(-3.0, 3.0, 41)
+    psi = (pitch_arc - rolled) / radius                      # the contact on the circle (counterclockwise)
+    normal = np.c_[np.cos(psi), np.sin(psi)]
+    tangent = np.c_[-np.sin(psi), np.cos(psi)]
+    (along, out), = variable_involute([np.full_like(rolled, alpha)], [rolled], [np.full_like(rolled, side)])
+    points = radius * normal + along[:, None] * tangent + out[:, None] * normal
+    rho = np.hypot(*points.T)
+    roll = np.sqrt(rho ** 2 / (radius * np.cos(alpha)) ** 2 - 1)
+    polar = np.arctan2(points[:, 1], points[:, 0]) - side * (roll - np.arctan(roll))
+    assert rho.min() < radius < rho.max() and np.ptp(polar) < 1e-14
+    assert np.ptp(np.arctan2(points[:, 1], points[:, 0]) + side * (roll - np.arctan(roll))) > 0.05   # not the mirror
 
 
 @pytest.mark.parametrize("teeth,alpha_deg", [(16, 20.0), (50, 20.0), (12, 25.0)])
