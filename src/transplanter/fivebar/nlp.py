@@ -120,8 +120,11 @@ STALL_VIOLATION, STALL_ITERATIONS = 1e-3, 100
 CURVES = ("sun", "first intermediate", "second intermediate", "planet")
 #: The rows each exchange slot holds, in order (``DesignNLP.slot_rows``).
 SLOT_ROWS = ("angle EBF", "angle BEF", "ratio", *(f"curvature {curve}" for curve in CURVES))
+#: No parameter multipliers (calc_lam_p off) lets casadi skip building the NLP's gradient function (no_nlp_grad):
+#: the build takes 0.01-0.07 s less of 0.52-0.62 s (five fresh processes each), and the solves are identical.
 IPOPT_OPTIONS = {"ipopt.print_level": 0, "ipopt.sb": "yes", "print_time": False, "ipopt.tol": 1e-10,
-                 "ipopt.constr_viol_tol": 1e-12, "ipopt.max_iter": 1000, "ipopt.mu_strategy": "adaptive"}
+                 "ipopt.constr_viol_tol": 1e-12, "ipopt.max_iter": 1000, "ipopt.mu_strategy": "adaptive",
+                 "calc_lam_p": False, "no_nlp_grad": True}
 
 _curvature = numpy_twin("train_pitch_curvature", "train_pitch_curvature")
 
