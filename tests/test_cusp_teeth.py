@@ -1,4 +1,7 @@
 """Composite teeth on a pitch curve with corners (seed 004 sec 2-3): cycloid arches, layout, checks."""
+import dataclasses
+import types
+
 import numpy as np
 import pytest
 import sympy as sp
@@ -6,7 +9,8 @@ import sympy as sp
 from derivations import cusp as derivation
 from transplanter.errors import InfeasibleError
 from transplanter.gears import parse_problem, synthesize
-from transplanter.gears.composite_teeth import _check_arches_apart, _check_layout, carved_mate, layout
+from transplanter.gears.composite_teeth import (CORNER_PRESSURE_TRIALS_DEG, _check_arches_apart, _check_layout,
+                                                _first_that_passes, carved_mate, layout)
 from transplanter.gears.mesh_check import check_mesh
 from transplanter.gears.pair import arc_length, arc_to_angle, design_pair
 from transplanter.gears.pitch_curves import ellipse
@@ -235,3 +239,47 @@ def test_contact_ratio_sees_a_driven_gear_turned_off_its_mesh(example, turn_mm):
     assert lost == [0, positions]
     untouched = int(np.argmax([len(angles) for angles in contact.uncovered_deg]))
     assert np.all(contact.ratios[untouched] == 0)
+
+
+@dataclasses.dataclass
+class _Trial:
+    """What _first_that_passes reads of a pair: its failures, transmission error and trials."""
+    degrees: float
+    failures: list
+    mesh: types.SimpleNamespace
+    trials: tuple = ()
+
+    @property
+    def passed(self):
+        return not self.failures
+
+
+def _trying(outcomes: dict):
+    """A pair_at whose outcome per corner pressure angle (deg) is a transmission error (mm, failing when above
+    0.01) or a refusal (None)."""
+    def pair_at(angle):
+        degrees = round(float(np.degrees(angle)), 9)
+        error = outcomes[degrees]
+        if error is None:
+            raise InfeasibleError(f"<dict>: pair.corner_pressure_angle_deg = {degrees:g}: refused")
+        return _Trial(degrees, ["transmission error"] if error > 0.01 else [],
+                      types.SimpleNamespace(max_transmission_error_mm=error))
+    return pair_at
+
+
+def test_when_no_corner_pressure_angle_passes_the_smallest_transmission_error_is_kept():
+    outcomes = {22.0: 0.05, 26.0: 0.03, 30.0: 0.04, 34.0: None, 38.0: None}
+    kept = _first_that_passes(_trying(outcomes))
+    assert kept.degrees == 26.0 and not kept.passed
+    assert [t["corner_pressure_angle_deg"] for t in kept.trials] == list(CORNER_PRESSURE_TRIALS_DEG)
+    assert [("refused" in t) for t in kept.trials] == [False, False, False, True, True]
+
+
+def test_the_first_refusal_is_raised_when_every_angle_is_refused():
+    with pytest.raises(InfeasibleError, match="corner_pressure_angle_deg = 22: refused"):
+        _first_that_passes(_trying(dict.fromkeys(CORNER_PRESSURE_TRIALS_DEG)))
+
+
+def test_trials_stop_at_the_first_pair_that_passes_after_a_refusal():
+    kept = _first_that_passes(_trying({22.0: None, 26.0: 0.002, 30.0: 0.001, 34.0: 0.0, 38.0: 0.0}))
+    assert kept.degrees == 26.0 and kept.passed and len(kept.trials) == 2
