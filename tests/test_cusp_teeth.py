@@ -11,7 +11,7 @@ from transplanter.errors import InfeasibleError
 from transplanter.gears import parse_problem, synthesize
 from transplanter.gears.composite_teeth import (CORNER_PRESSURE_TRIALS_DEG, _check_arches_apart, _check_layout,
                                                 _first_that_passes, carved_mate, layout)
-from transplanter.gears.mesh_check import check_mesh
+from transplanter.gears.mesh_check import ERROR_MODULES, check_mesh
 from transplanter.gears.pair import arc_length, arc_to_angle, design_pair
 from transplanter.gears.pitch_curves import ellipse
 from transplanter.gears.report import to_markdown
@@ -125,7 +125,8 @@ def test_composite_teeth_of_the_ellipse_and_chord(example):
             assert low == pytest.approx(20.0, abs=1e-9) and high == pytest.approx(22.0, abs=1e-9)   # leaves the tip band
             # as its circle pivots there, at the corner's pressure angle (22 deg, the first one tried)
     assert report["corner_pressure_angle_deg"] == 22.0
-    assert report["corner_pressure_trials"] == [{"corner_pressure_angle_deg": 22.0, "passed": True, "failures": []}]
+    assert report["corner_pressure_trials"] == [{"corner_pressure_angle_deg": 22.0, "passed": True, "failures": [],
+                                                 "transmission_error_mm": report["mesh_check"]["transmission_error_mm"]}]
     assert report["mesh_check"]["passed"] and report["mesh_check"]["max_overlap_mm"] < 0.005 * 2.0
     assert report["contact_ratio_min"] >= 1.0 and not any(report["contact_lost_at_deg"].values())
     # every space's two flanks against the closed-form variable involute (the corner teeth's above the pitch curve
@@ -135,7 +136,8 @@ def test_composite_teeth_of_the_ellipse_and_chord(example):
     assert example.passed
     assert set(report) >= {"cusps", "contact_ratio_min", "contact_ratio_where", "mesh_check"}
     markdown = to_markdown(report, [], [])                      # the report says what the checks found
-    assert "corner pressure angle 22 deg (tried: 22 deg passed)" in markdown
+    assert (f"corner pressure angle 22 deg (tried: 22 deg passed (transmission error "
+            f"{report['mesh_check']['transmission_error_mm']:.4f} mm))") in markdown
     assert f"transmission error {report['mesh_check']['transmission_error_mm']:.4f} mm" in markdown
     assert f"contact ratio at least {report['contact_ratio_min']:.3f}" in markdown
     assert markdown.count("- corner tooth at pitch arc") == 2 and "positions without contact: none" in markdown
@@ -177,7 +179,10 @@ def test_without_a_corner_pressure_angle_the_first_that_passes_is_kept():
     first, second = report["corner_pressure_trials"]
     assert first["corner_pressure_angle_deg"] == 22.0 and not first["passed"]
     assert any(failure.startswith("transmission error") for failure in first["failures"])
-    assert second == {"corner_pressure_angle_deg": 26.0, "passed": True, "failures": []}
+    assert first["transmission_error_mm"] > ERROR_MODULES * 2.0
+    assert second == {"corner_pressure_angle_deg": 26.0, "passed": True, "failures": [],
+                      "transmission_error_mm": report["mesh_check"]["transmission_error_mm"]}
+    assert "22 deg failed (transmission error" in to_markdown(report, [], [])
     assert report["corner_pressure_angle_deg"] == 26.0 and result.passed
 
 

@@ -333,7 +333,8 @@ def _first_that_passes(pair_at) -> CompositeTeeth:
             refusal = refusal or error
             trials.append({"corner_pressure_angle_deg": degrees, "refused": str(error).split(": ", 1)[-1]})
             continue
-        trials.append({"corner_pressure_angle_deg": degrees, "passed": teeth.passed, "failures": teeth.failures})
+        trials.append({"corner_pressure_angle_deg": degrees, "passed": teeth.passed, "failures": teeth.failures,
+                       "transmission_error_mm": teeth.mesh.max_transmission_error_mm})
         built.append(teeth)
         if teeth.passed:
             break

@@ -42,8 +42,10 @@ def _composite_lines(report: dict) -> list[str]:
     lost = [f"{flank} at {', '.join(f'{a:.2f}' for a in angles)} deg"
             for flank, angles in report["contact_lost_at_deg"].items() if angles]
     tried = "; ".join(f"{t['corner_pressure_angle_deg']:g} deg " + (
-        f"refused ({t['refused']})" if "refused" in t else "passed" if t["passed"] else
-        "failed (" + ", ".join(t["failures"]) + ")") for t in report["corner_pressure_trials"])
+        f"refused ({t['refused'].split(': ', 1)[-1]})" if "refused" in t else
+        f"{'passed' if t['passed'] else 'failed'} (transmission error {t['transmission_error_mm']:.4f} mm"
+        + ("" if t["passed"] else f", {len(t['failures'])} check{'s' * (len(t['failures']) > 1)} failed") + ")")
+        for t in report["corner_pressure_trials"])
     lines = [f"- corner pressure angle {report['corner_pressure_angle_deg']:g} deg"
              + (f" (tried: {tried})" if tried else " (given)"),
              f"- contact ratio at least {report['contact_ratio_min']:.3f} (tooth {where['tooth']}, "
