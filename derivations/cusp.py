@@ -192,7 +192,9 @@ def shaper_reach(alpha, cutter_radius, tip_radius, lowest_radius):
     """(low, high) of q = -side (s_f - s) over which the cutter's involute, from ``lowest_radius`` to ``tip_radius``,
     generates the flank: q < 0 below the pitch curve, q > 0 above it."""
     base = cutter_radius * sp.cos(alpha)
-    roll = [sp.sqrt((radius / base) ** 2 - 1) for radius in (tip_radius, lowest_radius)]
+    # sqrt((radius / base)^2 - 1) as a product, so that the base circle itself (radius == base, the lowest radius of a
+    # cutter with many teeth) gives an exact 0 in floating point, not the square root of a rounding below it
+    roll = [sp.sqrt((radius - base) * (radius + base)) / base for radius in (tip_radius, lowest_radius)]
     return tuple(cutter_radius * (sp.sin(alpha) / sp.cos(alpha) - t) for t in roll)   # sines and cosines for the printer
 
 

@@ -74,6 +74,16 @@ def test_shaper_reach_ends_where_the_contact_meets_the_cutters_lowest_and_tip_ci
     assert low < 0 < high
 
 
+@pytest.mark.parametrize("alpha_deg", [20.0, 30.0, 33.0])
+def test_shaper_reach_at_the_base_circle_is_exact(alpha_deg):
+    """A cutter whose involute starts at its base circle (lowest radius r_j cos(alpha), 16 teeth at 30 deg): the reach
+    ends at q = r_j tan(alpha), with no square root of a rounding below zero (a NaN and a numpy warning before)."""
+    alpha, module = np.radians(alpha_deg), 2.0
+    radius, tip, _ = shaper_cutter_radii(module, alpha, 16)
+    (_, high), = reach([alpha], [radius], [tip], [radius * np.cos(alpha)])
+    assert high == pytest.approx(radius * np.tan(alpha), rel=1e-15)
+
+
 def _ellipse_design(module=2.0, teeth=24):
     curve = ellipse(30.0, 0.2)
     return design_pair(curve.scaled(np.pi * module * teeth / arc_length(curve, panels(curve.breaks))[-1]), 1)
