@@ -88,7 +88,7 @@ def test_layout_and_the_thickness_band():
     with pytest.raises(InfeasibleError) as error:
         _check_layout(skewed, 20, [(100.0, 100.0)] * 3, "f.toml")
     message = str(error.value)
-    assert message.startswith("f.toml: pair.teeth = 20: the tooth on the corner") and "tooth counts that fit" in message
+    assert message.startswith("f.toml: pair.teeth = 20: the tooth on the corner") and "tooth counts that keep every corner tooth in the band" in message
     with pytest.raises(InfeasibleError, match="cusp zone of .* wider than the segment"):
         _check_layout(plan, 20, [(1.0, 100.0), (100.0, 100.0)], "f.toml")
 
@@ -274,7 +274,7 @@ def _trying(outcomes: dict):
 
 def test_when_no_corner_pressure_angle_passes_the_smallest_transmission_error_is_kept():
     outcomes = {22.0: 0.05, 26.0: 0.03, 30.0: 0.04, 34.0: None, 38.0: None}
-    kept = _first_that_passes(_trying(outcomes))
+    kept = _first_that_passes(_trying(outcomes), CORNER_PRESSURE_TRIALS_DEG)
     assert kept.degrees == 26.0 and not kept.passed
     assert [t["corner_pressure_angle_deg"] for t in kept.trials] == list(CORNER_PRESSURE_TRIALS_DEG)
     assert [("refused" in t) for t in kept.trials] == [False, False, False, True, True]
@@ -282,9 +282,31 @@ def test_when_no_corner_pressure_angle_passes_the_smallest_transmission_error_is
 
 def test_the_first_refusal_is_raised_when_every_angle_is_refused():
     with pytest.raises(InfeasibleError, match="corner_pressure_angle_deg = 22: refused"):
-        _first_that_passes(_trying(dict.fromkeys(CORNER_PRESSURE_TRIALS_DEG)))
+        _first_that_passes(_trying(dict.fromkeys(CORNER_PRESSURE_TRIALS_DEG)), CORNER_PRESSURE_TRIALS_DEG)
 
 
 def test_trials_stop_at_the_first_pair_that_passes_after_a_refusal():
-    kept = _first_that_passes(_trying({22.0: None, 26.0: 0.002, 30.0: 0.001, 34.0: 0.0, 38.0: 0.0}))
+    kept = _first_that_passes(_trying({22.0: None, 26.0: 0.002, 30.0: 0.001, 34.0: 0.0, 38.0: 0.0}),
+                              CORNER_PRESSURE_TRIALS_DEG)
     assert kept.degrees == 26.0 and kept.passed and len(kept.trials) == 2
+
+
+def test_only_corner_pressure_angles_above_the_pressure_angle_are_tried():
+    """The arch starts leaning alpha, so angles at or below it are not tried (they made an empty arch before)."""
+    result = synthesize(parse_problem({
+        "driver": {"family": "composite", "segments": [
+            {"kind": "ellipse", "phi_deg": [-150, 150], "semi_major_axis": 30.0, "eccentricity": 0.3},
+            {"kind": "line", "phi_deg": [150, 210]}]},
+        "pair": {"module": 2.0, "teeth": 30, "pressure_angle_deg": 35.0}}))
+    assert [t["corner_pressure_angle_deg"] for t in result.to_json()["corner_pressure_trials"]] == [38.0]
+
+
+def test_a_tooth_outline_that_crosses_itself_at_a_square_corner_is_refused():
+    """Four lines 20 mm from the centre: 90-deg corners, on which the corner tooth runs into its neighbours."""
+    sides = [{"kind": "line", "phi_deg": [a - 45.0, a + 45.0], "distance": 20.0, "normal_deg": a}
+             for a in (0.0, 90.0, 180.0, 270.0)]
+    problem = parse_problem({"driver": {"family": "composite", "segments": sides},
+                             "pair": {"module": 2.0, "teeth": 30, "corner_pressure_angle_deg": 22.0}}, "f.toml")
+    with pytest.raises(InfeasibleError, match=r"f.toml: pair.corner_pressure_angle_deg = 22: the driver's tooth outline "
+                                              r"crosses itself at .* which turns the tangent by 90.0 deg"):
+        synthesize(problem)

@@ -19,6 +19,7 @@ pitch curve. The driven gear is cut by the driver's outline in the pair's motion
 from __future__ import annotations
 
 import dataclasses
+import re
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -112,8 +113,9 @@ def _check_layout(plan: Layout, teeth: int, segment_arcs: list[tuple[float, floa
         fits = [z for z in range(max(3, teeth - 12), teeth + 13) if _fits(plan, teeth, z)]
         raise InfeasibleError(
             f"{source}: pair.teeth = {teeth}: the tooth on the corner at pitch arc {plan.corners[k]:.3f} mm would be "
-            f"{ratios[k]:.3f} pitches thick, outside [{low}, {high}] (seed 004 sec 2.3); tooth counts that fit: "
-            f"{', '.join(map(str, fits)) or 'none within 12 of it'}")
+            f"{ratios[k]:.3f} pitches thick, outside [{low}, {high}] (seed 004 sec 2.3); tooth counts that keep every "
+            f"corner tooth in the band: {', '.join(map(str, fits)) or 'none within 12 of it'} (whether they mesh is "
+            f"checked when they are cut)")
     for k, (corner, (before, after)) in enumerate(zip(plan.corners, segment_arcs)):
         for zone, room, name in ((plan.before[k], before, "before"), (plan.after[k], after, "after")):
             if zone >= room:
@@ -240,7 +242,7 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
     """Driver outline of shaper-cut stretches and corner teeth, the driven outline by envelope (module docstring).
 
     ``corner_pressure`` (rad) sets theta_J / 2 of every corner's arches; None tries ``CORNER_PRESSURE_TRIALS_DEG``
-    in turn (smallest first: the contact passes the corner most squarely) and keeps the first pair that passes every
+    above ``alpha`` in turn (smallest first: the contact passes the corner most squarely) and keeps the first pair that passes every
     check, or, when none does, the one with the smallest transmission error.
 
     Raises
@@ -304,6 +306,7 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
                        stretches[j]]
             corner_teeth.append((j, start, end, (left, right), rising))
         driver = np.concatenate(pieces)
+        _check_outline_simple(driver, corners, corner_pressure, source)
         corner_teeth = tuple(_corner_tooth(driver, corner_arc[j], start, end, pitch, arches, rising)
                              for j, start, end, arches, rising in corner_teeth)
         driven = carved_mate(design, driver, module)
@@ -318,14 +321,31 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
 
     if corner_pressure is not None:
         return pair_at(corner_pressure)
-    return _first_that_passes(pair_at)
+    # the arch starts leaning alpha, so it can only pass the corner at more; alpha stops at 35 deg (GearProblem)
+    return _first_that_passes(pair_at, [d for d in CORNER_PRESSURE_TRIALS_DEG if np.radians(d) > alpha])
 
 
-def _first_that_passes(pair_at) -> CompositeTeeth:
-    """``pair_at(corner pressure angle)`` over ``CORNER_PRESSURE_TRIALS_DEG``: the first pair that passes, else the one
-    with the smallest transmission error, with every trial's outcome; the first refusal when every angle is refused."""
+def _check_outline_simple(driver: np.ndarray, corners: list[dict], corner_pressure: float, source: str):
+    """Refuse a driver outline that crosses itself (the driven gear cannot be carved from it): corner teeth on
+    corners too sharp for the arches, whose tooth runs into its neighbours'."""
+    reason = shapely.is_valid_reason(shapely.Polygon(driver))
+    found = re.search(r"\[(\S+) (\S+)\]", reason)
+    if reason == "Valid Geometry" or found is None:
+        return
+    x, y = float(found[1]), float(found[2])
+    near = min(corners, key=lambda c: abs(np.mod(np.degrees(np.arctan2(y, x)) - c["phi_deg"] + 180, 360) - 180))
+    raise InfeasibleError(
+        f"{source}: pair.corner_pressure_angle_deg = {np.degrees(corner_pressure):g}: the driver's tooth outline "
+        f"crosses itself at ({x:.3f}, {y:.3f}) mm, by the corner at {near['phi_deg']:.3f} deg, which turns the "
+        f"tangent by {near['turn_deg']:.1f} deg (driver.segments): the composite teeth carry corners of up to about "
+        f"31 deg (docs/gear.md); turn the corners less")
+
+
+def _first_that_passes(pair_at, angles: list[float]) -> CompositeTeeth:
+    """``pair_at(corner pressure angle)`` over ``angles`` (deg): the first pair that passes, else the one with the
+    smallest transmission error, with every trial's outcome; the first refusal when every angle is refused."""
     trials, built, refusal = [], [], None
-    for degrees in CORNER_PRESSURE_TRIALS_DEG:
+    for degrees in angles:
         try:
             with progress.step(f"corner pressure angle {degrees:g} deg"):
                 teeth = pair_at(float(np.radians(degrees)))
