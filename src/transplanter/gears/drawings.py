@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import ezdxf
+from ezdxf.entities.lwpolyline import LWPolylinePoints
 import numpy as np
 
 from transplanter.gears.result import GearResult
@@ -83,6 +84,14 @@ def write_svg(outline: np.ndarray, path: Path, *, pitch_curve: np.ndarray | None
         f'{extras}</svg>\n')
 
 
+def _polyline(space, points: np.ndarray, layer: str, close: bool):
+    """An LWPOLYLINE of ``points`` (N, 2) mm with its vertex array filled at once: ezdxf 1.4's
+    ``add_lwpolyline`` appends point by point, each a copy of the array so far (16 s for the four outlines of a
+    100-tooth composite pair, against 0.1 s this way)."""
+    polyline = space.add_lwpolyline([], close=close, dxfattribs={"layer": layer})
+    polyline.lwpoints = LWPolylinePoints(np.c_[points, np.zeros((len(points), 3))].tolist())
+
+
 def write_dxf(outline: np.ndarray, path: Path, *, outline_layer: str = "OUTLINE", pitch_curve: np.ndarray | None = None,
               bore_radius: float | None = None, mark: np.ndarray | None = None):
     """Outline (N, 2) mm as a closed polyline on ``outline_layer`` (INSUNITS mm); optionally the pitch curve
@@ -92,7 +101,7 @@ def write_dxf(outline: np.ndarray, path: Path, *, outline_layer: str = "OUTLINE"
     document.units = ezdxf.units.MM
     space = document.modelspace()
     document.layers.add(outline_layer)
-    space.add_lwpolyline(outline.tolist(), close=True, dxfattribs={"layer": outline_layer})
+    _polyline(space, outline, outline_layer, close=True)
     if bore_radius is None:
         document.layers.add("CENTER")
         space.add_circle((0.0, 0.0), 1.0, dxfattribs={"layer": "CENTER"})
@@ -101,7 +110,7 @@ def write_dxf(outline: np.ndarray, path: Path, *, outline_layer: str = "OUTLINE"
         space.add_circle((0.0, 0.0), bore_radius, dxfattribs={"layer": LAYERS["bore"]})
     if pitch_curve is not None:
         document.layers.add(LAYERS["pitch"])
-        space.add_lwpolyline(np.asarray(pitch_curve).tolist(), dxfattribs={"layer": LAYERS["pitch"]})
+        _polyline(space, np.asarray(pitch_curve), LAYERS["pitch"], close=False)
     if mark is not None:
         document.layers.add(LAYERS["mark"])
         space.add_line(*np.asarray(mark).tolist(), dxfattribs={"layer": LAYERS["mark"]})
