@@ -116,6 +116,10 @@ def test_one_family_split_in_two_is_the_family():
     ({"segments_range": [150, 200]}, "driver.segments[1].phi_deg = [150, 200]: expected a range that ends"),
     ({"arc": True}, "driver.segments[1].center = [30.0, 0.0]: expected a point inside the circle"),
     ({"kind": "oval"}, "driver.segments[1].kind = 'oval'"),
+    ({"range_reversed": True}, "driver.segments[0].phi_deg = [150.0, -150.0]: expected start < end"),
+    ({"ellipse_field": {"distance": 3.0}}, "driver.segments[0].distance = 3.0: expected no such field here (known: "
+                                           "eccentricity, kind, order, phi_deg, rotation_deg, semi_major_axis)"),
+    ({"chord_through_centre": True}, "driver.segments[1]: the pitch radius reaches"),
 ])
 def test_bad_segments(change, message):
     data = ellipse_and_chord(line=change.get("line"))
@@ -126,6 +130,12 @@ def test_bad_segments(change, message):
         second.update(kind="arc", center=[30.0, 0.0], radius=10.0)
     if "kind" in change:
         second["kind"] = change["kind"]
+    first = data["driver"]["segments"][0]
+    if "range_reversed" in change:
+        first["phi_deg"] = [150.0, -150.0]
+    first.update(change.get("ellipse_field", {}))
+    if "chord_through_centre" in change:                # the ellipse's ends at +-90 deg are in line with its focus
+        first["phi_deg"], second["phi_deg"] = [-90, 90], [90, 270]
     with pytest.raises(ProblemError, match=None) as error:
         parse_problem(data, "f.toml")
     assert message in str(error.value) and "\n" not in str(error.value)
@@ -141,3 +151,21 @@ def test_command_gives_one_line_and_exit_2_for_segments_that_do_not_join(tmp_pat
     assert main(["gear", str(path)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "driver.segments[1]: starts at r =" in err
+
+
+@pytest.mark.parametrize("pair,message", [
+    ({"module": 2.0, "teeth": 30, "cutter": "rack"}, "pair.cutter = 'rack': expected no cutter or \"shaper\""),
+    ({"module": 2.0, "teeth": 201}, "pair.teeth = 201: expected at most 200 with family = \"composite\""),
+    ({"driver_speed_rpm": 0.0}, "pair.driver_speed_rpm = 0.0: expected a speed other than 0"),
+])
+def test_bad_pair_fields_of_a_composite(pair, message):
+    with pytest.raises(ProblemError) as error:
+        parse_problem(ellipse_and_chord(pair), "f.toml")
+    assert message in str(error.value) and "\n" not in str(error.value)
+
+
+def test_corner_pressure_angle_on_a_curve_without_corners_is_refused():
+    with pytest.raises(ProblemError, match=r"pair.corner_pressure_angle_deg = 22.0: expected no such field for a "
+                                           r"pitch curve without corners"):
+        parse_problem({"driver": {"family": "ellipse", "semi_major_axis": 30.0, "eccentricity": 0.3},
+                       "pair": {"corner_pressure_angle_deg": 22.0}}, "f.toml")

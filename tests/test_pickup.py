@@ -59,11 +59,24 @@ def test_velocity_and_planet_rate_agree_with_differences_of_the_path():
     ({"stage1": {"driver": {"family": "ratio", "expression": "1"}}}, "stage1.driver.family = 'ratio'"),
     ({"carrier": {"first_length": -5.0, "second_length": 40.0}}, "carrier.first_length = -5.0: expected a positive"),
     ({"angles": {"picking": "top"}}, "angles.picking = 'top'"),
+    ({"angles": {"picking": 2e6}}, "angles.picking = 2000000.0: expected \"farthest\" or a carrier turn in degrees "
+                                   "from the start, within ±1e+06"),
+    ({"carrier": {"first_length": 50.0, "second_length": 40.0, "speed_rpm": 0.0}},
+     "carrier.speed_rpm = 0.0: expected a speed other than 0"),
 ])
 def test_bad_input(change, message):
     with pytest.raises(ProblemError) as error:
         pickup.parse_problem(circles(**change), "p.toml")
     assert message in str(error.value) and "\n" not in str(error.value)
+
+
+def test_a_stage_whose_radius_nearly_reaches_the_centre_is_refused_naming_it():
+    """e = 0.999: r_min / r_max = (1 - e) / (1 + e) = 5e-4, below the thousandth every pitch curve keeps (it used to
+    fail closure with a message about pair.center_distance, a field a pick-up file does not have)."""
+    data = circles(stage1={"driver": {"family": "ellipse", "semi_major_axis": 20.0, "eccentricity": 0.999}})
+    with pytest.raises(ProblemError, match=r"p.toml: stage1.driver: the pitch radius reaches .* expected at least "
+                                           r"0.001 of the largest"):
+        pickup.synthesize(pickup.parse_problem(data, "p.toml"))
 
 
 def test_a_stage_of_order_two_is_refused():

@@ -34,12 +34,13 @@ def _range(read: FieldReader, table: dict, where: str) -> tuple[float, float]:
         read.fail(f"{where}.phi_deg", values, "[start, end] in degrees, counterclockwise")
     start, end = read.numbers(table, "phi_deg", where, minimum_count=2)
     if not start < end <= start + 360:
-        read.fail(f"{where}.phi_deg", [start, end], "start < end <= start + 360 (degrees)")
+        read.fail(f"{where}.phi_deg", [float(start), float(end)], "start < end <= start + 360 (degrees)")
     return float(np.radians(start)), float(np.radians(end))
 
 
-def read_composite(read: FieldReader, table: dict, where: str, read_family):
-    """Segments in order round the turn; ``read_family(read, table, where, families)`` reads a family's curve."""
+def read_composite(read: FieldReader, table: dict, where: str, read_family, family_keys: dict[str, set]):
+    """Segments in order round the turn; ``read_family(read, table, where, families)`` reads a family's curve,
+    whose own fields are ``family_keys[family]``."""
     rows = table.get("segments")
     if not isinstance(rows, (list, tuple)) or len(rows) < 2 or not all(isinstance(r, dict) for r in rows):
         read.fail(f"{where}.segments", rows, "at least two [[driver.segments]] tables")
@@ -67,6 +68,7 @@ def read_composite(read: FieldReader, table: dict, where: str, read_family):
                                                            f"the radius {radius:g} mm), so every ray meets it once")
             curve = arc(tuple(center), radius)
         else:
+            read.keys(row, _COMMON | family_keys[kind], at)
             family = {key: value for key, value in row.items() if key not in _COMMON}
             curve = read_family(read, {"family": kind, **family}, at, SEGMENT_FAMILIES)
             rotation = float(np.radians(read.number(row, "rotation_deg", at))) if "rotation_deg" in row else 0.0

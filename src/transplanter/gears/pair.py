@@ -15,7 +15,7 @@ import numpy as np
 
 from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.generated import numpy_twin
-from transplanter.gears.pitch_curves import TWO_PI, PitchCurve
+from transplanter.gears.pitch_curves import SMALLEST_RADIUS, TWO_PI, PitchCurve
 from transplanter.geometry.turn_quadrature import NODES, PANELS, Panels, panels
 
 _conjugate = numpy_twin("gears", "conjugate_pitch")
@@ -105,15 +105,23 @@ def _joint_report(curve: PitchCurve) -> list[dict]:
 
 
 def design_pair(driver: PitchCurve, driven_order: int, center_distance: float | None = None,
-                driver_speed: float = TWO_PI, source: str = "<gear>") -> GearPairDesign:
+                driver_speed: float = TWO_PI, source: str = "<gear>", where: str = "driver") -> GearPairDesign:
+    """The pair of ``driver`` and its driven curve of ``driven_order`` at ``center_distance`` (None: the closing
+    one); ``where`` names the driver's table in the messages of a refused curve."""
     grid = panels(driver.breaks)
     dense = np.linspace(0, TWO_PI, 20001)
     r_dense = driver.evaluate(dense)[0]
     if not np.all(np.isfinite(r_dense)) or r_dense.min() <= 0:
         k = int(np.argmin(np.where(np.isfinite(r_dense), r_dense, -np.inf)))
-        raise ProblemError(f"{source}: driver pitch radius reaches {r_dense[k]:.6g} mm at phi = "
+        raise ProblemError(f"{source}: {where}: the pitch radius reaches {r_dense[k]:.6g} mm at phi = "
                            f"{np.degrees(dense[k]):.2f} deg: expected a positive radius all round")
     r_max = float(r_dense.max())
+    if r_dense.min() < SMALLEST_RADIUS * r_max:
+        k = int(np.argmin(r_dense))
+        raise ProblemError(f"{source}: {where}: the pitch radius reaches {r_dense[k]:.6g} mm at phi = "
+                           f"{np.degrees(dense[k]):.2f} deg: expected at least {SMALLEST_RADIUS:g} of the largest "
+                           f"({r_max:.6g} mm) all round, or the ratio leaves the thousandfold range (a shape parameter "
+                           f"too near its limit, e.g. an eccentricity near 1)")
     orders = (driver.lobes, driven_order)
     r_nodes, slope_nodes, _ = driver.evaluate(grid.nodes)
     if center_distance is None:

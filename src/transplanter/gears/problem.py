@@ -62,6 +62,10 @@ RATIO_RANGE = (1e-3, 1e3)
 #: Most teeth cut on one gear: every tooth's envelope is cut and checked, with time and memory in
 #: proportion (20000 teeth a gear: 10 s and 0.36 GB on the ellipse example).
 MAX_TEETH = 20000
+#: Most teeth on a composite driver: its mate is carved as polygons at every CARVE_STEP_MODULES of a turn, and the
+#: carving's time and memory grow with the count squared (measured on the ellipse-and-chord example: 30 teeth 4 s,
+#: 100 teeth 14 s, 200 teeth 1 min and 1.1 GB with every file written, 500 teeth over 5 min and 2.4 GB).
+MAX_COMPOSITE_TEETH = 200
 _PAIR_KEYS = {"driven_order", "center_distance", "module", "teeth", "pressure_angle_deg", "driver_speed_rpm",
               "cutter", "shaper_teeth", "corner_pressure_angle_deg"}
 
@@ -204,13 +208,13 @@ def _denatured_pair(read, table, where="driver"):
 
 def read_driver(read: FieldReader, table: dict, where: str = "driver", families=FAMILIES):
     """A driver pitch curve from its table (any family of ``families``); a ratio gives (evaluator, breaks)."""
-    read.keys(table, _DRIVER_KEYS, where)
-    family = table.get("family")
+    family = table.get("family") if isinstance(table, dict) else None
     if family not in families:
+        read.keys(table, _DRIVER_KEYS, where)
         read.fail(f"{where}.family", family, "one of " + ", ".join(families))
     read.keys(table, _FAMILY_KEYS[family] | {"family"}, where)
     if family == "composite":
-        return read_composite(read, table, where, read_driver)
+        return read_composite(read, table, where, read_driver, _FAMILY_KEYS)
     if family in ("ellipse", "higher_order_ellipse"):
         low = 1 if family == "ellipse" else 2
         order = read.integer(table, "order", where, low, 1 if family == "ellipse" else 12, default=low)
@@ -295,15 +299,27 @@ def parse_problem(data: dict, source: str = "<dict>") -> GearProblem:
     if not 5 <= pressure <= 35:
         read.fail("pair.pressure_angle_deg", pressure, "an angle from 5 to 35 degrees")
     rpm = read.number(pair, "driver_speed_rpm", "pair") if "driver_speed_rpm" in pair else 60.0
+    if rpm == 0:
+        read.fail("pair.driver_speed_rpm", rpm, "a speed other than 0 (rpm)")
     cutter = pair.get("cutter", "rack")
     if cutter not in ("rack", "shaper"):
         read.fail("pair.cutter", cutter, '"rack" or "shaper"')
+    composite = data["driver"].get("family") == "composite"
+    if composite and teeth is not None and teeth > MAX_COMPOSITE_TEETH:
+        read.fail("pair.teeth", teeth, f'at most {MAX_COMPOSITE_TEETH} with family = "composite" (the mate is carved '
+                                       "as polygons, in time and memory growing with the count squared)")
+    if composite and pair.get("cutter") == "rack":
+        read.fail("pair.cutter", cutter, 'no cutter or "shaper" with family = "composite": a rack cannot roll round '
+                                         "a corner, so the smooth stretches are shaper-cut")
     is_ratio = isinstance(driver, tuple)
     if is_ratio and center is None and teeth is None:
         read.fail("pair.center_distance", None, "a center distance (or module and teeth): a ratio fixes the "
                                                 "shape of the pitch curves, not their size")
     correct = read.flag(data["driver"], "correct", "driver", False)
     corner = read.number(pair, "corner_pressure_angle_deg", "pair") if "corner_pressure_angle_deg" in pair else None
+    if corner is not None and not composite:
+        read.fail("pair.corner_pressure_angle_deg", corner, 'no such field for a pitch curve without corners: it '
+                                                             'applies to family = "composite"')
     if corner is not None and not pressure < corner < 80:
         read.fail("pair.corner_pressure_angle_deg", corner, f"an angle above pair.pressure_angle_deg ({pressure:g}) "
                                                              "and below 80 degrees (at 90 no torque passes the corner)")

@@ -29,7 +29,7 @@ import numpy as np
 
 from transplanter.gears.pitch_curves import PitchCurve
 from transplanter.gears.problem import FAMILIES, read_driver
-from transplanter.toml_fields import FieldReader, is_finite_number, read_toml
+from transplanter.toml_fields import ANGLE_LIMIT_DEG, FieldReader, is_finite_number, read_toml
 
 _STAGE_FAMILIES = tuple(f for f in FAMILIES if f != "ratio")
 _CARRIER_KEYS = {"first_length", "second_length", "bend_deg", "start_deg", "speed_rpm"}
@@ -73,12 +73,21 @@ def _angle(read, table, key, where, default):
     return float(np.radians(read.number(table, key, where))) if key in table else default
 
 
+def _speed(read, table, key, where, default=60.0):
+    """A turning speed (rpm); 0 would leave every speed in the report 0."""
+    value = read.number(table, key, where) if key in table else default
+    if value == 0:
+        read.fail(f"{where}.{key}", value, "a speed other than 0 (rpm)")
+    return value
+
+
 def _where(read, table, key, word):
     value = table.get(key, word)
     if value == word:
         return word
-    if not is_finite_number(value) or isinstance(value, bool):
-        read.fail(f"angles.{key}", value, f'"{word}" or a carrier turn in degrees from the start')
+    if not is_finite_number(value) or isinstance(value, bool) or abs(value) > ANGLE_LIMIT_DEG:
+        read.fail(f"angles.{key}", value, f'"{word}" or a carrier turn in degrees from the start, within '
+                                          f"±{ANGLE_LIMIT_DEG:.0e}")
     return float(np.radians(value))
 
 
@@ -104,6 +113,6 @@ def parse_problem(data: dict, source: str = "<dict>") -> PickupProblem:
         second_length=_length(read, carrier, "second_length", "carrier"),
         bend=_angle(read, carrier, "bend_deg", "carrier", 0.0), start=_angle(read, carrier, "start_deg", "carrier", 0.0),
         arm_length=_length(read, arm, "length", "arm"), mounting=_angle(read, arm, "mounting_deg", "arm", 0.0),
-        speed=(read.number(carrier, "speed_rpm", "carrier") if "speed_rpm" in carrier else 60.0) * 2 * np.pi / 60,
+        speed=_speed(read, carrier, "speed_rpm", "carrier") * 2 * np.pi / 60,
         picking=_where(read, angles, "picking", "farthest"), pushing=_where(read, angles, "pushing", "lowest"),
         source=source, title=str(data.get("title", "")))

@@ -50,8 +50,8 @@ def stage_at(curve: PitchCurve, center_distance: float, source: str, name: str) 
     if curve.lobes != 1:
         raise InfeasibleError(f"{source}: {name}.driver has order {curve.lobes}: the pick-up train needs one turn "
                               f"of every gear per carrier turn (order 1)")
-    natural = design_pair(curve, 1, source=source).center_distance
-    return design_pair(curve.scaled(center_distance / natural), 1, source=source)
+    natural = design_pair(curve, 1, source=source, where=f"{name}.driver").center_distance
+    return design_pair(curve.scaled(center_distance / natural), 1, source=source, where=f"{name}.driver")
 
 
 def _tip_and_rates():
