@@ -155,7 +155,6 @@ def test_command_gives_one_line_and_exit_2_for_segments_that_do_not_join(tmp_pat
 
 @pytest.mark.parametrize("pair,message", [
     ({"module": 2.0, "teeth": 30, "cutter": "rack"}, "pair.cutter = 'rack': expected no cutter or \"shaper\""),
-    ({"module": 2.0, "teeth": 201}, "pair.teeth = 201: expected at most 200 with family = \"composite\""),
     ({"driver_speed_rpm": 0.0}, "pair.driver_speed_rpm = 0.0: expected a speed other than 0"),
 ])
 def test_bad_pair_fields_of_a_composite(pair, message):

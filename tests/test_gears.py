@@ -15,7 +15,8 @@ from transplanter.gears.mesh_check import ERROR_MODULES, check_mesh
 from transplanter.geometry.poses import rotate_about
 from transplanter.gears.teeth import driven_table, generate_teeth
 from transplanter.generated import casadi_function, numpy_twin
-from transplanter.gears.pitch_curves import denatured_limacon, denatured_partner, ellipse, limacon
+from transplanter.gears.pitch_curves import denatured_ellipse, denatured_limacon, denatured_partner, ellipse, limacon
+from transplanter.geometry.turn_quadrature import PIECE_PANELS
 from transplanter.gears.rack_teeth import pitch_table, rack_profile, _flank
 from transplanter.gears.pinion_cutter import shaper_cutter, shaper_cutter_radii
 from transplanter.gears.swept_teeth import mate_profile, shaper_profile
@@ -334,6 +335,27 @@ def test_concave_pitch_curve_is_refused_for_the_rack():
     d = design_pair(curve.scaled(40 * np.pi * 2.0 / design_pair(curve, 1).perimeters[0]), 1)
     with pytest.raises(InfeasibleError, match="driver pitch curve is concave at phi1 = .* rack cutter cannot generate it; set pair.cutter"):
         generate_teeth(d, 2.0, np.radians(20), "test")
+
+
+def test_a_piece_narrower_than_a_panel_is_sampled_inside():
+    """A denatured ellipse with m11 = 0.5001: its second piece spans pi / m12 = 0.07 deg and is concave inside; with
+    one panel it was sampled at its two ends only, the rack's concavity check missed it and clipping a flank failed
+    with an IndexError. Every piece now has PIECE_PANELS panels."""
+    m11 = 0.5001
+    curve = denatured_ellipse(40.0, 0.2, m11, denatured_partner(m11))
+    d = design_pair(curve.scaled(40 * np.pi * 2.0 / design_pair(curve, 1).perimeters[0]), 1)
+    inside = (d.phi1 > np.pi / m11) & (d.phi1 < 2 * np.pi)
+    assert inside.sum() >= PIECE_PANELS - 1 and (d.convexity[0][inside] < 0).any()
+    with pytest.raises(InfeasibleError, match="driver pitch curve is concave at phi1 = 359"):
+        generate_teeth(d, 2.0, np.radians(20), "test")
+
+
+def test_a_curve_too_sharp_for_the_quadrature_is_refused_as_such():
+    """An order-12 ellipse with e = 0.99 (smallest radius 0.005 of the largest): the closing center distance found on
+    the working quadrature does not close on the finer check; the message says so instead of naming a center
+    distance the user never gave."""
+    with pytest.raises(InfeasibleError, match=r"test: driver: the pitch curve varies too fast for the turn quadrature"):
+        design_pair(ellipse(40.0, 0.99, 12), 12, source="test")
 
 
 def _brute_force_crossings(outline):

@@ -73,6 +73,10 @@ BAD = {
                                            ["driver.amplitude = 50.0", "below driver.base = 50"]),
     "teeth beyond what is cut": ("gear", "gear_ellipse.toml", (("teeth = 30", "teeth = 20001"),), (),
                                  ["pair.teeth = 20001", "from 3 to 20000"]),
+    "teeth beyond what a shaper cuts": ("gear", "gear_concave_shaper.toml", (("teeth = 60", "teeth = 1001"),), (),
+                                        ["pair.teeth = 1001", "at most 1000 with cutter = \"shaper\""]),
+    "composite teeth beyond what is carved": ("gear", "gear_cusp_composite.toml", (("teeth = 30", "teeth = 201"),), (),
+                                              ["pair.teeth = 201", "at most 200 with family = \"composite\""]),
 }
 
 

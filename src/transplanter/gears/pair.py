@@ -124,7 +124,8 @@ def design_pair(driver: PitchCurve, driven_order: int, center_distance: float | 
                            f"too near its limit, e.g. an eccentricity near 1)")
     orders = (driver.lobes, driven_order)
     r_nodes, slope_nodes, _ = driver.evaluate(grid.nodes)
-    if center_distance is None:
+    given = center_distance is not None
+    if not given:
         center_distance = closing_center_distance(r_nodes, orders, grid, r_max)
     elif center_distance <= r_max:
         raise ProblemError(f"{source}: pair.center_distance = {center_distance:g}: expected more than the largest "
@@ -134,6 +135,12 @@ def design_pair(driver: PitchCurve, driven_order: int, center_distance: float | 
     closure_error = driven_turn(driver, center_distance, check) - target
     if abs(closure_error) > 1e-6:
         closing = closing_center_distance(r_nodes, orders, grid, r_max)
+        if not given or abs(closing - center_distance) <= 1e-9 * center_distance:
+            raise InfeasibleError(
+                f"{source}: {where}: the pitch curve varies too fast for the turn quadrature ({PANELS} panels): at "
+                f"its closing center distance {closing:.9f} mm a finer quadrature turns the driven gear "
+                f"{np.degrees(closure_error + target):.6f} deg per driver turn instead of {np.degrees(target):.6f}; "
+                f"use a smoother curve (a smaller eccentricity, order or ratio range)")
         raise InfeasibleError(
             f"{source}: pair.center_distance = {center_distance:g} mm does not close with orders {orders}: the driven "
             f"gear turns {np.degrees(closure_error + target):.6f} deg per driver turn instead of "

@@ -66,6 +66,10 @@ MAX_TEETH = 20000
 #: carving's time and memory grow with the count squared (measured on the ellipse-and-chord example: 30 teeth 4 s,
 #: 100 teeth 14 s, 200 teeth 1 min and 1.1 GB with every file written, 500 teeth over 5 min and 2.4 GB).
 MAX_COMPOSITE_TEETH = 200
+#: Most teeth on a shaper-cut gear: the cutter's envelope is taken at every position it rolls through, in time and
+#: memory growing faster than the count (the concave example: 1000 teeth 51 s and 0.35 GB, 2000 teeth 134 s and
+#: 1.2 GB, 20000 teeth over 5 min and 4.4 GB).
+MAX_SHAPER_TEETH = 1000
 _PAIR_KEYS = {"driven_order", "center_distance", "module", "teeth", "pressure_angle_deg", "driver_speed_rpm",
               "cutter", "shaper_teeth", "corner_pressure_angle_deg"}
 
@@ -304,6 +308,9 @@ def parse_problem(data: dict, source: str = "<dict>") -> GearProblem:
     cutter = pair.get("cutter", "rack")
     if cutter not in ("rack", "shaper"):
         read.fail("pair.cutter", cutter, '"rack" or "shaper"')
+    if cutter == "shaper" and teeth is not None and teeth > MAX_SHAPER_TEETH:
+        read.fail("pair.teeth", teeth, f'at most {MAX_SHAPER_TEETH} with cutter = "shaper" (its envelope is taken at '
+                                       "every position the cutter rolls through)")
     composite = data["driver"].get("family") == "composite"
     if composite and teeth is not None and teeth > MAX_COMPOSITE_TEETH:
         read.fail("pair.teeth", teeth, f'at most {MAX_COMPOSITE_TEETH} with family = "composite" (the mate is carved '

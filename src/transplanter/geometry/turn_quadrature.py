@@ -10,6 +10,9 @@ TWO_PI = 2 * np.pi
 
 #: Gauss-Legendre nodes per panel and panels per turn of the working quadrature.
 NODES, PANELS = 12, 720
+#: Fewest panels between two breaks: a piece narrower than a panel (a denatured ellipse with m11 just above 1/2 has a
+#: second piece of 0.07 deg) still gets edges inside it, where its curvature is sampled.
+PIECE_PANELS = 8
 
 
 @dataclass(frozen=True)
@@ -31,7 +34,7 @@ def panels(breaks=(), count: int = PANELS, nodes: int = NODES) -> Panels:
     cuts = cuts[np.r_[True, np.diff(cuts) > 1e-12]]
     edges = []
     for start, end in zip(cuts[:-1], cuts[1:]):
-        pieces = max(1, int(round(count * (end - start) / TWO_PI)))
+        pieces = max(PIECE_PANELS, int(round(count * (end - start) / TWO_PI)))
         edges.append(np.linspace(start, end, pieces + 1)[:-1])
     edges = np.r_[np.concatenate(edges), TWO_PI]
     x, w = np.polynomial.legendre.leggauss(nodes)
