@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from transplanter import burmester, gears, reverse
-from transplanter.reverse.synthesis import ROUNDTRIP_TOLERANCE
+from transplanter.reverse.result import ROUNDTRIP_TOLERANCE
 from transplanter.toml_fields import read_toml
 
 pytestmark = pytest.mark.filterwarnings("error")      # a warning (numpy's or the round trip's) fails

@@ -6,7 +6,6 @@ import numpy as np
 import pytest
 
 from transplanter.cli import main
-from transplanter.errors import TransplanterWarning
 
 ROOT = Path(__file__).resolve().parents[1]
 RICE = (ROOT / "examples" / "rice_hoe_reverse.toml").read_text()
@@ -109,9 +108,11 @@ def test_center_distances_that_cannot_place_the_planet(tmp_path, capsys):
 def test_idler_train_report_says_how_far_it_misses(tmp_path, capsys):
     text = RICE.replace('topology = "sun-intermediate-planet"', 'topology = "sun-idler-planet"').replace(
         'split = "sqrt"', 'split = "identical_sun_planet"')
-    with pytest.warns(TransplanterWarning, match="misses the path by up to"):
-        assert _run(tmp_path, text, "--json") == 0
-    report = json.loads(capsys.readouterr().out)
+    assert _run(tmp_path, text, "--json") == 1                  # a failed check, the report says which
+    captured = capsys.readouterr()
+    report = json.loads(captured.out)
+    assert report["status"] == "FAILED" and "misses the path by up to" in report["failures"][0]
+    assert len(captured.err.strip().splitlines()) == 1
     assert report["idler_iteration"]["settled"] is False
     assert report["roundtrip_max_error_mm"] > 1.0
     assert len(report["gear_closure_errors"]) == 2 and max(map(abs, report["gear_closure_errors"])) < 1e-9

@@ -8,14 +8,13 @@ the monotonicity criterion comes back with its violations and fix hints and no t
 """
 from __future__ import annotations
 
-import warnings
 
 import numpy as np
 
 from transplanter.reverse.arm_inverse import TOUCH_TOLERANCE, ArmMotion, solve_arm
 from transplanter.reverse.carrier_frame_motion import CarrierFrameMotion
 from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, fitted_polygon
-from transplanter.errors import InfeasibleError, ProblemError, TransplanterWarning
+from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.generated import numpy_twin
 from transplanter.reverse.idler_train import design_idler_train, verify_idler_train
 from transplanter.reverse.monotonicity import fix_hints, violations
@@ -26,10 +25,6 @@ from transplanter.reverse.verification import CarrierGeometry, verify_reverse
 from transplanter.toml_fields import require_problem
 
 _arm_lengths = numpy_twin("planetary", "arm_lengths_from_extremes")
-#: A train whose rolled tip strays further than this fraction of the reach s + l from the path is
-#: reported with a warning (2.5e-6 mm on the rice path; the misses measured are 1e-11 to 1e-10 of it
-#: at scales 1e-3 to 1e6).
-ROUNDTRIP_TOLERANCE = 1e-8
 #: A curve fitted to samples that comes within this fraction of the reach s + l of a reach circle
 #: is taken to touch it (0.025 mm on a 250 mm reach): samples cannot say more.
 SAMPLED_TOUCH = 1e-4
@@ -160,20 +155,10 @@ def synthesize(problem: ReverseProblem) -> ReverseResult:
     relative = CarrierFrameMotion(motion)
     if problem.topology == "sun-idler-planet":
         train = design_idler_train(relative, s / 2, problem.source)
-        return _warn_on_miss(ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, None,
-                                           train, verify_idler_train(motion, train)))
+        return ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, None, train,
+                             verify_idler_train(motion, train))
     centers = (geometry.first, geometry.second) if geometry else (problem.center_distances or (s / 2, s / 2))
     exponent = problem.peak_to_valley if problem.split == "peak_to_valley" else 0.5
     train = design_train(relative, centers, problem.source, exponent)
-    return _warn_on_miss(ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, geometry,
-                                       train, verify_reverse(motion, train, geometry)))
-
-
-def _warn_on_miss(result: ReverseResult) -> ReverseResult:
-    miss, reach = result.verification.max_error_mm, result.motion.carrier_length + result.motion.arm_length
-    if miss > ROUNDTRIP_TOLERANCE * reach:
-        warnings.warn(f"{result.problem.source}: the {result.problem.topology} train, rolled from its pitch curves, "
-                      f"misses the path by up to {miss:.4g} mm (more than {ROUNDTRIP_TOLERANCE:g} of the reach "
-                      f"s + l = {reach:.6g} mm)",
-                      TransplanterWarning, stacklevel=2)
-    return result
+    return ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, geometry, train,
+                         verify_reverse(motion, train, geometry))
