@@ -103,6 +103,9 @@ def test_center_distances_that_cannot_place_the_planet(tmp_path, capsys):
         'split = "sqrt"', 'split = "identical_sun_planet"\ncenter_distances = [40.0, 52.3]')
     assert _run(tmp_path, text) == 2
     assert "expected two equal distances for sun-idler-planet" in capsys.readouterr().err
+    text = RICE.replace('topology = "sun-intermediate-planet"', 'topology = "pick-up"\ncenter_distances = [1e-9, 92.3]')
+    assert _run(tmp_path, text) == 2                            # a stage of gears a billionth of the train
+    assert "expected each at least 0.001 of the carrier length" in capsys.readouterr().err
 
 
 def test_idler_train_report_says_how_far_it_misses(tmp_path, capsys):

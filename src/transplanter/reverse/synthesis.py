@@ -28,6 +28,8 @@ _arm_lengths = numpy_twin("planetary", "arm_lengths_from_extremes")
 #: A curve fitted to samples that comes within this fraction of the reach s + l of a reach circle
 #: is taken to touch it (0.025 mm on a 250 mm reach): samples cannot say more.
 SAMPLED_TOUCH = 1e-4
+#: The shortest center distance of a stage, as a fraction of the carrier length s.
+SMALLEST_STAGE = 1e-3
 
 
 def build_trajectory(problem: ReverseProblem) -> ClosedTrajectory:
@@ -97,6 +99,10 @@ def choose_motion(trajectory: ClosedTrajectory, s: float, l: float, direction: i
 def carrier_geometry(problem: ReverseProblem, s: float) -> CarrierGeometry | None:
     """None for a straight carrier (sun, intermediate and planet shafts on one line)."""
     centers = problem.center_distances
+    if centers is not None and min(centers) < SMALLEST_STAGE * s:
+        raise ProblemError(f"{problem.source}: train.center_distances = {list(centers)}: expected each at least "
+                           f"{SMALLEST_STAGE:g} of the carrier length s = {s:.6g} mm (a shorter stage's gears would be "
+                           f"a thousandth of the train's size)")
     if problem.topology != "pick-up":
         if centers is not None and abs(sum(centers) - s) > 1e-9 * s:
             raise ProblemError(f"{problem.source}: train.center_distances = {list(centers)}: expected two distances "
