@@ -168,3 +168,17 @@ def test_corner_pressure_angle_on_a_curve_without_corners_is_refused():
                                            r"pitch curve without corners"):
         parse_problem({"driver": {"family": "ellipse", "semi_major_axis": 30.0, "eccentricity": 0.3},
                        "pair": {"corner_pressure_angle_deg": 22.0}}, "f.toml")
+
+
+def test_a_composite_without_corners_gets_the_shaper_teeth_of_its_family():
+    """Two halves of one ellipse: no corner, so no corner tooth; the teeth are those the shaper cuts on the ellipse
+    family itself (it raised an IndexError looking for corners before)."""
+    halves = ellipse_and_chord({"module": 2.0, "teeth": 30})
+    halves["driver"]["segments"] = [{"kind": "ellipse", "phi_deg": [-90, 90], "semi_major_axis": A, "eccentricity": E},
+                                    {"kind": "ellipse", "phi_deg": [90, 270], "semi_major_axis": A, "eccentricity": E}]
+    whole = {"driver": {"family": "ellipse", "semi_major_axis": A, "eccentricity": E},
+             "pair": {"module": 2.0, "teeth": 30, "cutter": "shaper"}}
+    split, family = synthesize(parse_problem(halves)), synthesize(parse_problem(whole))
+    assert split.to_json()["cusps"] == [] and split.to_json()["cutter"] == "shaper"
+    for ours, theirs in zip(split.teeth.outlines, family.teeth.outlines):
+        assert len(ours) == len(theirs) and np.abs(ours - theirs).max() < 1e-9 * A

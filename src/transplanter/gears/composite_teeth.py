@@ -242,8 +242,8 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
     """Driver outline of shaper-cut stretches and corner teeth, the driven outline by envelope (module docstring).
 
     ``corner_pressure`` (rad) sets theta_J / 2 of every corner's arches; None tries ``CORNER_PRESSURE_TRIALS_DEG``
-    above ``alpha`` in turn (smallest first: the contact passes the corner most squarely) and keeps the first pair that passes every
-    check, or, when none does, the one with the smallest transmission error.
+    above ``alpha`` in turn (smallest first: the contact passes the corner most squarely) and keeps the first pair
+    that passes every check, or, when none does, the one with the smallest transmission error.
 
     Raises
     ------
@@ -333,7 +333,8 @@ def _check_outline_simple(driver: np.ndarray, corners: list[dict], corner_pressu
     if reason == "Valid Geometry" or found is None:
         return
     x, y = float(found[1]), float(found[2])
-    near = min(corners, key=lambda c: abs(np.mod(np.degrees(np.arctan2(y, x)) - c["phi_deg"] + 180, 360) - 180))
+    angle = np.degrees(np.arctan2(y, x))
+    near = min(corners, key=lambda c: abs(np.mod(angle - c["phi_deg"] + 180, 360) - 180))
     raise InfeasibleError(
         f"{source}: pair.corner_pressure_angle_deg = {np.degrees(corner_pressure):g}: the driver's tooth outline "
         f"crosses itself at ({x:.3f}, {y:.3f}) mm, by the corner at {near['phi_deg']:.3f} deg, which turns the "

@@ -6,7 +6,7 @@ import time
 import numpy as np
 
 from transplanter.errors import InfeasibleError, ProblemError
-from transplanter.gears.composite_curve import CompositeCurve, with_exact_curvature
+from transplanter.gears.composite_curve import CompositeCurve, cusps, with_exact_curvature
 from transplanter.gears.composite_teeth import generate_composite_teeth
 from transplanter.gears.pair import GearPairDesign, arc_length, design_pair
 from transplanter.geometry.turn_quadrature import panels
@@ -98,11 +98,12 @@ def synthesize(problem: GearProblem) -> GearResult:
         counts = tooth_counts(design, problem.module)
         if problem.teeth is not None:
             start = time.perf_counter()
-            if isinstance(driver, CompositeCurve):
+            if isinstance(driver, CompositeCurve) and cusps(driver):
                 teeth = generate_composite_teeth(design, problem.module, problem.pressure_angle, problem.teeth,
                                                  problem.shaper_teeth, problem.source, problem.corner_pressure_angle)
-            else:
-                teeth = generate_teeth(design, problem.module, problem.pressure_angle, problem.source,
-                                       problem.cutter, problem.shaper_teeth)
+            else:   # a composite without corners is cut as its smooth stretches would be: by the shaper
+                cutter = "shaper" if isinstance(driver, CompositeCurve) else problem.cutter
+                teeth = generate_teeth(design, problem.module, problem.pressure_angle, problem.source, cutter,
+                                       problem.shaper_teeth)
             timings["teeth"] = time.perf_counter() - start
     return GearResult(problem, design, counts, teeth, correction, timings)
