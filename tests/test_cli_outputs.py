@@ -64,6 +64,25 @@ def test_a_failing_run_leaves_no_half_folder(tmp_path, monkeypatch, capsys):
     assert list(tmp_path.iterdir()) == []
 
 
+def test_an_out_that_cannot_be_replaced_names_it_and_leaves_nothing_beside_it(tmp_path, monkeypatch, capsys):
+    """The finished folder cannot be moved into place (an immutable folder, as chattr +i makes, refused even to
+    root): one line naming --out, and the hidden partial copy removed (it was left beside the target)."""
+    out = tmp_path / "out"
+    out.mkdir()
+    original = Path.replace
+
+    def refuse_the_target(self, target):
+        if out in (self, Path(target)):        # neither moved away nor replaced
+            raise PermissionError(1, "Operation not permitted")
+        return original(self, target)
+    monkeypatch.setattr(Path, "replace", refuse_the_target)
+    assert main(["burmester", PROBLEM, "--out", str(out), "--quiet"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == (f"transplanter: error: --out = {out}: cannot put the results there (Operation not permitted): "
+                   "expected a folder this user can replace; it is left as it was")
+    assert [p.name for p in tmp_path.iterdir()] == ["out"] and list(out.iterdir()) == []
+
+
 def test_an_earlier_output_survives_a_failing_run_and_is_replaced_by_a_good_one(tmp_path, monkeypatch):
     out = tmp_path / "out"
     assert main(["burmester", PROBLEM, "--out", str(out), "--quiet"]) == 0

@@ -12,7 +12,9 @@ before the work), 130 for Ctrl-C; report.json is always valid JSON (``output_fol
 from __future__ import annotations
 
 import argparse
+import signal
 import sys
+import threading
 import warnings
 from pathlib import Path
 
@@ -309,6 +311,8 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     warnings.formatwarning = _one_line_warning
     out = getattr(args, "out", None)
+    terminate = signal.signal(signal.SIGTERM, _interrupt) if threading.current_thread() is threading.main_thread() \
+        else None
     try:
         quiet = getattr(args, "json", False) or getattr(args, "quiet", False)
         with progress.showing(sys.stderr, enabled=sys.stderr.isatty() and not quiet):
@@ -324,6 +328,14 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("transplanter: interrupted" + (f"; {out} is left as it was" if out else ""), file=sys.stderr)
         return 130
+    finally:
+        if terminate is not None:
+            signal.signal(signal.SIGTERM, terminate)
+
+
+def _interrupt(signum, frame):
+    """SIGTERM (a timeout, a job scheduler) ends the run as Ctrl-C does: the output folder's partial copy is removed."""
+    raise KeyboardInterrupt
 
 
 if __name__ == "__main__":

@@ -120,12 +120,17 @@ def staged(out: str | Path | None):
         shutil.rmtree(work, ignore_errors=True)
         raise
     earlier = work / "earlier"
-    if target.exists():
-        target.replace(earlier)
     try:
-        stage.replace(target)
-    except OSError:
-        if earlier.exists():
-            earlier.replace(target)
-        raise
-    shutil.rmtree(work, ignore_errors=True)
+        if target.exists():
+            target.replace(earlier)
+        try:
+            stage.replace(target)
+        except OSError:
+            if earlier.exists():
+                earlier.replace(target)
+            raise
+    except OSError as error:
+        raise ProblemError(f"--out = {out}: cannot put the results there ({error.strerror}): expected a folder this "
+                           f"user can replace; it is left as it was") from None
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
