@@ -106,6 +106,8 @@ CASES = {
                                        ["follower.offset", "40.0", "less than base radius + roller radius = 36"]),
     "arm cannot reach": (EXAMPLE.read_text().replace("arm_length = 58.0", "arm_length = 20.0"),
                          ["follower.arm_length", "20.0", "from 34 to 106 mm"]),
+    "pivot at the cam centre": (EXAMPLE.read_text().replace("pivot = [70.0, 0.0]", "pivot = [0.0, 0.0]"),
+                                ["follower.pivot", "[0.0, 0.0]", "a pivot outside the base pitch circle"]),
     "no rise": (TRANSLATING.replace('kind = "rise"', 'kind = "dwell"', 1).replace('law = "cycloidal"\nlift = 20.0\n', "", 1),
                 ["segments[2].lift", "20.0", "at most 0"]),
     "limit of 90": (TRANSLATING + "[limits]\npressure_angle_deg = 95.0\n", ["limits.pressure_angle_deg", "95.0", "below 90"]),

@@ -78,6 +78,9 @@ BAD = {
     "gear cannot close": ({"search": {"bounds": {"b": [5.0, 45.0], "l": [40.0, 70.0]}}}, "search.bounds.b"),
     "translation-only bound": ({"search": {"bounds": {"l6": [100.0, 200.0]}}}, "search.bounds.l6"),
     "bad convention": ({"conventions": {"crank_sense": "cw"}}, "conventions.crank_sense"),
+    "depth target outside the band": ({"objectives": {"depth_target_mm": 40.0}}, "objectives.depth_target_mm = 40.0"),
+    "a search too long to finish": ({"search": {"population": 10000, "generations": 100000}},
+                                    "search.generations = 100000: expected at most 100"),
 }
 
 
@@ -88,7 +91,7 @@ def test_bad_input_names_the_field(name, tmp_path, capsys):
     changes, field = BAD[name]
     data = tomllib.loads(PROBLEM.read_text())
     for table, values in changes.items():
-        if table == "search":
+        if table == "search" and "bounds" in values:
             data["search"]["bounds"] = {**data["search"]["bounds"], **values["bounds"]}
         else:
             data[table] = {**data[table], **values}

@@ -273,7 +273,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> CamProblem:
         segments=_segments(read, data, follower.kind == "oscillating"),
         pressure_limit=np.radians(limit),
         profile_radius_limit=_positive(read, limits, "profile_radius_mm", "limits") if "profile_radius_mm" in limits else 0.0,
-        samples=read.integer(cam, "samples", "cam", 360, 1_000_000, default=3600),
+        samples=read.integer(cam, "samples", "cam", 360, 100_000, default=3600),   # 36000: 4.6 s; 1e6 ran over 5 min
         bore_radius=_positive(read, cam, "bore_radius", "cam") if "bore_radius" in cam else None,
         max_base_radius=max_base,
         source=source,
@@ -298,6 +298,10 @@ def check_base_radius(problem: CamProblem, base_radius: float, fail):
         fail("follower.offset", follower.offset, f"less than base radius + roller radius = {pitch:g} mm in size")
     if follower.kind == "oscillating":
         reach = float(np.hypot(*follower.pivot))
+        if reach <= pitch:
+            fail("follower.pivot", [float(v) for v in follower.pivot],
+                 f"a pivot outside the base pitch circle (more than {pitch:g} mm from the cam centre; it is "
+                 f"{reach:.6g} mm away): within it the arm turns with the cam's profile")
         low, high = abs(reach - follower.arm_length), reach + follower.arm_length
         if not low < pitch < high:
             fail("follower.arm_length", follower.arm_length,

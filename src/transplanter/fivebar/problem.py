@@ -24,7 +24,7 @@ Schema (docs/fivebar.md, "Problem files"); the carrier pivot O is the origin:
     [spline]
     control_points = 12           # periodic cubic B-spline of the relative angle
     [region]
-    samples = 1000                # pencil lines per 4-pose curve, 64-20000 (five-bars judged grow as its square)
+    samples = 1000                # pencil lines per 4-pose curve, 64-8000 (five-bars judged grow as its square)
     radius_mm = 600.0             # hinges within this distance of the poses' centroid
     [gears]
     module = 1.5                  # mm, 0.2-10: pitch perimeters are pi * module * whole teeth
@@ -158,7 +158,7 @@ def _pair(read: FieldReader, table: dict, key: str, where: str) -> tuple[float, 
     values = read.numbers(table, key, where, 2)
     low, high = values[0], values[-1]
     if len(values) != 2 or not low < high:
-        read.fail(f"{where}.{key}", table[key], "low < high")
+        read.fail(f"{where}.{key}", table[key], "[low, high] with low < high")
     return float(low), float(high)
 
 
@@ -291,7 +291,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
 
     region = data.get("region", {})
     read.keys(region, {"samples", "radius_mm"}, "region")
-    samples = read.integer(region, "samples", "region", 64, 20_000, default=1000)
+    samples = read.integer(region, "samples", "region", 64, 8000, default=1000)   # 6000: 48 s, every candidate refined
     radius = read.number(region, "radius_mm", "region") if "radius_mm" in region else 600.0
     if radius <= 0:
         read.fail("region.radius_mm", radius, "a positive distance (mm)")

@@ -64,6 +64,9 @@ PUBLISHED_FIELDS = ("depth_mm", "vx_release_mm_s", "vertical_range_mm", "spacing
 _TOP_KEYS = {"title", "description", "design", "gear", "machine", "conventions", "objectives", "search", "printed",
              "published"}
 
+#: Most NSGA-II evaluations (population x generations) one search may ask for.
+MAX_EVALUATIONS = 1_000_000
+
 
 @dataclass(frozen=True)
 class Conventions:
@@ -285,8 +288,19 @@ def parse_problem(data: dict, source: str = "<dict>") -> ParallelogramProblem:
                      "[low, high] in mm with 0 < low < high")
     if band[0] <= 0:
         read.fail("objectives.depth_band_mm", objectives["depth_band_mm"], "[low, high] in mm with 0 < low < high")
+    target = _positive(read, objectives, "depth_target_mm", "objectives", 25.0)
+    if not band[0] <= target <= band[1]:
+        read.fail("objectives.depth_target_mm", target, f"a depth within objectives.depth_band_mm {list(band)} (the "
+                                                        "search keeps its designs in the band)")
     search = data.get("search", {})
     read.keys(search, {"population", "generations", "seed", "bounds"}, "search")
+    population = read.integer(search, "population", "search", 8, 10000, default=100)
+    generations = read.integer(search, "generations", "search", 1, 100000, default=100)
+    if population * generations > MAX_EVALUATIONS:
+        read.fail("search.generations", generations, f"at most {MAX_EVALUATIONS // population} with search.population "
+                                                     f"= {population}: population x generations up to "
+                                                     f"{MAX_EVALUATIONS:.0e} evaluations (the default 1e4 takes about "
+                                                     f"1 s, so 1e6 about 2 min)")
     return ParallelogramProblem(
         design=design,
         module=_positive(read, gear, "module", "gear", 2.0),
@@ -299,12 +313,11 @@ def parse_problem(data: dict, source: str = "<dict>") -> ParallelogramProblem:
             alpha_instant=_choice(read, conventions, "alpha_instant", "conventions", INSTANTS, "slowest"),
             forward=DIRECTIONS[_choice(read, machine, "forward", "machine", DIRECTIONS, "-x")]),
         depth_window=_positive(read, objectives, "depth_window_mm", "objectives", 0.5),
-        depth_target=_positive(read, objectives, "depth_target_mm", "objectives", 25.0),
+        depth_target=target,
         depth_band=band,
         vertical_range_target=_positive(read, objectives, "vertical_range_target_mm", "objectives", 160.0),
         bounds=_bounds(read, search.get("bounds", {}), design),
-        population=read.integer(search, "population", "search", 8, 10000, default=100),
-        generations=read.integer(search, "generations", "search", 1, 100000, default=100),
+        population=population, generations=generations,
         seed=read.integer(search, "seed", "search", 0, 2**31 - 1, default=1),
         source=source, title=str(data.get("title", "")),
         printed=read_printed(read, data.get("printed", {}), design), published=read_published(read, data.get("published", {})))
