@@ -170,32 +170,30 @@ def design_pair(driver: PitchCurve, driven_order: int, center_distance: float | 
         points=(driver_points, driven_points), arc=arc, driven_slope=slope2)
 
 
+def _hermite(knots: np.ndarray, values: np.ndarray, start_slopes: np.ndarray, end_slopes: np.ndarray, x) -> np.ndarray:
+    """Piecewise cubic Hermite at ``x``: on interval k from values[k] with slope start_slopes[k] to values[k + 1]
+    with slope end_slopes[k] (x beyond the knots on the end intervals)."""
+    k = np.clip(np.searchsorted(knots, x, side="right") - 1, 0, len(knots) - 2)
+    h = knots[k + 1] - knots[k]
+    t = (x - knots[k]) / h
+    return ((2 * t**3 - 3 * t**2 + 1) * values[k] + (t**3 - 2 * t**2 + t) * h * start_slopes[k]
+            + (-2 * t**3 + 3 * t**2) * values[k + 1] + (t**3 - t**2) * h * end_slopes[k])
+
+
 def arc_to_angle(design: GearPairDesign, arc) -> np.ndarray:
     """phi1 (rad) at driver pitch arc ``arc`` (mm, taken modulo the perimeter), cubic Hermite on the design's samples
     with dphi/ds = 1 / sqrt(r^2 + r'^2) at both ends of each interval, taken just inside it (a corner's two sides).
     Linear interpolation made the rolling contact run at a speed 1 % off along a sample interval of the chord, and an
     arch rolled on it missed its normal by 0.015 mm."""
-    grid, arcs = design.phi1, design.arc
-    s = np.mod(np.asarray(arc, float), design.perimeters[0])
-    k = np.clip(np.searchsorted(arcs, s, side="right") - 1, 0, len(arcs) - 2)
+    grid = design.phi1
     inside = 1e-9 * (grid[1:] - grid[:-1])
     rates = [1 / np.hypot(*design.driver.evaluate(ends)[:2]) for ends in (grid[:-1] + inside, grid[1:] - inside)]
-    h = arcs[k + 1] - arcs[k]
-    t = (s - arcs[k]) / h
-    return ((2 * t**3 - 3 * t**2 + 1) * grid[k] + (t**3 - 2 * t**2 + t) * h * rates[0][k]
-            + (-2 * t**3 + 3 * t**2) * grid[k + 1] + (t**3 - t**2) * h * rates[1][k])
+    return _hermite(design.arc, grid, *rates, np.mod(np.asarray(arc, float), design.perimeters[0]))
 
 
 def driven_angle(design: GearPairDesign, phi1: np.ndarray) -> np.ndarray:
     """phi2 at any driver angle (unwrapped over turns), cubic Hermite on the design's samples."""
     turn = 2 * np.pi * design.orders[0] / design.orders[1]
     laps = np.floor(phi1 / (2 * np.pi))
-    local = phi1 - 2 * np.pi * laps
-    grid, values = design.phi1, design.phi2
     slope = design.radius[0] / (design.center_distance - design.radius[0])
-    k = np.clip(np.searchsorted(grid, local, side="right") - 1, 0, len(grid) - 2)
-    h = grid[k + 1] - grid[k]
-    t = (local - grid[k]) / h
-    hermite = ((2 * t**3 - 3 * t**2 + 1) * values[k] + (t**3 - 2 * t**2 + t) * h * slope[k]
-               + (-2 * t**3 + 3 * t**2) * values[k + 1] + (t**3 - t**2) * h * slope[k + 1])
-    return hermite + laps * turn
+    return _hermite(design.phi1, design.phi2, slope[:-1], slope[1:], phi1 - 2 * np.pi * laps) + laps * turn

@@ -8,7 +8,6 @@ the monotonicity criterion comes back with its violations and fix hints and no t
 """
 from __future__ import annotations
 
-
 import numpy as np
 
 from transplanter.reverse.arm_inverse import TOUCH_TOLERANCE, ArmMotion, solve_arm
