@@ -2,6 +2,7 @@
 report.json lists its files, progress on stderr unless --quiet or --json, FAILED results exit 1."""
 import io
 import json
+import os
 import sys
 from pathlib import Path
 
@@ -62,6 +63,23 @@ def test_a_failing_run_leaves_no_half_folder(tmp_path, monkeypatch, capsys):
     assert main(["burmester", PROBLEM, "--out", str(out)]) == 2
     assert capsys.readouterr().err.strip().splitlines()[-1] == "transplanter: error: figures: made to fail"
     assert list(tmp_path.iterdir()) == []
+
+
+def test_sigterm_ends_a_run_as_ctrl_c_does(tmp_path, monkeypatch, capsys):
+    """A timeout's SIGTERM in the middle of the work: exit 130, no half folder beside the target, and the
+    process's own SIGTERM handler given back afterwards."""
+    import signal
+    import transplanter.cli as cli
+    original = cli._save_figures
+
+    def save_then_terminate(figures, out, dpi=120):
+        original(figures, out, dpi)
+        os.kill(os.getpid(), signal.SIGTERM)
+    monkeypatch.setattr(cli, "_save_figures", save_then_terminate)
+    before = signal.getsignal(signal.SIGTERM)
+    assert main(["burmester", PROBLEM, "--out", str(tmp_path / "out"), "--quiet"]) == 130
+    assert capsys.readouterr().err.strip() == f"transplanter: interrupted; {tmp_path / 'out'} is left as it was"
+    assert list(tmp_path.iterdir()) == [] and signal.getsignal(signal.SIGTERM) is before
 
 
 def test_an_out_that_cannot_be_replaced_names_it_and_leaves_nothing_beside_it(tmp_path, monkeypatch, capsys):
