@@ -58,17 +58,42 @@ def test_eq17_read_literally_cannot_release_at_zero_speed(published):
         assert abs(_row(report, curve, "eq (17) literal").vx_release) > problem.forward_speed
 
 
-def test_design_json_and_figures(tmp_path):
-    """``--design --json --out``: the published evaluation, the gear and the trajectory summary; figures written."""
+def test_design_json_and_figures(tmp_path, capsys):
+    """``--design --json --out``: the published evaluation, the gear and the trajectory summary; figures written.
+    The published optimum's depth under the file's conventions (24.996 mm) is below the band [25, 30] mm, so
+    the run is FAILED (exit 1) and says so in one line naming the depth."""
     out = tmp_path / "out"
     code = main(["parallelogram", str(PROBLEM), "--design", str(PUBLISHED), "--json", "--out", str(out)])
-    assert code == 0
-    report = json.loads((out / "report.json").read_text())
+    err = capsys.readouterr().err.strip()
+    assert code == 1
+    report = json.loads((out / "FAILED-report.json").read_text())
+    low, high = parallelogram.load_problem(PROBLEM).depth_band
+    depth = report["trajectory"]["depth_mm"]
+    assert not low <= depth <= high
+    assert report["status"] == "FAILED" and report["failures"] == [f"depth {depth:.4f} mm outside the band [25, 30] mm"]
+    assert len(err.splitlines()) == 1 and f"depth {depth:.4f} mm" in err
     assert {"published", "gear", "trajectory", "timings_s"} <= set(report)
     assert len(report["published"]["evaluations"]) == 4
     assert report["gear"]["teeth"] == [54, 54] and report["gear"]["convex"] == [True, True]
     assert report["published"]["paper"]["depth_mm"] == 27.0
-    assert {"trajectory.png", "velocity.png", "acceleration.png", "report.md"} <= {p.name for p in out.iterdir()}
+    assert {"FAILED-trajectory.png", "FAILED-velocity.png", "FAILED-acceleration.png",
+            "FAILED-report.md"} <= {p.name for p in out.iterdir()}
+
+
+@pytest.mark.parametrize("alpha_deg", [6.3, 0.0])
+def test_a_design_passes_exactly_when_it_meets_the_band_and_gear_checks(alpha_deg, tmp_path):
+    """The published design turned to another phase alpha: exit 0 when its own evaluation plants within the
+    depth band with a convex, undercut-free gear pair, else exit 1 (at alpha = 0 it plants 9 mm deep)."""
+    path = tmp_path / "design.toml"
+    path.write_text(PUBLISHED.read_text().replace("alpha_deg = 6.0", f"alpha_deg = {alpha_deg}"))
+    problem = parallelogram.load_problem(PROBLEM)
+    report = parallelogram.evaluate_design(problem, parallelogram.load_design(path))
+    low, high = problem.depth_band
+    gear = report.gear.to_json()
+    meets = low <= report.closed.depth <= high and all(gear["convex"]) and not any(gear["undercut"] or ())
+    assert report.passed == meets
+    assert main(["parallelogram", str(PROBLEM), "--design", str(path), "--quiet"]) == (0 if meets else 1)
+    assert meets == (alpha_deg == 6.3)      # both outcomes are exercised
 
 
 BAD = {

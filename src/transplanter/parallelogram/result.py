@@ -51,8 +51,11 @@ class DesignReport:
     closed: Evaluation
     gear: GearResult
     timings_s: dict = field(default_factory=dict)
-    passed: bool = True
     failures: tuple[str, ...] = ()
+
+    @property
+    def passed(self) -> bool:
+        return not self.failures
 
     def to_json(self) -> dict:
         return {"source": self.problem.source, "design_source": self.given.source, "title": self.given.title,
