@@ -78,7 +78,11 @@ def test_many_poses_table():
 
 
 @pytest.mark.parametrize("argv, named", [(["fivebar", "examples/vegetable_planting.toml", "--pick", "two"], "--pick"),
-                                         (["bogus"], "bogus"), (["gear"], "file")])
+                                         (["bogus"], "bogus"), (["gear"], "file"),
+                                         (["fivebar", "examples/vegetable_planting.toml", "--design",
+                                           "examples/vegetable_planting_table4.toml", "--pick", "2"], "--pick"),
+                                         (["parallelogram", "examples/onion_transplanter.toml", "--pick", "2",
+                                           "--design", "examples/onion_published.toml"], "--design")])
 def test_bad_command_line_gives_one_line_and_exit_2(argv, named, capsys):
     from transplanter.cli import main
 

@@ -276,8 +276,10 @@ def _parser() -> argparse.ArgumentParser:
                        "train (Wang et al. 2025): region, precise design, gears, verification",
                        "five-bar problem file (TOML, mm and degrees)",
                        "the figures, linkage.dxf, CSV tables and animation.gif", "animation.gif")
-    fivebar.add_argument("--design", metavar="DESIGN.toml", help="evaluate this given design instead of designing one")
-    fivebar.add_argument("--pick", metavar="N", type=int, help="build alternative N of the ranked alternatives "
+    given_or_picked = fivebar.add_mutually_exclusive_group()     # --pick ranks designed alternatives; --design has one
+    given_or_picked.add_argument("--design", metavar="DESIGN.toml",
+                                 help="evaluate this given design instead of designing one")
+    given_or_picked.add_argument("--pick", metavar="N", type=int, help="build alternative N of the ranked alternatives "
                          "(default 1, the best; report.md lists them)")
     _command(commands, "reverse", _reverse, "planetary non-circular gear train that makes the arm tip follow a closed "
              "path (the rice-transplanter, reverse-gear-design and cusp-pitch-curve papers): inverse kinematics, "
@@ -290,9 +292,10 @@ def _parser() -> argparse.ArgumentParser:
                              "mechanism driven by denatured Pascal limacon gears, NSGA-II and NLP polish",
                              "parallelogram problem file (TOML, mm and degrees)",
                              "figures, pareto.csv, trajectory.csv, gear drawings and animation.gif", "animation.gif")
-    parallelogram.add_argument("--design", metavar="DESIGN.toml", help="evaluate this given design (e.g. "
+    given_or_picked = parallelogram.add_mutually_exclusive_group()
+    given_or_picked.add_argument("--design", metavar="DESIGN.toml", help="evaluate this given design (e.g. "
                                "examples/onion_published.toml) instead of searching")
-    parallelogram.add_argument("--pick", metavar="N", type=int, help="build the N-th Pareto design, ranked by "
+    given_or_picked.add_argument("--pick", metavar="N", type=int, help="build the N-th Pareto design, ranked by "
                                "distance to the ideal point (default 1, the knee)")
     _command(commands, "pickup", _pickup, "the seedling pick-up mechanism of the cusp-pitch-curve paper "
                       "(eq 15), forward: tip path, picking and pushing angles, tip speed, animation",
