@@ -10,6 +10,7 @@ from transplanter import cam
 from transplanter.cam.checks import acceleration_jumps, runs
 from transplanter.cam.kinematics import evaluate, segment_motion
 from transplanter.cam.problem import Segment
+from transplanter.errors import ProblemError
 
 
 def rise(angle, amount, law="harmonic", key="lift"):
@@ -340,3 +341,20 @@ def test_profile_radius_limit_moves_the_flat_faced_design_by_itself():
     analysis = {key: value for key, value in data.items() if key != "design"} | {"cam": {"base_radius": expected - 0.1}}
     below = cam.synthesize(cam.parse_problem(analysis))
     assert not below.passed and "limits.profile_radius_mm = 3" in below.failures[0]
+
+
+def test_swing_bound_is_where_the_roller_reaches_its_farthest_point():
+    """The largest swing an oscillating follower may ask is 180 deg less the rest angle at the pivot (cosine rule):
+    just below it the roller centre comes within 1e-3 mm of pivot distance + arm and the rise's pressure angle
+    nears 90 deg; at it the problem is refused, naming the bound."""
+    reach, arm, pitch = 70.0, 58.0, 36.0
+    bound = 180.0 - np.degrees(np.arccos((reach**2 + arm**2 - pitch**2) / (2 * reach * arm)))
+
+    def program(swing):
+        return [rise(110, swing, key="swing_deg"), dwell(80), back(85, swing, key="swing_deg"), dwell(85)]
+
+    result = cam.synthesize(oscillating(30.0, 6.0, program(0.999 * bound)))
+    assert np.max(np.hypot(*result.geometry.center.T)) == pytest.approx(reach + arm, abs=1e-3)
+    assert np.degrees(result.checks.pressure["rise"].value) > 89.9
+    with pytest.raises(ProblemError, match=f"less than {bound:.6g} deg"):
+        oscillating(30.0, 6.0, program(bound))

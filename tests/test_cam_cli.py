@@ -111,6 +111,11 @@ CASES = {
     "no rise": (TRANSLATING.replace('kind = "rise"', 'kind = "dwell"', 1).replace('law = "cycloidal"\nlift = 20.0\n', "", 1),
                 ["segments[2].lift", "20.0", "at most 0"]),
     "limit of 90": (TRANSLATING + "[limits]\npressure_angle_deg = 95.0\n", ["limits.pressure_angle_deg", "95.0", "below 90"]),
+    "swing past the farthest point": (EXAMPLE.read_text().replace("swing_deg = 36.0", "swing_deg = 150.0"),
+                                      ["segments.swing_deg", "largest swing of 150", "less than 149.1", "128 mm"]),
+    "pressure limit on a flat face": ((ROOT / "examples/cam_flat_faced.toml").read_text()
+                                      .replace("[limits]\n", "[limits]\npressure_angle_deg = 20.0\n"),
+                                      ["limits.pressure_angle_deg", "20.0", "none for a flat-faced follower"]),
     "base radius in design mode": (TRANSLATING + "[design]\nmax_base_radius = 100.0\n",
                                    ["cam.base_radius", "30.0", "no base radius with [design]"]),
     "no base circle meets the limit": (TRANSLATING.replace("base_radius = 30.0", "") + "[limits]\npressure_angle_deg = 5.0\n"

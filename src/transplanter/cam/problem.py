@@ -262,6 +262,9 @@ def parse_problem(data: dict, source: str = "<dict>") -> CamProblem:
     base = None if design is not None else _positive(read, cam, "base_radius", "cam")
     limits = data.get("limits", {})
     read.keys(limits, {"pressure_angle_deg", "profile_radius_mm"}, "limits")
+    if follower.kind == "flat_faced" and "pressure_angle_deg" in limits:
+        read.fail("limits.pressure_angle_deg", limits["pressure_angle_deg"], "none for a flat-faced follower: its "
+                  "face is square to its motion, so the pressure angle is 0 throughout")
     limit = _positive(read, limits, "pressure_angle_deg", "limits", default=DEFAULT_PRESSURE_LIMIT_DEG[follower.kind])
     if limit >= 90:
         read.fail("limits.pressure_angle_deg", limit, "an angle below 90 deg")
@@ -281,7 +284,25 @@ def parse_problem(data: dict, source: str = "<dict>") -> CamProblem:
     )
     if base is not None:
         check_base_radius(problem, base, read.fail)
+        check_swing(problem, base, read.fail)
     return problem
+
+
+def check_swing(problem: CamProblem, base_radius: float, fail):
+    """Refuse an oscillating follower's swing that carries the roller past its farthest point from the cam
+    centre (pivot distance + arm): there the roller moves square to the cam radius, a cam cannot turn the arm
+    (pressure angle 90 deg), and beyond it the roller comes back. The roller rests at an angle b0 from the
+    pivot-to-centre line (cosine rule on the base pitch circle), so the swing must stay below 180 - b0."""
+    follower = problem.follower
+    if follower.kind != "oscillating":
+        return
+    reach, arm, pitch = float(np.hypot(*follower.pivot)), follower.arm_length, base_radius + follower.roller_radius
+    rest = np.arccos(np.clip((reach**2 + arm**2 - pitch**2) / (2 * reach * arm), -1.0, 1.0))
+    peak = float(np.max(np.cumsum([segment.lift for segment in problem.segments])))
+    if peak >= np.pi - rest:
+        fail("segments.swing_deg", f"a largest swing of {np.degrees(peak):.6g}",
+             f"less than {np.degrees(np.pi - rest):.6g} deg: there the roller reaches its farthest point from the "
+             f"cam centre ({reach + arm:.6g} mm), where the cam cannot turn the arm")
 
 
 def check_base_radius(problem: CamProblem, base_radius: float, fail):
