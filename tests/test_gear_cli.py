@@ -91,6 +91,16 @@ BAD = {
                                 '[pair]\ncenter_distance = 50.0\n', ["driver.ratio is not periodic"]),
     "expression goes negative": ('[driver]\nfamily = "ratio"\nexpression = "0.5 + cos(phi)"\ncorrect = true\n'
                                  '[pair]\ncenter_distance = 50.0\n', ["driver.expression = '0.5 + cos(phi)' reaches -0.5", "goes negative"]),
+    "pole narrower than the grid": ('[driver]\nfamily = "ratio"\nexpression = "1 + 1e-12/(cos(phi) - 0.5403)**2"\n'
+                                    'correct = true\n[pair]\ncenter_distance = 50.0\n',
+                                    [f"at phi = {360 - np.degrees(np.arccos(0.5403)):.2f} deg", "from 0.001 to 1000"]),
+    "pole through zero narrower than the grid": (
+        '[driver]\nfamily = "ratio"\nexpression = "1 + 0.3*cos(phi) + 1e-9/(sin(phi) - 0.90929742)"\ncorrect = true\n'
+        '[pair]\ncenter_distance = 50.0\n', [f"at phi = {180 - np.degrees(np.arcsin(0.90929742)):.2f} deg", "goes negative"]),
+    "jump": ('[driver]\nfamily = "ratio"\nexpression = "1.5 + 0.1*sqrt(cos(phi)**2)/cos(phi)"\ncorrect = true\n'
+             '[pair]\ncenter_distance = 50.0\n', ["not resolved near phi = 90.0000", "a pole or a jump"]),
+    "expression as a number": ('[driver]\nfamily = "ratio"\nexpression = 1.5\n[pair]\ncenter_distance = 50.0\n',
+                               ["driver.expression = 1.5", 'a formula of phi as text, e.g. "1.5"']),
     "key of another family": ('[driver]\nfamily = "ellipse"\nsemi_major_axis = 30.0\neccentricity = 0.3\nbase = 4.0\n',
                               ["driver.base", "no such field"]),
 }

@@ -150,11 +150,17 @@ class GearProblem:
 
 
 def ratio_defect(evaluate) -> str | None:
-    """What is wrong with a transmission ratio i12 (``evaluate(phi)[0]``) over a dense turn, or None:
-    where it is not finite, or leaves ``RATIO_RANGE``."""
+    """What is wrong with a transmission ratio i12 (``evaluate(phi)`` -> i12, its slope, ...) over a turn, or
+    None: where it is not finite, or leaves ``RATIO_RANGE``, on a dense grid and between its samples
+    (``_between_samples``: a pole narrower than the grid is found there)."""
     dense = np.linspace(0, 2 * np.pi, 20001)
     with np.errstate(all="ignore"):
-        values = np.asarray(evaluate(dense)[0], float)
+        values, slopes = (np.asarray(v, float) for v in evaluate(dense)[:2])
+    return _range_defect(dense, values) or _between_samples(evaluate, dense, values, slopes)
+
+
+def _range_defect(phi: np.ndarray, values: np.ndarray) -> str | None:
+    """Where the ratio samples ``values`` at ``phi`` are not finite or leave ``RATIO_RANGE``, or None."""
     finite = np.isfinite(values)
     low, high = RATIO_RANGE
     if finite.all() and low <= values.min() and values.max() <= high:
@@ -167,7 +173,44 @@ def ratio_defect(evaluate) -> str | None:
     else:
         k = int(np.argmin(values)) if values.min() < low else int(np.argmax(values))
         why = f"expected i12 from {low:g} to {high:g} all round: beyond it one pitch radius is a thousandth of the other"
-    return f"reaches {values[k]:.6g} at phi = {np.degrees(dense[k]):.2f} deg: {why}"
+    return f"reaches {values[k]:.6g} at phi = {np.degrees(phi[k]):.2f} deg: {why}"
+
+
+#: Between two samples the ratio must be the cubic through their values and slopes to this fraction of its size,
+#: else the stretch is halved until it is (a smooth ratio at 20001 samples misses by ~1e-16).
+RESOLVED = 1e-6
+#: Narrowest stretch halved to (rad): a ratio still unresolved there jumps, or has a pole too narrow for doubles.
+NARROWEST = 1e-13
+
+
+def _between_samples(evaluate, phi: np.ndarray, values: np.ndarray, slopes: np.ndarray) -> str | None:
+    """Where the ratio, between samples that look well, leaves the range or cannot be resolved, or None.
+    Each stretch whose midpoint misses the cubic Hermite through its ends by more than ``RESOLVED`` of the ratio's
+    size is halved, down to ``NARROWEST``; the range is checked at every midpoint taken."""
+    scale = max(1.0, float(np.max(np.abs(values))))
+    left, width = phi[:-1], np.diff(phi)
+    ends = (values[:-1], slopes[:-1], values[1:], slopes[1:])
+    while True:
+        middle = left + width / 2
+        with np.errstate(all="ignore"):
+            value, slope = (np.asarray(v, float) for v in evaluate(middle)[:2])
+        defect = _range_defect(middle, value)
+        if defect:
+            return defect
+        v0, s0, v1, s1 = ends
+        miss = np.abs(value - ((v0 + v1) / 2 + width * (s0 - s1) / 8))
+        unresolved = miss > RESOLVED * scale
+        if not unresolved.any():
+            return None
+        if width[unresolved].min() < NARROWEST:
+            k = int(np.argmax(np.where(unresolved, miss, -1.0)))
+            return (f"is not resolved near phi = {np.degrees(middle[k]):.6f} deg: between values {width[k]:.2g} rad "
+                    f"apart it is {miss[k]:.3g} off the cubic through them; expected a ratio smooth all round (a "
+                    "pole or a jump is there)")
+        keep = lambda array: np.concatenate([array[unresolved]] * 2)  # noqa: E731
+        left, width = np.concatenate([left[unresolved], middle[unresolved]]), keep(width) / 2
+        ends = (np.concatenate([v0[unresolved], value[unresolved]]), np.concatenate([s0[unresolved], slope[unresolved]]),
+                np.concatenate([value[unresolved], v1[unresolved]]), np.concatenate([slope[unresolved], s1[unresolved]]))
 
 
 def load_problem(path: str | Path) -> GearProblem:
@@ -236,9 +279,11 @@ def read_driver(read: FieldReader, table: dict, where: str = "driver", families=
         if "ratio" in table or "phi_deg" in table:
             read.fail(f"{where}.expression", table["expression"], "either an expression or phi_deg and ratio, not both")
         text = table["expression"]
+        if not isinstance(text, str):
+            read.fail(f"{where}.expression", text, f'a formula of phi as text, e.g. "{text}" for a constant ratio')
         phi = ca.SX.sym("phi")
         try:
-            evaluate = ratio_formula(parse_ratio(str(text), phi), phi)
+            evaluate = ratio_formula(parse_ratio(text, phi), phi)
         except ExpressionError as error:
             read.fail(f"{where}.expression", text, f"a formula of phi: {error}")
         defect = ratio_defect(evaluate)
