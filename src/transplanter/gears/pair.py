@@ -16,6 +16,7 @@ import numpy as np
 from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.generated import numpy_twin
 from transplanter.gears.pitch_curves import SMALLEST_RADIUS, TWO_PI, PitchCurve
+from transplanter.geometry.hermite import hermite
 from transplanter.geometry.turn_quadrature import NODES, PANELS, Panels, panels
 
 _conjugate = numpy_twin("gears", "conjugate_pitch")
@@ -170,16 +171,6 @@ def design_pair(driver: PitchCurve, driven_order: int, center_distance: float | 
         points=(driver_points, driven_points), arc=arc, driven_slope=slope2)
 
 
-def _hermite(knots: np.ndarray, values: np.ndarray, start_slopes: np.ndarray, end_slopes: np.ndarray, x) -> np.ndarray:
-    """Piecewise cubic Hermite at ``x``: on interval k from values[k] with slope start_slopes[k] to values[k + 1]
-    with slope end_slopes[k] (x beyond the knots on the end intervals)."""
-    k = np.clip(np.searchsorted(knots, x, side="right") - 1, 0, len(knots) - 2)
-    h = knots[k + 1] - knots[k]
-    t = (x - knots[k]) / h
-    return ((2 * t**3 - 3 * t**2 + 1) * values[k] + (t**3 - 2 * t**2 + t) * h * start_slopes[k]
-            + (-2 * t**3 + 3 * t**2) * values[k + 1] + (t**3 - t**2) * h * end_slopes[k])
-
-
 def arc_to_angle(design: GearPairDesign, arc) -> np.ndarray:
     """phi1 (rad) at driver pitch arc ``arc`` (mm, taken modulo the perimeter), cubic Hermite on the design's samples
     with dphi/ds = 1 / sqrt(r^2 + r'^2) at both ends of each interval, taken just inside it (a corner's two sides).
@@ -188,7 +179,7 @@ def arc_to_angle(design: GearPairDesign, arc) -> np.ndarray:
     grid = design.phi1
     inside = 1e-9 * (grid[1:] - grid[:-1])
     rates = [1 / np.hypot(*design.driver.evaluate(ends)[:2]) for ends in (grid[:-1] + inside, grid[1:] - inside)]
-    return _hermite(design.arc, grid, *rates, np.mod(np.asarray(arc, float), design.perimeters[0]))
+    return hermite(design.arc, grid, *rates, np.mod(np.asarray(arc, float), design.perimeters[0]))
 
 
 def driven_angle(design: GearPairDesign, phi1: np.ndarray) -> np.ndarray:
@@ -196,4 +187,4 @@ def driven_angle(design: GearPairDesign, phi1: np.ndarray) -> np.ndarray:
     turn = 2 * np.pi * design.orders[0] / design.orders[1]
     laps = np.floor(phi1 / (2 * np.pi))
     slope = design.radius[0] / (design.center_distance - design.radius[0])
-    return _hermite(design.phi1, design.phi2, slope[:-1], slope[1:], phi1 - 2 * np.pi * laps) + laps * turn
+    return hermite(design.phi1, design.phi2, slope[:-1], slope[1:], phi1 - 2 * np.pi * laps) + laps * turn

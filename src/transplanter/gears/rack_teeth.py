@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from transplanter.generated import numpy_twin
+from transplanter.geometry.hermite import hermite
 
 _VARIABLE_INVOLUTE = numpy_twin("cusp", "variable_involute")
 ADDENDUM, DEDENDUM = 1.0, 1.25  # in modules
@@ -46,12 +47,9 @@ class PitchTable:
     def at(self, s):
         """Cubic Hermite interpolation in arc length (tangents are unit, so positions stay accurate)."""
         s = np.mod(np.asarray(s, float), self.perimeter)
+        point = hermite(self.arc, self.points, self.tangents[:-1], self.tangents[1:], s)
         k = np.clip(np.searchsorted(self.arc, s, side="right") - 1, 0, len(self.arc) - 2)
-        h = self.arc[k + 1] - self.arc[k]
-        t = ((s - self.arc[k]) / h)[..., None]
-        h = h[..., None]
-        h00, h10, h01, h11 = 2 * t**3 - 3 * t**2 + 1, t**3 - 2 * t**2 + t, -2 * t**3 + 3 * t**2, t**3 - t**2
-        point = h00 * self.points[k] + h10 * h * self.tangents[k] + h01 * self.points[k + 1] + h11 * h * self.tangents[k + 1]
+        t = ((s - self.arc[k]) / (self.arc[k + 1] - self.arc[k]))[..., None]
         tangent = self.tangents[k] * (1 - t) + self.tangents[k + 1] * t
         tangent /= np.linalg.norm(tangent, axis=-1, keepdims=True)
         normal = np.stack([tangent[..., 1], -tangent[..., 0]], -1) * self.orientation
