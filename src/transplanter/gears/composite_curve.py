@@ -24,7 +24,7 @@ import numpy as np
 
 from transplanter.errors import ProblemError
 from transplanter.generated import numpy_twin
-from transplanter.gears.pitch_curves import SMALLEST_RADIUS, TWO_PI, PitchCurve, _from_expression
+from transplanter.gears.pitch_curves import TWO_PI, PitchCurve, _from_expression, too_small_radius
 
 _corner_angles = numpy_twin("cusp", "corner_angles")
 _curvature_center = numpy_twin("cusp", "polar_curvature_center")
@@ -123,13 +123,11 @@ def composite(segments: list[Segment], source: str = "<gear>", where: str = "dri
         phi = np.linspace(segment.start, segment.end, 2001)
         with np.errstate(all="ignore"):
             radius = np.nan_to_num(segment.curve.evaluate(phi)[0], nan=0.0, posinf=-np.inf)
-        if radius.min() < SMALLEST_RADIUS * size:
-            at = int(np.argmin(radius))
-            raise ProblemError(f"{source}: {where}[{k}]: the pitch radius reaches {radius[at]:.6g} mm at phi = "
-                               f"{np.degrees(phi[at]):.2f} deg: expected at least {SMALLEST_RADIUS:g} of the largest "
-                               f"({size:.6g} mm) all round" + ("; a line (or chord) must pass the gear centre at a "
-                                                              "distance, within 90 deg of its normal"
-                                                              if segment.kind == "line" else ""))
+        defect = too_small_radius(phi, radius, size)
+        if defect:
+            raise ProblemError(f"{source}: {where}[{k}]: {defect}" + ("; a line (or chord) must pass the gear centre "
+                                                                     "at a distance, within 90 deg of its normal"
+                                                                     if segment.kind == "line" else ""))
     for k, (a, b) in enumerate(zip(segments, segments[1:] + segments[:1])):
         r_end, r_start = a.curve.evaluate(np.array([a.end]))[0][0], b.curve.evaluate(np.array([b.start]))[0][0]
         if not (np.isfinite(r_end) and np.isfinite(r_start)) or abs(r_end - r_start) > JOIN_TOLERANCE * size:

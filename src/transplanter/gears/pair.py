@@ -15,7 +15,7 @@ import numpy as np
 
 from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.generated import numpy_twin
-from transplanter.gears.pitch_curves import SMALLEST_RADIUS, TWO_PI, PitchCurve
+from transplanter.gears.pitch_curves import TWO_PI, PitchCurve, too_small_radius
 from transplanter.geometry.hermite import hermite
 from transplanter.geometry.turn_quadrature import NODES, PANELS, Panels, panels
 
@@ -117,12 +117,10 @@ def design_pair(driver: PitchCurve, driven_order: int, center_distance: float | 
         raise ProblemError(f"{source}: {where}: the pitch radius reaches {r_dense[k]:.6g} mm at phi = "
                            f"{np.degrees(dense[k]):.2f} deg: expected a positive radius all round")
     r_max = float(r_dense.max())
-    if r_dense.min() < SMALLEST_RADIUS * r_max:
-        k = int(np.argmin(r_dense))
-        raise ProblemError(f"{source}: {where}: the pitch radius reaches {r_dense[k]:.6g} mm at phi = "
-                           f"{np.degrees(dense[k]):.2f} deg: expected at least {SMALLEST_RADIUS:g} of the largest "
-                           f"({r_max:.6g} mm) all round, or the ratio leaves the thousandfold range (a shape parameter "
-                           f"too near its limit, e.g. an eccentricity near 1)")
+    defect = too_small_radius(dense, r_dense, r_max)
+    if defect:
+        raise ProblemError(f"{source}: {where}: {defect}, or the ratio leaves the thousandfold range (a shape "
+                           "parameter too near its limit, e.g. an eccentricity near 1)")
     orders = (driver.lobes, driven_order)
     r_nodes, slope_nodes, _ = driver.evaluate(grid.nodes)
     given = center_distance is not None

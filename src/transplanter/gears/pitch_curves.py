@@ -30,6 +30,15 @@ TWO_PI = 2 * np.pi
 SMALLEST_RADIUS = 1e-3
 
 
+def too_small_radius(phi: np.ndarray, radius: np.ndarray, largest: float) -> str | None:
+    """Where the pitch ``radius`` sampled at ``phi`` falls below ``SMALLEST_RADIUS`` of ``largest`` (mm), or None."""
+    if radius.min() >= SMALLEST_RADIUS * largest:
+        return None
+    k = int(np.argmin(radius))
+    return (f"the pitch radius reaches {radius[k]:.6g} mm at phi = {np.degrees(phi[k]):.2f} deg: expected at least "
+            f"{SMALLEST_RADIUS:g} of the largest ({largest:.6g} mm) all round")
+
+
 def denatured_partner(m11: float) -> float:
     """m12 from the onion-transplanter paper eq (2): pi/m11 + pi/m12 = 2 pi."""
     return 1.0 / (2.0 - 1.0 / m11)
