@@ -68,7 +68,9 @@ def draw_curvature(result: GearResult) -> Figure:
         ax.plot(np.degrees(d.phi1), rho, label=f"{name} (convex parts)")
     if result.problem.module is not None:
         limit = ADDENDUM * result.problem.module / np.sin(result.problem.pressure_angle) ** 2
-        ax.axhline(limit, color="r", ls="--", lw=1, label=f"rack undercut limit m/sin²α = {limit:.2f} mm")
+        cutter = result.teeth.cutter if result.teeth is not None else result.problem.cutter
+        reference = "" if cutter == "rack" else "\n(a reference only: these teeth are not rack-cut)"
+        ax.axhline(limit, color="r", ls="--", lw=1, label=f"rack undercut limit m/sin²α = {limit:.2f} mm{reference}")
     ax.set_xlabel("driver angle φ1 at the contact point / deg")
     ax.set_ylabel("curvature radius / mm")
     ax.grid(alpha=0.3)

@@ -22,7 +22,9 @@ def to_markdown(report: dict, figures: list[str], drawings: list[str]) -> str:
         counts = report["tooth_counts"]
         lines.append(f"- module {report['module']:g}: {counts['fractional'][0]:.4f} and {counts['fractional'][1]:.4f} "
                      f"teeth; nearest {counts['nearest']}, exact with module {counts['exact_module']:.6f} or with the "
-                     f"curves scaled by {counts['scale_for_module']:.6f}; undercut {report['undercut']}")
+                     f"curves scaled by {counts['scale_for_module']:.6f}; a rack would undercut {report['undercut']}"
+                     + ("" if report.get("cutter", "rack") == "rack" else
+                        f" (a reference only: {report['cutter']} teeth, not rack-cut; the mesh check judges them)"))
     if report["self_intersections"] is not None:
         contact = report["contact_ratio_range"]
         lines.append(f"- tooth profiles by {report['cutter']} envelope; self-intersections {report['self_intersections']}"
