@@ -27,7 +27,8 @@ def _poses(ax, poses: np.ndarray, labels, size: float):
         ax.annotate("", xy=tip, xytext=(x, y),
                     arrowprops={"arrowstyle": "-|>", "color": "k", "lw": 1.2, "mutation_scale": 9})
         ax.plot(x, y, "ko", ms=3)
-        ax.annotate(labels[k] if labels else f"P{k + 1}", (x, y), textcoords="offset points", xytext=(4, -10), fontsize=8)
+        ax.annotate(labels[k] if labels else f"P{k + 1}", (x, y), textcoords="offset points", xytext=(4, -10), fontsize=8,
+                    parse_math=False)
     ax.plot([], [], "k-", lw=1.2, label="poses (reference point, direction)")
 
 
@@ -56,7 +57,7 @@ def draw_synthesis(result: Synthesis) -> Figure:
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x / mm")
     ax.set_ylabel("y / mm")
-    ax.set_title(problem.title or problem.source, fontsize=10)
+    ax.set_title(problem.title or problem.source, fontsize=10, parse_math=False)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, **LEGEND_BESIDE)
     return fig

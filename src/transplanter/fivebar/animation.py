@@ -57,7 +57,7 @@ def _draw_frames(result: FiveBarResult, teeth: Teeth | None, frames: int):
     trace, = world.plot([], [], "k-", lw=1.5, label="P so far", animated=True)
     world.plot(*problem.poses[:, :2].T, "r^", ms=6, label="key poses")
     for label, pose in zip(problem.labels, problem.poses):
-        world.annotate(f" {label}", pose[:2], fontsize=8, color="r")
+        world.annotate(f" {label}", pose[:2], fontsize=8, color="r", parse_math=False)
     chain, = world.plot([], [], "b-o", ms=3, lw=1.5, label="O-A-F-E-B", animated=True)
     plate, = world.fill([], [], color="tab:green", alpha=0.5, label="plate E-F-P", animated=True)
     world_gears = [world.plot([], [], lw=0.8, animated=True)[0] for _ in outlines]

@@ -106,7 +106,7 @@ def draw_trajectory(result: FiveBarResult) -> Figure:
     e, f = mech.plate_points(problem.poses)
     for k, pose in enumerate(problem.poses):
         ax.fill(*np.array([e[k], f[k], pose[:2]]).T, color="tab:green", alpha=0.4, ec="tab:green")
-        ax.annotate(f" {problem.labels[k]}", pose[:2], fontsize=8)
+        ax.annotate(f" {problem.labels[k]}", pose[:2], fontsize=8, parse_math=False)
     ax.plot(*problem.return_points.T, "bx", label="return points")
     a = mech.carrier_point(0.0)
     ax.plot(*np.array([[0, 0], a, f[0]]).T, "r-o", ms=3, label="O-A-F (pose 1)")
@@ -147,7 +147,7 @@ def draw_tradeoff(result: FiveBarResult) -> Figure:
     ax.set_title(f"{count} distinct design{'s' if count > 1 else ''} refined from {starts} of {starts + failed} "
                  f"region candidates" + (f" ({failed} failed: see the report)" if failed else ""), fontsize=9)
     bounds = ", ".join(map(str, result.chosen.active_bounds)) or "no bound"
-    fig.text(0.01, 0.0, textwrap.fill(f"The picked design sits on: {bounds}", 110), fontsize=8, va="bottom")
+    fig.text(0.01, 0.0, textwrap.fill(f"The picked design sits on: {bounds}", 110), fontsize=8, va="bottom", parse_math=False)
     fig.get_layout_engine().set(rect=(0, 0.08, 1, 0.92))
     ax.legend(fontsize=8, **LEGEND_BESIDE)
     return fig

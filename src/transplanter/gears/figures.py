@@ -36,7 +36,7 @@ def draw_mesh(result: GearResult, positions: int = 4) -> Figure:
         ax.set_aspect("equal")
         ax.set_xlabel("x / mm")
     axes[0].set_ylabel("y / mm")
-    fig.suptitle(result.problem.title or result.problem.source, fontsize=10)
+    fig.suptitle(result.problem.title or result.problem.source, fontsize=10, parse_math=False)
     return fig
 
 

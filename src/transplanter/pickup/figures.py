@@ -29,7 +29,7 @@ def draw_path(result: PickupResult) -> Figure:
     ax.set_ylabel("y / mm")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, **LEGEND_BESIDE)
-    ax.set_title(result.problem.title or result.problem.source, fontsize=10)
+    ax.set_title(result.problem.title or result.problem.source, fontsize=10, parse_math=False)
     return fig
 
 
