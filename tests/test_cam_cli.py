@@ -113,6 +113,8 @@ CASES = {
     "limit of 90": (TRANSLATING + "[limits]\npressure_angle_deg = 95.0\n", ["limits.pressure_angle_deg", "95.0", "below 90"]),
     "swing past the farthest point": (EXAMPLE.read_text().replace("swing_deg = 36.0", "swing_deg = 150.0"),
                                       ["segments.swing_deg", "largest swing of 150", "less than 149.1", "128 mm"]),
+    "bore beyond the base circle": (TRANSLATING.replace("base_radius = 30.0", "base_radius = 30.0\nbore_radius = 100.0"),
+                                    ["cam.bore_radius", "100.0", "less than cam.base_radius = 30 mm"]),
     "pressure limit on a flat face": ((ROOT / "examples/cam_flat_faced.toml").read_text()
                                       .replace("[limits]\n", "[limits]\npressure_angle_deg = 20.0\n"),
                                       ["limits.pressure_angle_deg", "20.0", "none for a flat-faced follower"]),
@@ -177,3 +179,18 @@ def test_naming_the_api_and_computing_import_no_matplotlib():
             "assert 'matplotlib' not in sys.modules, 'imported too early'\n")
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
     assert run.returncode == 0, run.stderr
+
+
+def test_design_mode_fails_a_bore_the_smallest_cam_cannot_hold(tmp_path, run):
+    """Design mode sizes the cam by its checks; a given bore wider than the designed profile's nearest approach to
+    the centre (the base circle, for a roller follower) fails the result (exit 1) naming cam.bore_radius."""
+    path = tmp_path / "bore.toml"
+    path.write_text((ROOT / "examples/cam_translating_design.toml").read_text().replace("[cam]", "[cam]\nbore_radius = 100.0"))
+    code, stdout, stderr = run(path, "--json")
+    report = _strict_json(stdout)
+    assert code == 1 and report["status"] == "FAILED"
+    assert report["nearest_profile_mm"]["distance"] == pytest.approx(report["base_radius_mm"], rel=1e-9)
+    assert report["failures"] == [f"cam.bore_radius = 100 mm reaches the profile, which comes within "
+                                  f"{report['nearest_profile_mm']['distance']:.4f} mm of the centre at cam angle "
+                                  f"{report['nearest_profile_mm']['at_deg']:.2f} deg"]
+    assert len(stderr.strip().splitlines()) == 1 and "cam.bore_radius" in stderr

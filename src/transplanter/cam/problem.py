@@ -285,6 +285,9 @@ def parse_problem(data: dict, source: str = "<dict>") -> CamProblem:
     if base is not None:
         check_base_radius(problem, base, read.fail)
         check_swing(problem, base, read.fail)
+        if problem.bore_radius is not None and problem.bore_radius >= base:
+            read.fail("cam.bore_radius", problem.bore_radius, f"less than cam.base_radius = {base:g} mm (the profile "
+                      "comes that near the centre)")
     return problem
 
 

@@ -23,6 +23,10 @@ def to_markdown(report: dict, figures: list[str], drawings: list[str]) -> str:
              f"- base radius {report['base_radius_mm']:.6f} mm"
              + (f" (the smallest meeting the limits; {report['cams_evaluated']} cams evaluated)"
                 if report["designed_base_radius"] else ""),
+             f"- the profile comes within {report['nearest_profile_mm']['distance']:.4f} mm of the centre at "
+             f"{report['nearest_profile_mm']['at_deg']:.2f} deg; bore "
+             + (f"{report['bore_radius_mm']:g} mm" if report["bore_radius_mm"] is not None else "not given (the drawings "
+                "show one of 0.4 of that distance)"),
              "- segments: " + "; ".join(
                  f"{s['kind']} {s['angle_deg']:g} deg" + (f" {s['law']} {s['swing_deg' if swing else 'lift_mm']:g} "
                                                           f"{'deg' if swing else 'mm'}" if s["law"] else "")

@@ -56,12 +56,26 @@ class CamResult:
         return self.geometry.base_radius
 
     @property
+    def nearest_profile(self) -> Extreme:
+        """The profile's smallest distance from the cam centre (mm) on the samples, and where."""
+        distance = np.linalg.norm(self.geometry.profile, axis=1)
+        k = int(np.argmin(distance))
+        return Extreme(float(distance[k]), float(self.geometry.angle[k]))
+
+    @property
     def failures(self) -> list[str]:
-        return self.checks.failures
+        """The checks' failures, and a given bore that reaches the profile (design mode sizes the cam by the
+        checks alone: a bore is the designer's to fit)."""
+        bore, nearest = self.problem.bore_radius, self.nearest_profile
+        if bore is None or bore < nearest.value:
+            return self.checks.failures
+        return self.checks.failures + [f"cam.bore_radius = {bore:g} mm reaches the profile, which comes within "
+                                       f"{nearest.value:.4f} mm of the centre at cam angle "
+                                       f"{np.degrees(nearest.angle):.2f} deg"]
 
     @property
     def passed(self) -> bool:
-        return self.checks.passed
+        return not self.failures
 
     def to_json(self) -> dict:
         """The report as plain JSON types (mm and degrees; a swing in degrees): the content of report.json."""
@@ -82,6 +96,8 @@ class CamResult:
                             else {"offset_mm": follower.offset})},
             "direction": "counterclockwise" if problem.direction > 0 else "clockwise",
             "base_radius_mm": self.base_radius,
+            "bore_radius_mm": problem.bore_radius,
+            "nearest_profile_mm": {"distance": self.nearest_profile.value, "at_deg": _at(self.nearest_profile)},
             "designed_base_radius": self.designed,
             "cams_evaluated": self.cams_evaluated,
             "segments": [{"kind": s.kind, "angle_deg": round(float(np.degrees(s.angle)), 9), "law": s.law,
