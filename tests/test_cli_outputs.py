@@ -115,6 +115,29 @@ def test_an_earlier_output_survives_a_failing_run_and_is_replaced_by_a_good_one(
     assert [p.name for p in tmp_path.iterdir()] == ["out"]
 
 
+def test_an_out_that_is_a_link_is_written_through_it(tmp_path):
+    """``--out LINK`` replaces the folder the link points at and leaves the link in place (it was replaced by a
+    real folder, the earlier output left behind the link's old target)."""
+    target, link = tmp_path / "target", tmp_path / "link"
+    assert main(["burmester", PROBLEM, "--out", str(target), "--quiet"]) == 0
+    (target / "report.md").write_text("earlier")
+    link.symlink_to(target, target_is_directory=True)
+    assert main(["burmester", PROBLEM, "--out", str(link), "--quiet"]) == 0
+    assert link.is_symlink() and link.resolve() == target.resolve()
+    assert (target / "report.md").read_text() != "earlier" and _listed(target) == {p.name for p in target.iterdir()}
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["link", "target"]
+
+
+@pytest.mark.parametrize("plot", ["out/extra.png", "out/deeper/extra.png"])
+def test_a_plot_inside_out_is_refused_before_the_work(tmp_path, monkeypatch, capsys, plot):
+    """The --out folder is replaced whole, so a --plot file inside it would be lost: refused, naming both."""
+    monkeypatch.setattr(burmester, "synthesize", lambda problem: pytest.fail("the work started"))
+    (tmp_path / "out").mkdir()
+    assert main(["burmester", PROBLEM, "--out", str(tmp_path / "out"), "--plot", str(tmp_path / plot)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"--plot = {tmp_path / plot}: inside --out {tmp_path / 'out'}" in err
+
+
 @pytest.mark.parametrize("content", ["a file", "a folder of other files"])
 def test_an_out_that_is_not_ours_is_refused_before_the_work(tmp_path, monkeypatch, capsys, content):
     monkeypatch.setattr(burmester, "synthesize", lambda problem: pytest.fail("the work started"))

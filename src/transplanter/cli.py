@@ -74,7 +74,7 @@ def _burmester(args) -> int:
     from transplanter import burmester
     from transplanter.burmester.report import to_markdown, to_text
 
-    plot = check_file(args.plot, "--plot", PLOT_SUFFIXES) if args.plot else None
+    plot = check_file(args.plot, "--plot", PLOT_SUFFIXES, args.out) if args.plot else None
     problem = burmester.load_problem(args.file)
     with progress.step("synthesis"):
         result = burmester.synthesize(problem)

@@ -69,10 +69,13 @@ def check_target(out: str | Path):
                            f"(its report.json does not list them); expected a new or empty folder, or an earlier output")
 
 
-def check_file(path: str | Path, option: str, suffixes: set[str]) -> Path:
-    """Refuse (ProblemError) an output file that is a folder, has a suffix outside ``suffixes`` or
-    lies where nothing can be written; the absolute path otherwise."""
+def check_file(path: str | Path, option: str, suffixes: set[str], out: str | Path | None = None) -> Path:
+    """Refuse (ProblemError) an output file that is a folder, has a suffix outside ``suffixes``, lies where
+    nothing can be written or inside the ``--out`` folder ``out`` (replaced whole); the absolute path otherwise."""
     target = Path(path).absolute()
+    if out is not None and target.resolve().is_relative_to(Path(out).resolve()):
+        raise ProblemError(f"{option} = {path}: inside --out {out}, which is replaced whole when the run succeeds; "
+                           "expected a file outside it")
     if target.suffix.lower() not in suffixes:
         raise ProblemError(f"{option} = {path}: expected a file name ending in one of {', '.join(sorted(suffixes))}")
     if target.is_dir():
@@ -110,7 +113,7 @@ def staged(out: str | Path | None):
         yield None
         return
     check_target(out)
-    target = Path(out).absolute()
+    target = Path(out).resolve() if Path(out).is_symlink() else Path(out).absolute()   # a link keeps pointing there
     work = _work_folder(out, target)
     stage = work / target.name
     stage.mkdir()                       # made as any folder is (mkdtemp's own is private to the user)
