@@ -89,7 +89,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"transplanter: error: derive: {error}", file=sys.stderr)
         return 2
     if args.check and drifted:
-        print("generated code is out of step with derivations/: " + ", ".join(drifted)
+        print("transplanter: failed: derive --check: generated code is out of step with derivations/: " + ", ".join(drifted)
               + " (run `python -m derivations.build`)", file=sys.stderr)
         return 1
     print("generated code is in step with derivations/" if args.check else f"wrote {', '.join(MODULES)} to {args.out}")
