@@ -80,10 +80,22 @@ def test_missing_file():
     assert run.stderr.strip() == "transplanter: error: no/such/file.toml: no such file"
 
 
+RADIANS = (POSES.replace("angle_deg = 20.0", "angle_deg = 0.35").replace("angle_deg = 45.0", "angle_deg = 0.78")
+           .replace("angle_deg = 60.0", "angle_deg = 1.05"))
+
+
 def test_radians_in_a_degree_field_warn(tmp_path):
     path = tmp_path / "problem.toml"
-    path.write_text(POSES.replace("angle_deg = 20.0", "angle_deg = 0.35").replace("angle_deg = 45.0", "angle_deg = 0.78")
-                    .replace("angle_deg = 60.0", "angle_deg = 1.05"))
+    path.write_text(RADIANS)
     run = _run("burmester", str(path))
     assert run.returncode == 0
-    assert "look like radians" in run.stderr and "poses[].angle_deg" in run.stderr
+    assert run.stderr.count("\n") == 1 and "look like radians" in run.stderr and "poses[].angle_deg" in run.stderr
+
+
+def test_a_warning_of_a_failed_run_is_folded_into_its_one_line(tmp_path):
+    path = tmp_path / "problem.toml"
+    path.write_text(RADIANS + "[search]\nradius_mm = 0.001\n")
+    run = _run("burmester", str(path))
+    assert run.returncode == 1
+    assert run.stderr.count("\n") == 1 and run.stderr.startswith("transplanter: failed: ")
+    assert "no dyad found" in run.stderr and "; warning: " in run.stderr and "look like radians" in run.stderr

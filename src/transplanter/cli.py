@@ -57,9 +57,14 @@ def _publish(args, report: dict, file_text: str, screen_text: str, failures: tup
             sys.stdout.write(f"wrote {args.out}/: " + ", ".join(n for names in report["files"].values() for n in names)
                              + "\n")
     if failures:
-        print(f"transplanter: failed: {report.get('source', args.file)}: " + "; ".join(failures), file=sys.stderr)
+        _say(f"transplanter: failed: {report.get('source', args.file)}: " + "; ".join(failures), args.warned)
         return 1
     return 0
+
+
+def _say(line: str, warned: list):
+    """The one stderr line of a run that ends with exit 1, 2 or 130, the run's warnings folded into it."""
+    print(line + "".join(f"; warning: {w.message}" for w in warned), file=sys.stderr)
 
 
 def _save_figures(figures: dict, out: Path, dpi: int = 120) -> list[str]:
@@ -306,13 +311,18 @@ def _parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _one_line_warning(message, category, filename, lineno, file=None, line=None):
-    return f"transplanter: warning: {message}\n"
-
-
 def main(argv: list[str] | None = None) -> int:
+    """Run a command; its warnings (a pose in radians, a figure that cannot be laid out) are printed one line each
+    after a run that exits 0, and folded into the one line of a run that does not."""
     args = _parser().parse_args(argv)
-    warnings.formatwarning = _one_line_warning
+    with warnings.catch_warnings(record=True) as args.warned:
+        code = _run(args)
+    for warning in args.warned if code == 0 else ():
+        print(f"transplanter: warning: {warning.message}", file=sys.stderr)
+    return code
+
+
+def _run(args) -> int:
     out = getattr(args, "out", None)
     terminate = signal.signal(signal.SIGTERM, _interrupt) if threading.current_thread() is threading.main_thread() \
         else None
@@ -322,14 +332,14 @@ def main(argv: list[str] | None = None) -> int:
             with staged(out) as args.folder:
                 return args.run(args)
     except TransplanterError as error:
-        print(f"transplanter: error: {error}", file=sys.stderr)
+        _say(f"transplanter: error: {error}", args.warned)
         return 2
     except OSError as error:            # a disk that fills or a file that goes away under the run
-        print(f"transplanter: error: {error.filename or out or 'a file'}: {error.strerror or error}"
-              + (f"; {out} is left as it was" if out else ""), file=sys.stderr)
+        _say(f"transplanter: error: {error.filename or out or 'a file'}: {error.strerror or error}"
+             + (f"; {out} is left as it was" if out else ""), args.warned)
         return 2
     except KeyboardInterrupt:
-        print("transplanter: interrupted" + (f"; {out} is left as it was" if out else ""), file=sys.stderr)
+        _say("transplanter: interrupted" + (f"; {out} is left as it was" if out else ""), args.warned)
         return 130
     finally:
         if terminate is not None:
