@@ -210,3 +210,17 @@ def test_gearing_built_in_python_is_checked():
         Gearing(pressure_angle=20.0)
     with pytest.raises(ProblemError, match=r"Gearing.layout = 'zigzag'"):
         Gearing(layout="zigzag")
+
+
+def test_a_module_that_gives_too_many_teeth_is_refused_before_cutting():
+    """On a bent carrier the gears come out near |OA| / 2 across, so about |OA| / (2 m) teeth: a carrier 1000 times
+    longer at module 10 would shaper-cut about 2400, past the gear command's cap of 1000 (the same rule holds
+    rack-cut gears to 20000); refused before any tooth is cut."""
+    with pytest.raises(ProblemError, match=r"gears.module = 10: gives \d+ teeth on the sun \(shaper-cut\); "
+                                           r"expected at most 1000 .* 10 is the coarsest module taken"):
+        design_toothed_train(CONCAVE, CARRIER * 1000, Gearing(module=10.0), "test")
+
+
+def test_a_carrier_too_short_at_the_finest_module_says_so():
+    with pytest.raises(Exception, match="0.2 is the finest module taken: the mechanism is too small for cut teeth"):
+        design_toothed_train(SMOOTH, CARRIER / 1000, Gearing(module=0.2), "test")

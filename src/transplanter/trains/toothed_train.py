@@ -44,6 +44,7 @@ import numpy as np
 from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.gears.mesh_check import MeshCheck, check_mesh
 from transplanter.gears.pair import GearPairDesign, driven_angle
+from transplanter.gears.problem import MAX_SHAPER_TEETH, MAX_TEETH
 from transplanter.gears.rack_teeth import ADDENDUM
 from transplanter.gears.teeth import PairTeeth, generate_teeth
 from transplanter.toml_fields import ClassFields, is_finite_number
@@ -239,9 +240,10 @@ def _bent_counts(shapes, module: float, length: float) -> tuple[int, int]:
     """Least max(a1, a2), then least a1 + a2, then least Z1, with |a1 - a2| <= |OA| <= a1 + a2."""
     pitch = [np.pi * module / s.perimeter for s in shapes]          # a_j per tooth
     if 2 * length < pitch[1] * (1 - WHOLE):       # then some a1 would leave no whole Z2 within a1 -+ |OA|
+        finer = ("use a finer module" if module > MODULE_RANGE[0] else
+                 f"{MODULE_RANGE[0]:g} is the finest module taken: the mechanism is too small for cut teeth")
         raise InfeasibleError(f"the carrier |OA| = {length:.4g} mm is shorter than half a tooth step of the second "
-                              f"centre distance ({pitch[1]:.4g} mm at module {module:g}): no whole counts fit; use a "
-                              "finer module")
+                              f"centre distance ({pitch[1]:.4g} mm at module {module:g}): no whole counts fit; {finer}")
     found = []
     z1 = shapes[0].min_teeth
     while not found or z1 * pitch[0] <= min(found)[0]:
@@ -354,6 +356,14 @@ def _sizes(relative: RelativeMotion, carrier_length: float, gearing: Gearing, so
             counts = _bent_counts(shapes, module, carrier_length)
         except InfeasibleError as error:
             raise InfeasibleError(f"{source}: {error}") from None
+    for stage, (count, shape) in enumerate(zip(counts, shapes)):
+        most = MAX_SHAPER_TEETH if shape.cutter == "shaper" else MAX_TEETH
+        if count > most:
+            coarser = ("a coarser module" if module < MODULE_RANGE[1] else
+                       f"{MODULE_RANGE[1]:g} is the coarsest module taken: the mechanism is too large for it")
+            raise ProblemError(f"{source}: gears.module = {module:g}: gives {count} teeth on the "
+                               f"{GEAR_NAMES[2 * stage]} ({shape.cutter}-cut); expected at most {most} (every tooth "
+                               f"is cut and checked, in time and memory growing with the count); {coarser}")
     a1, a2 = (z * np.pi * module / s.perimeter for z, s in zip(counts, shapes))
     if gearing.layout == "straight":
         a2 = carrier_length - a1
