@@ -77,6 +77,8 @@ BAD = {
                            ["train.split", "sqrt", "identical_sun_planet"]),
     "peak to valley": (_problem(_ellipse(), train='split = "peak_to_valley"\npeak_to_valley = 1.5'),
                        ["train.peak_to_valley", "1.5", "(0, 1)"]),
+    "peak to valley with another split": (_problem(_ellipse(), train='split = "sqrt"\npeak_to_valley = 0.6'),
+                                          ["train.peak_to_valley", "0.6", 'none with split = "sqrt"']),
     "unknown key": (_problem(_ellipse(), train="gears = 4"), ["train.gears", "no such field"]),
     "no trajectory": ("[arm]\n", ["trajectory", "kind and points"]),
 }

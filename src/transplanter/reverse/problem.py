@@ -166,6 +166,9 @@ def _train(read: FieldReader, table: dict):
     read.keys(table, {"topology", "split", "peak_to_valley", "center_distances", "module"}, "train")
     topology = _choice(read, table, "topology", "train", tuple(TOPOLOGIES), "sun-intermediate-planet")
     split = _choice(read, table, "split", "train", TOPOLOGIES[topology], TOPOLOGIES[topology][0])
+    if "peak_to_valley" in table and split != "peak_to_valley":
+        read.fail("train.peak_to_valley", table["peak_to_valley"], f'none with split = "{split}", which does not use '
+                  'it (it sets the split "peak_to_valley")')
     coefficient = read.number(table, "peak_to_valley", "train") if "peak_to_valley" in table else 0.5
     if not 0 < coefficient < 1:
         read.fail("train.peak_to_valley", coefficient, "a number in (0, 1): the share of the total ratio's swing "
