@@ -15,7 +15,7 @@ Schema (docs/reverse.md, "Problem files"):
     [train]
     topology = "sun-intermediate-planet"   # or "sun-idler-planet" (3 gears), "pick-up" (the cusp-pitch-curve paper eq 15)
     split = "sqrt"                # or "peak_to_valley" (4 gears), "identical_sun_planet" (3 gears)
-    peak_to_valley = 0.6          # b of the peak-to-valley split, in (0, 1)
+    # peak_to_valley = 0.6        # with split = "peak_to_valley" only: its b, in (0, 1)
     center_distances = [46.15, 46.15]      # mm; default s/2 each (collinear carrier)
     module = 2.5                  # mm, for the tooth counts (default 2.5)
 """
