@@ -108,7 +108,9 @@ def _refuse_what_the_cutter_cannot_cut(design: GearPairDesign, module: float, al
             raise InfeasibleError(
                 f"{source}: module {module:g} undercuts the {name}: curvature radius {rho[k]:.3f} mm at phi1 = "
                 f"{np.degrees(design.phi1[k]):.2f} deg is below m / sin^2(alpha) = {limit:.3f} mm; "
-                f"use a module up to {rho.min() * np.sin(alpha) ** 2 / ADDENDUM:.4f} mm or a larger curve")
+                f"use a module up to {rho.min() * np.sin(alpha) ** 2 / ADDENDUM:.4f} mm or a larger curve; where "
+                f"pair.teeth sets the size, the curve shrinks with the module: use more teeth (about "
+                f"{limit / rho.min():.3g} times as many) or a larger pressure angle")
 
 
 def generate_teeth(design: GearPairDesign, module: float, alpha: float, source: str,

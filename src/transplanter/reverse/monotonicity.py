@@ -61,7 +61,7 @@ def violations(motion: ArmMotion) -> list[Violation]:
     with np.errstate(divide="ignore", invalid="ignore"):
         slope = np.where(c1 > 0, h1 / c1, np.inf)
     for condition, values, what in (
-            ("carrier", c1, "the carrier would stop or turn back (c' = {worst:.3g} rad per unit x)"),
+            ("carrier", c1, "the carrier would stop or turn back (c' = {worst:.3g} rad per rad of x = 2 pi u)"),
             ("gears", slope, "the planet would stop or turn back against the carrier (chi' = {worst:.3g}): "
                              "the gears would reverse")):
         for first, last in _runs(values <= 0):
