@@ -270,8 +270,10 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
     ranges_table = data.get("ranges", {})
     read.keys(ranges_table, set(RANGE_FIELDS), "ranges")
     ranges = {key: _pair(read, ranges_table, key, "ranges") for key in ranges_table}
-    if "ep" in ranges and ranges["ep"][0] <= 0 or "fp" in ranges and ranges["fp"][0] < 0:
-        read.fail("ranges", ranges_table, "length ranges that start above zero")
+    for key in ("ep", "fp"):
+        if key in ranges and (ranges[key][0] <= 0 if key == "ep" else ranges[key][0] < 0):
+            start = "above" if key == "ep" else "at or above"
+            read.fail(f"ranges.{key}", ranges_table[key], f"a length range (mm) that starts {start} zero")
 
     conditions = data.get("conditions", {})
     read.keys(conditions, {"min_closure_margin", "ratio", "return_tolerance_mm"}, "conditions")
