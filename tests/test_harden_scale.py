@@ -147,3 +147,21 @@ def test_fivebar_design_nlp_scales_with_the_poses():
             np.testing.assert_allclose(np.asarray(getattr(design.mech, name)) / scale, getattr(one.mech, name),
                                        rtol=0, atol=1e-6 * 300.0)
         assert design.min_angle_ebf == pytest.approx(one.min_angle_ebf, rel=1e-6)
+
+
+def test_cam_design_scales_with_its_lengths_and_its_default_reach():
+    """Design mode on the translating example with every length scaled and design.max_base_radius left to its
+    default (20 times the cam's largest length): the smallest base circle scales with the cam."""
+    from transplanter import cam
+
+    base = read_toml(ROOT / "examples/cam_translating_design.toml")
+    del base["design"]["max_base_radius"]
+    found = {}
+    for scale in SCALES:
+        data = _scaled(base, scale, "follower.roller_radius", "follower.offset")
+        for row in data["segments"]:
+            if "lift" in row:
+                row["lift"] *= scale
+        found[scale] = cam.synthesize(cam.parse_problem(data)).base_radius / scale
+    for scale in SCALES:
+        assert found[scale] == pytest.approx(found[1.0], rel=1e-6)

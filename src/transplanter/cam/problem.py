@@ -27,7 +27,7 @@ Schema (docs/cam.md):
     pressure_angle_deg = 30.0       # default 30 translating, 45 oscillating
     profile_radius_mm = 0.0         # smallest convex radius of the profile allowed (default 0: no cusp)
     [design]                        # optional: the smallest base circle meeting the limits
-    max_base_radius = 200.0         # mm: the largest base circle to try
+    max_base_radius = 200.0         # mm: the largest base circle to try (default 20 x the largest given length)
 """
 from __future__ import annotations
 
@@ -40,6 +40,9 @@ from transplanter.toml_fields import ClassFields, FieldReader, read_toml
 
 LAWS = ("harmonic", "cycloidal", "polynomial_345", "modified_trapezoid")
 SEGMENT_KINDS = ("rise", "dwell", "return")
+#: Design mode tries base circles up to this many times the cam's largest given length (``_size``) unless
+#: design.max_base_radius says otherwise: 500 mm for a 25 mm lift.
+DESIGN_REACH = 20.0
 DEFAULT_PRESSURE_LIMIT_DEG = {"translating": 30.0, "oscillating": 45.0, "flat_faced": 30.0}
 #: Segment angles must add up to a turn within this (degrees).
 TURN_TOLERANCE_DEG = 1e-6
@@ -174,6 +177,16 @@ def _choice(read: FieldReader, table: dict, key: str, where: str, choices, defau
     return value
 
 
+def _size(follower: Follower, segments: tuple[Segment, ...]) -> float:
+    """The cam's largest given length (mm): a translating lift, the roller, the offset, the pivot's reach."""
+    lengths = [follower.roller_radius, abs(follower.offset)]
+    if follower.kind == "oscillating":
+        lengths.append(float(np.hypot(*follower.pivot)) + follower.arm_length)
+    else:
+        lengths += [abs(s.lift) for s in segments]
+    return max(lengths)
+
+
 def _follower(read: FieldReader, table) -> Follower:
     read.keys(table, set().union(*_FOLLOWER_KEYS.values()), "follower")
     kind = _choice(read, table, "kind", "follower", tuple(_FOLLOWER_KEYS))
@@ -252,11 +265,12 @@ def parse_problem(data: dict, source: str = "<dict>") -> CamProblem:
     cam = data["cam"]
     read.keys(cam, _CAM_KEYS, "cam")
     follower = _follower(read, data["follower"])
+    segments = _segments(read, data, follower.kind == "oscillating")
     design = data.get("design")
     max_base = None
     if design is not None:
         read.keys(design, {"max_base_radius"}, "design")
-        max_base = _positive(read, design, "max_base_radius", "design", default=500.0)
+        max_base = _positive(read, design, "max_base_radius", "design", default=DESIGN_REACH * _size(follower, segments))
         if "base_radius" in cam:
             read.fail("cam.base_radius", cam["base_radius"], "no base radius with [design], which finds the smallest")
     base = None if design is not None else _positive(read, cam, "base_radius", "cam")
@@ -273,7 +287,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> CamProblem:
         direction={"counterclockwise": 1, "clockwise": -1}[
             _choice(read, cam, "direction", "cam", ("counterclockwise", "clockwise"), default="counterclockwise")],
         follower=follower,
-        segments=_segments(read, data, follower.kind == "oscillating"),
+        segments=segments,
         pressure_limit=np.radians(limit),
         profile_radius_limit=_positive(read, limits, "profile_radius_mm", "limits") if "profile_radius_mm" in limits else 0.0,
         samples=read.integer(cam, "samples", "cam", 360, 100_000, default=3600),   # 36000: 4.6 s; 1e6 ran over 5 min
