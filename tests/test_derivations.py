@@ -157,11 +157,13 @@ def test_check_reports_drift(tmp_path, regenerated, monkeypatch, capsys):
     monkeypatch.setattr(build, "render", lambda module: regenerated[module])
     shutil.copytree(GENERATED, tmp_path / "gen")
     assert build.main(["--check", "--out", str(tmp_path / "gen")]) == 0
+    assert capsys.readouterr().out == "generated code is in step with derivations/\n"
     target = tmp_path / "gen" / f"{MODULES[0]}.py"
     target.write_text(target.read_text().replace("    return", "    return  ", 1))
     assert build.main(["--check", "--out", str(tmp_path / "gen")]) == 1
-    stderr = capsys.readouterr().err
-    assert "out of step" in stderr and stderr.split(": ", 1)[1].startswith(f"{MODULES[0]} (")
+    out, stderr = capsys.readouterr()
+    assert out == "" and stderr.count("\n") == 1 and stderr.startswith("transplanter: failed: derive --check: ")
+    assert "out of step" in stderr and stderr.rsplit(": ", 1)[1].startswith(f"{MODULES[0]} (")
 
 
 def test_package_does_not_import_sympy_at_run_time():
