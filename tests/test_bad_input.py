@@ -52,6 +52,13 @@ CASES = {
     "angle beyond a turn": (POSES.replace("angle_deg = 60.0", "angle_deg = 420.0"),
                             ["poses[].angle_deg", "420.0", "within one turn"]),
     "not toml": ("[[poses]\nx=", ["not valid TOML"]),
+    "label not text": (POSES.replace("x = 10.0", "label = {a = 1}\nx = 10.0"),
+                       ["poses[1].label", "{'a': 1}", "text of at most 40 characters"]),
+    "label too long": (POSES.replace("x = 10.0", f"label = '{'P' * 41}'\nx = 10.0"),
+                       ["poses[1].label", "PPPP", "at most 40 characters"]),
+    "label with a control character": (POSES.replace("x = 10.0", 'label = "P\\f2"\nx = 10.0'),
+                                       ["poses[1].label", "without control characters"]),
+    "title not text": ("title = 5\n" + POSES, ["title = 5", "text of at most 200 characters"]),
 }
 
 

@@ -105,6 +105,10 @@ def is_sequence(value) -> bool:
     return isinstance(value, (list, tuple)) or (isinstance(value, np.ndarray) and value.ndim >= 1)
 
 
+#: Longest title and label read: a title heads the figures and reports, a label marks a point in a figure.
+LONGEST_TITLE, LONGEST_LABEL = 200, 40
+
+
 class FieldReader:
     """Field checks that all report through one message format."""
 
@@ -124,6 +128,16 @@ class FieldReader:
             if key not in allowed:
                 name = f"{where}.{key}" if where else key
                 self.fail(name, table[key], f"no such field here (known: {', '.join(sorted(allowed))})")
+
+    def text(self, table: dict, key: str, where: str, longest: int, default: str = "") -> str:
+        """A line of text (a title, a label): a string of at most ``longest`` characters without control
+        characters (figures draw it, reports print it)."""
+        value = table.get(key, default)
+        if not isinstance(value, str) or len(value) > longest or any(ord(c) < 32 or ord(c) == 127 for c in value):
+            field = f"{where}.{key}" if where else key
+            self.fail(field, value if not isinstance(value, str) or len(value) <= 60 else value[:60] + "...",
+                      f"text of at most {longest} characters on one line, without control characters")
+        return value
 
     def tables(self, data: dict, key: str, expected: str) -> list[dict]:
         """The array of tables ``data[key]`` (a list or tuple of dicts)."""

@@ -30,7 +30,7 @@ import numpy as np
 
 from transplanter.geometry.dyad import Link
 from transplanter.errors import TransplanterWarning
-from transplanter.toml_fields import ClassFields, FieldReader, is_sequence, read_toml
+from transplanter.toml_fields import LONGEST_LABEL, LONGEST_TITLE, ClassFields, FieldReader, is_sequence, read_toml
 
 _TOP_KEYS = {"title", "description", "poses", "relative", "three_poses", "search"}
 _POSE_KEYS = {"x", "y", "angle_deg", "label"}
@@ -132,7 +132,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> DyadProblem:
         where = f"poses[{k}]"
         read.keys(pose, _POSE_KEYS, where)
         rows.append([read.number(pose, "x", where), read.number(pose, "y", where), read.number(pose, "angle_deg", where)])
-        labels.append(str(pose.get("label", f"P{k + 1}")))
+        labels.append(read.text(pose, "label", where, LONGEST_LABEL, f"P{k + 1}"))
     degrees = np.array(rows)
     if np.any(np.abs(degrees[:, 2]) > 360):
         read.fail("poses[].angle_deg", degrees[:, 2], "directions within one turn of zero (|angle_deg| <= 360)")
@@ -177,7 +177,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> DyadProblem:
 
     return DyadProblem(poses=poses, link=link, circle_points=circles, center_points=centers,
                        samples=samples, radius_mm=radius, source=source,
-                       title=str(data.get("title", "")), labels=tuple(labels))
+                       title=read.text(data, "title", "", LONGEST_TITLE), labels=tuple(labels))
 
 
 def check_distinct(read: FieldReader, degrees: np.ndarray, field: str):

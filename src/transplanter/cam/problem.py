@@ -36,7 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
-from transplanter.toml_fields import ClassFields, FieldReader, read_toml
+from transplanter.toml_fields import LONGEST_TITLE, ClassFields, FieldReader, read_toml
 
 LAWS = ("harmonic", "cycloidal", "polynomial_345", "modified_trapezoid")
 SEGMENT_KINDS = ("rise", "dwell", "return")
@@ -294,7 +294,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> CamProblem:
         bore_radius=_positive(read, cam, "bore_radius", "cam") if "bore_radius" in cam else None,
         max_base_radius=max_base,
         source=source,
-        title=str(data.get("title", "")),
+        title=read.text(data, "title", "", LONGEST_TITLE),
     )
     if base is not None:
         check_base_radius(problem, base, read.fail)

@@ -45,7 +45,7 @@ import numpy as np
 
 from transplanter.burmester.problem import check_distinct
 from transplanter.fivebar.support_problem import SupportSpec, parse_support
-from transplanter.toml_fields import ClassFields, FieldReader, read_toml
+from transplanter.toml_fields import LONGEST_LABEL, LONGEST_TITLE, ClassFields, FieldReader, read_toml
 from transplanter.trains.toothed_train import (CUTTERS, LAYOUTS, MODULE_RANGE, PRESSURE_ANGLE_RANGE_DEG,
                                                SHAPER_TEETH_RANGE, Gearing)
 
@@ -169,7 +169,7 @@ def _table_rows(read: FieldReader, data: dict, key: str, fields: tuple[str, ...]
         where = f"{key}[{k}]"
         read.keys(row, set(fields) | {"label"}, where)
         values.append([read.number(row, name, where) for name in fields])
-        labels.append(str(row.get("label", "")))
+        labels.append(read.text(row, "label", where, LONGEST_LABEL))
     return np.array(values, float).reshape(-1, len(fields)), labels
 
 
@@ -308,4 +308,4 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
                           return_tolerance_mm=tolerance,
                           return_labels=tuple(return_labels), ranges=ranges, min_closure_margin=margin,
                           ratio_bounds=ratio, spline_count=count, samples=samples, radius_mm=radius,
-                          gearing=gearing, support=support, source=source, title=str(data.get("title", "")))
+                          gearing=gearing, support=support, source=source, title=read.text(data, "title", "", LONGEST_TITLE))

@@ -41,7 +41,7 @@ from transplanter.gears.pitch_curves import (PitchCurve, denatured_ellipse, dena
                                        limacon, ratio_formula, ratio_samples, spline)
 from transplanter.gears.ratio_expression import ExpressionError, parse_ratio
 from transplanter.errors import ProblemError
-from transplanter.toml_fields import ClassFields, FieldReader, is_finite_number, read_toml, shown
+from transplanter.toml_fields import LONGEST_TITLE, ClassFields, FieldReader, is_finite_number, read_toml, shown
 
 FAMILIES = ("ellipse", "higher_order_ellipse", "denatured_ellipse", "limacon", "denatured_limacon", "spline", "ratio",
             "composite")
@@ -381,7 +381,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> GearProblem:
         center_distance=center, module=module, teeth=teeth, pressure_angle=float(np.radians(pressure)),
         driver_speed=rpm * 2 * np.pi / 60, cutter=cutter,
         shaper_teeth=read.integer(pair, "shaper_teeth", "pair", 8, 200, default=16),
-        source=source, title=str(data.get("title", "")), ratio=driver if is_ratio else None,
+        source=source, title=read.text(data, "title", "", LONGEST_TITLE), ratio=driver if is_ratio else None,
         correct_ratio=correct, parameters={k: shown(v) for k, v in data["driver"].items()
                                            if k not in ("family", "phi_deg", "radius", "ratio", "expression")},
         corner_pressure_angle=None if corner is None else float(np.radians(corner)))

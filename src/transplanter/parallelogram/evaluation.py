@@ -20,7 +20,7 @@ from transplanter.parallelogram.kinematics import mechanisms
 from transplanter.parallelogram.problem import (PRINTED_EQ17, PUBLISHED_FIELDS, Conventions, ParallelogramProblem,
                                                 read_design, read_printed, read_published)
 from transplanter.parallelogram.trajectory import measure
-from transplanter.toml_fields import FieldReader, read_toml
+from transplanter.toml_fields import LONGEST_TITLE, FieldReader, read_toml
 
 #: Samples per turn of the independent evaluation (finer than the search's grid).
 EVALUATION_SAMPLES = 8192
@@ -45,7 +45,7 @@ def parse_design(data: dict, source: str = "<dict>") -> DesignFile:
         read.fail("design", None, "a [design] table with the eight variables")
     design = read_design(read, data["design"])
     return DesignFile(design, read_printed(read, data.get("printed", {}), design),
-                      read_published(read, data.get("published", {})), source, str(data.get("title", "")))
+                      read_published(read, data.get("published", {})), source, read.text(data, "title", "", LONGEST_TITLE))
 
 
 def load_design(path: str | Path) -> DesignFile:

@@ -49,7 +49,7 @@ from pathlib import Path
 import numpy as np
 
 from transplanter.errors import ProblemError
-from transplanter.toml_fields import FieldReader, is_finite_number, is_sequence, read_toml
+from transplanter.toml_fields import LONGEST_TITLE, FieldReader, is_finite_number, is_sequence, read_toml
 
 #: The eight design variables of seed 001 in file order (mm; alpha in degrees in files, radians inside).
 VARIABLES = ("m11", "b", "l", "l1", "l2", "l5", "l6", "alpha")
@@ -319,5 +319,5 @@ def parse_problem(data: dict, source: str = "<dict>") -> ParallelogramProblem:
         bounds=_bounds(read, search.get("bounds", {}), design),
         population=population, generations=generations,
         seed=read.integer(search, "seed", "search", 0, 2**31 - 1, default=1),
-        source=source, title=str(data.get("title", "")),
+        source=source, title=read.text(data, "title", "", LONGEST_TITLE),
         printed=read_printed(read, data.get("printed", {}), design), published=read_published(read, data.get("published", {})))

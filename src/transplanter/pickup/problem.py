@@ -29,7 +29,7 @@ import numpy as np
 
 from transplanter.gears.pitch_curves import PitchCurve
 from transplanter.gears.problem import FAMILIES, read_driver
-from transplanter.toml_fields import ANGLE_LIMIT_DEG, FieldReader, is_finite_number, read_toml
+from transplanter.toml_fields import ANGLE_LIMIT_DEG, LONGEST_TITLE, FieldReader, is_finite_number, read_toml
 
 _STAGE_FAMILIES = tuple(f for f in FAMILIES if f != "ratio")
 _CARRIER_KEYS = {"first_length", "second_length", "bend_deg", "start_deg", "speed_rpm"}
@@ -115,4 +115,4 @@ def parse_problem(data: dict, source: str = "<dict>") -> PickupProblem:
         arm_length=_length(read, arm, "length", "arm"), mounting=_angle(read, arm, "mounting_deg", "arm", 0.0),
         speed=_speed(read, carrier, "speed_rpm", "carrier") * 2 * np.pi / 60,
         picking=_where(read, angles, "picking", "farthest"), pushing=_where(read, angles, "pushing", "lowest"),
-        source=source, title=str(data.get("title", "")))
+        source=source, title=read.text(data, "title", "", LONGEST_TITLE))

@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from transplanter.toml_fields import SMALLEST_LENGTH, ClassFields, FieldReader, read_toml
+from transplanter.toml_fields import LONGEST_TITLE, SMALLEST_LENGTH, ClassFields, FieldReader, read_toml
 
 TOPOLOGIES = {"sun-intermediate-planet": ("sqrt", "peak_to_valley"),
               "pick-up": ("sqrt", "peak_to_valley"),
@@ -211,4 +211,4 @@ def parse_problem(data: dict, source: str = "<dict>") -> ReverseProblem:
     topology, split, coefficient, centers, module = _train(read, data.get("train", {}))
     return ReverseProblem(points=points - pivot, kind=kind, pivot=pivot, lengths=lengths, direction=direction,
                           branch=branch, topology=topology, split=split, peak_to_valley=coefficient,
-                          center_distances=centers, module=module, source=source, title=str(data.get("title", "")))
+                          center_distances=centers, module=module, source=source, title=read.text(data, "title", "", LONGEST_TITLE))
