@@ -193,6 +193,9 @@ def test_a_refined_design_that_breaks_a_condition_fails_with_the_reason(run):
         def make_convex(self, candidate, design):
             return design
 
+        def restroke(self, candidate, design, point, turn):
+            raise SolverError("no", "Maximum_Iterations_Exceeded")
+
     found, failed, seconds = refine_all(problem, Solver(), result.region.feasible[:3])
     assert [a.starts for a in found] == [(0, 2)] and len(seconds) == 3
     assert failed == [Failure(1, "the design NLP did not converge: Maximum_Iterations_Exceeded")]

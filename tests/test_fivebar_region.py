@@ -99,10 +99,10 @@ def test_return_stroke_by_dynamic_programming_equals_the_exhaustive_search(probl
 
 def test_default_sampling_starts_from_the_dyad_pair_of_2000_samples(problem, example_result):
     """The default [region] samples offer the NLP a start from the same dyad pair as 2000 samples, the
-    example's own setting: the sampled hinges B and A within 1 mm. The designs are not compared: the
-    max-min NLP has several local optima and which one a start reaches depends on IPOPT's path (on one
-    machine the default's starts reach an angle EBF of 6.74 deg where 2000 samples give 6.36; on
-    another both reach 6.74)."""
+    example's own setting: the sampled hinges B and A within 1 mm. The designs are not compared here: the
+    max-min NLP has several local optima and which one a start reaches depends on IPOPT's path (before the
+    return points' other passes were tried, one machine's default starts reached an angle EBF of 6.74 deg
+    where 2000 samples gave 6.36)."""
     data = read_toml(EXAMPLE)
     del data["region"]["samples"]
     default = parse_problem(data, "default.toml")

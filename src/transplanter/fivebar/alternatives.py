@@ -24,7 +24,8 @@ from transplanter.fivebar.candidate import (GRID, Candidate, closure_defect, mon
                                             range_values, ratio_defect)
 from transplanter.fivebar.lanes import refine_in_lanes
 from transplanter.fivebar.linkage import FiveBar
-from transplanter.fivebar.nlp import CURVES, DesignSolution, DesignSolver, HollowError, concavity_text, reach
+from transplanter.fivebar.nlp import (CURVES, DesignSolution, DesignSolver, HollowError, concavity_text, other_passes,
+                                      reach)
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.relative_angle import ratio_range
 from transplanter.trains.toothed_train import TrainSize, train_size
@@ -95,6 +96,9 @@ class Alternative:
     gears : TrainSize or str or None
         Whole-tooth sizes of its train (``trains.toothed_train.train_size``), or why there are none;
         None until ``with_gear_sizes``.
+    restroke : str
+        How the design was reached from its starts' own optimum when a return point was moved to another
+        pass of P (``_other_strokes``); empty when it was not.
     """
 
     design: DesignSolution
@@ -108,6 +112,7 @@ class Alternative:
     min_closure_margin: float
     active_bounds: tuple[ActiveBound, ...]
     gears: TrainSize | str | None = None
+    restroke: str = ""
 
     @property
     def largest_miss_mm(self) -> float:
@@ -296,8 +301,31 @@ def refine_all(problem: FiveBarProblem, solver: DesignSolver, candidates: list[C
     found = [outcome for outcome in outcomes if not isinstance(outcome, Failure)]
     failed = [outcome for outcome in outcomes if isinstance(outcome, Failure)]
     size = reach(problem)
-    merged = [_convex_if_possible(problem, solver, candidates, alternative) for alternative in merge(found, size)]
+    merged = merge([_other_strokes(problem, solver, candidates, alternative) for alternative in merge(found, size)], size)
+    merged = [_convex_if_possible(problem, solver, candidates, alternative) for alternative in merged]
     return rank(merge(merged, size), size), failed, seconds
+
+
+def _other_strokes(problem: FiveBarProblem, solver: DesignSolver, candidates: list[Candidate],
+                   alternative: Alternative) -> Alternative:
+    """The alternative, or the best design the solver reaches from it with a return point moved to another
+    pass of P by it (``DesignSolver.restroke``) when that ranks above it (a larger smallest angle EBF,
+    beyond ``ANGLE_TIE``) and passes its checks. Which pass the NLP holds a return point on is fixed by its
+    start, and the max-min can have its better optimum on the other pass (on the bundled example P8 at
+    carrier turn 219 deg instead of 304 deg: 6.74 deg instead of 6.36)."""
+    first, best = alternative.starts[0], alternative
+    for point, turn in other_passes(problem, alternative.design):
+        try:
+            judged = assess(problem, solver.restroke(candidates[first], alternative.design, point, turn), first)
+        except SolverError:
+            continue
+        if not isinstance(judged, Failure) and judged.transmission_angle > best.transmission_angle * (1 + ANGLE_TIE):
+            moved = (f"{problem.return_labels[point]} moved from its pass at carrier turn "
+                     f"{np.degrees(alternative.design.stroke.carrier_turns[point]):.1f} deg to the one at "
+                     f"{np.degrees(turn):.1f} deg (smallest EBF {np.degrees(alternative.transmission_angle):.3f} -> "
+                     f"{np.degrees(judged.transmission_angle):.3f} deg)")
+            best = replace(judged, starts=alternative.starts, restroke=moved)
+    return best
 
 
 def _convex_if_possible(problem: FiveBarProblem, solver: DesignSolver, candidates: list[Candidate],
@@ -313,7 +341,7 @@ def _convex_if_possible(problem: FiveBarProblem, solver: DesignSolver, candidate
         return replace(alternative, design=replace(alternative.design, convexity_note=(
             f"the convex design IPOPT reached fails its checks ({judged.reason}); "
             f"{concavity_text(alternative.design)}")))
-    return replace(judged, starts=alternative.starts)
+    return replace(judged, starts=alternative.starts, restroke=alternative.restroke)
 
 
 def with_gear_sizes(problem: FiveBarProblem, alternative: Alternative) -> Alternative:

@@ -117,6 +117,8 @@ CONVEX_ATTEMPT_ITERATIONS = 25
 #: example take 17-63 iterations in all; its one start that fails crawls for 850 iterations with rows
 #: off by several percent (steps cut 8-9 times by the line search), about 10 s of the job.
 STALL_VIOLATION, STALL_ITERATIONS = 1e-3, 100
+#: Carrier turns on which ``other_passes`` looks for the passes of P by the return points (0.1 deg apart).
+PASS_POINTS = 3600
 CURVES = ("sun", "first intermediate", "second intermediate", "planet")
 #: The rows each exchange slot holds, in order (``DesignNLP.slot_rows``).
 SLOT_ROWS = ("angle EBF", "angle BEF", "ratio", *(f"curvature {curve}" for curve in CURVES))
@@ -496,6 +498,19 @@ class DesignSolver:
             failure = f"IPOPT found no convex design within {CONVEX_ATTEMPT_ITERATIONS} iterations ({error.status})"
         return dataclasses.replace(design, convexity_note=f"{failure}; {concavity_text(design)}")
 
+    def restroke(self, start: Candidate, design: DesignSolution, point: int, turn: float) -> DesignSolution:
+        """``refine`` from ``design`` with return point ``point`` passed at carrier turn ``turn`` (rad, another
+        pass of P by it: ``other_passes``) instead of its own: the NLP keeps each return point on the pass it
+        starts on, so a design whose P passes a return point twice has a second stroke to try."""
+        turns = design.stroke.carrier_turns.copy()
+        turns[point] = turn
+        rho = design.relative_angle.evaluate(turns)
+        state = design.mech.forward(turns, rho)
+        directions, reached = design.stroke.directions.copy(), design.reached_return_points.copy()
+        directions[point], reached[point] = state["direction"][point], state["p"][point]
+        warm = dataclasses.replace(design, stroke=ReturnStroke(turns, rho, directions), reached_return_points=reached)
+        return self._exchange(start, -CONCAVITY_LIMIT, warm=warm)
+
     def _exchange(self, start: Candidate, curvature_floor: float | None, warm: DesignSolution | None = None,
                   iteration_limit: int | None = None) -> DesignSolution:
         """``solve`` with the carrier turns where the fine check finds the quality below t, or rho' or a
@@ -529,6 +544,25 @@ class HollowError(SolverError):
     def __init__(self, reason: str, status: str):
         super().__init__(reason, status)
         self.reason = reason
+
+
+def other_passes(problem: FiveBarProblem, design: DesignSolution) -> list[tuple[int, float]]:
+    """(return point index, carrier turn in rad) of every other pass of P by a return point that the
+    stroke's order allows: each local minimum of |P(c) - P_j| over ``PASS_POINTS`` carrier turns between
+    the neighbours' turns (``MIN_STEP`` clear of them; the last key pose and a full turn at the ends),
+    except the one nearest the design's own turn c_j."""
+    turns = np.linspace(0, TWO_PI, PASS_POINTS, endpoint=False)
+    p = design.mech.forward(turns, design.relative_angle.evaluate(turns))["p"]
+    own, found = design.stroke.carrier_turns, []
+    bounds = np.r_[problem.carrier_turns[-1], own, TWO_PI]
+    for j, point in enumerate(problem.return_points):
+        distance = np.linalg.norm(p - point, axis=1)
+        minima = np.flatnonzero((distance <= np.roll(distance, 1)) & (distance < np.roll(distance, -1)))
+        minima = minima[(turns[minima] > bounds[j] + MIN_STEP) & (turns[minima] < bounds[j + 2] - MIN_STEP)]
+        if minima.size:
+            nearest = minima[np.argmin(np.abs(turns[minima] - own[j]))]
+            found += [(j, float(turns[k])) for k in minima if k != nearest]
+    return found
 
 
 def _knot_left_sides(count: int) -> np.ndarray:

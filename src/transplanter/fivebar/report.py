@@ -91,7 +91,8 @@ def _alternatives(report: dict) -> list[str]:
             f"{alternative['ratio_range'][1]:.3f} | {max(alternative['return_point_errors_mm']):.3g} | "
             f"{_gear_sizes(alternative['gears'])} | "
             f"{', '.join(_bound(b) for b in alternative['active_bounds']) or 'none'} | "
-            f"{', '.join(map(str, alternative['start_candidates']))} |")
+            f"{', '.join(map(str, alternative['start_candidates']))}"
+            + (f"; then {alternative['restroke']}" if alternative["restroke"] else "") + " |")
     lines += ["", "Lengths in mm; turns are the carrier's, clockwise from pose 1 (deg)."]
     if report["failed"]:
         lines += ["", "Candidates whose refinement failed:", ""]

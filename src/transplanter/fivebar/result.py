@@ -58,7 +58,7 @@ def alternative_json(alternative: Alternative, rank: int, pose1: np.ndarray) -> 
             "min_closure_margin": alternative.min_closure_margin, "ratio_range": list(alternative.ratio_range),
             "return_point_errors_mm": alternative.return_misses_mm.tolist(),
             "active_bounds": bounds_json(alternative.active_bounds),
-            "start_candidates": [k + 1 for k in alternative.starts],
+            "start_candidates": [k + 1 for k in alternative.starts], "restroke": alternative.restroke or None,
             "gears": (alternative.gears.to_json() if isinstance(alternative.gears, TrainSize)
                       else {"none": alternative.gears}),
             "nlp": {"status": design.status, "iterations": design.iterations, "objective": design.objective}}
