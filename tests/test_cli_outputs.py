@@ -82,6 +82,30 @@ def test_sigterm_ends_a_run_as_ctrl_c_does(tmp_path, monkeypatch, capsys):
     assert list(tmp_path.iterdir()) == [] and signal.getsignal(signal.SIGTERM) is before
 
 
+@pytest.mark.parametrize("signal_name", ["SIGTERM", "SIGINT"])
+def test_an_interrupt_a_solver_swallows_still_ends_the_run(tmp_path, monkeypatch, capsys, signal_name):
+    """IPOPT's callbacks catch the KeyboardInterrupt a signal raises inside a solve, report it as a warning of
+    their own and return a failed solve, and the work goes on: the run still exits 130, writes nothing, and the
+    only stderr line is its own (it exited 0 and replaced --out, with CasADi's warning on stderr). Both
+    handlers are given back."""
+    import signal
+    number = getattr(signal, signal_name)
+    original = burmester.synthesize
+
+    def solve_swallowing_the_interrupt(problem):
+        try:
+            os.kill(os.getpid(), number)
+        except KeyboardInterrupt:
+            sys.stderr.write('CasADi - WARNING("KeyboardInterruptException")\n')
+        return original(problem)
+    monkeypatch.setattr(burmester, "synthesize", solve_swallowing_the_interrupt)
+    before = {n: signal.getsignal(n) for n in (signal.SIGINT, signal.SIGTERM)}
+    assert main(["burmester", PROBLEM, "--out", str(tmp_path / "out"), "--quiet"]) == 130
+    assert capsys.readouterr().err == f"transplanter: interrupted; {tmp_path / 'out'} is left as it was\n"
+    assert list(tmp_path.iterdir()) == []
+    assert {n: signal.getsignal(n) for n in before} == before
+
+
 def test_an_out_that_cannot_be_replaced_names_it_and_leaves_nothing_beside_it(tmp_path, monkeypatch, capsys):
     """The finished folder cannot be moved into place (an immutable folder, as chattr +i makes, refused even to
     root): one line naming --out, and the hidden partial copy removed (it was left beside the target)."""

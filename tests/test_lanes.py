@@ -80,3 +80,22 @@ def test_a_system_that_refuses_the_process_runs_the_lanes_here(monkeypatch):
     solver, built, reported = run(5, True, monkeypatch)
     assert len(built) == 1 and {outcome[2] for _, outcome, *_ in reported} == {os.getpid()}
     assert {index: earlier for index, (_, earlier, _), *_ in reported} == {0: (), 2: (0,), 4: (0, 2), 1: (), 3: (1,)}
+
+
+def test_an_interrupt_in_the_caller_stops_the_forked_lane_at_once():
+    """Ctrl-C reaching the caller between candidates: the forked lane's process is ended, not waited for (its
+    candidates take 2 s each here, the interrupt comes after the first of the caller's own)."""
+    import time
+
+    def slow(solver, index):
+        if index % 2:
+            time.sleep(2.0)
+        return index
+
+    def finished(index, outcome, seconds):
+        raise KeyboardInterrupt
+
+    start = time.perf_counter()
+    with pytest.raises(KeyboardInterrupt):
+        refine_in_lanes(8, slow, Solver(), Solver, finished)
+    assert time.perf_counter() - start < 1.0

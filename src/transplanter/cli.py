@@ -12,6 +12,8 @@ before the work), 130 for Ctrl-C; report.json is always valid JSON (``output_fol
 from __future__ import annotations
 
 import argparse
+import contextlib
+import io
 import signal
 import sys
 import threading
@@ -128,7 +130,7 @@ def _fivebar(args) -> int:
         return _publish(args, report, evaluation_markdown(report, problem.labels),
                         evaluation_markdown(report, problem.labels), _failures(evaluation.candidate, evaluation.support))
     with progress.step("synthesis"):
-        result = fivebar.synthesize(problem, pick=args.pick, progress=progress.report)
+        result = fivebar.synthesize(problem, pick=args.pick, progress=_report)
     report = result.to_json()
     figures = []
     if args.folder:
@@ -199,7 +201,7 @@ def _parallelogram(args) -> int:
         return _publish(args, report, evaluation_markdown(report, figures), evaluation_markdown(report),
                         _failures(result))
     with progress.step("search"):
-        result = parallelogram.synthesize(problem, pick=args.pick, progress=progress.report)
+        result = parallelogram.synthesize(problem, pick=args.pick, progress=_report)
     report = result.to_json()
     figures = []
     if args.folder:
@@ -324,13 +326,17 @@ def main(argv: list[str] | None = None) -> int:
 
 def _run(args) -> int:
     out = getattr(args, "out", None)
-    terminate = signal.signal(signal.SIGTERM, _interrupt) if threading.current_thread() is threading.main_thread() \
-        else None
+    _STOP.clear()
+    handlers = {number: signal.signal(number, _interrupt) for number in (signal.SIGINT, signal.SIGTERM)} \
+        if threading.current_thread() is threading.main_thread() else {}
     try:
         quiet = getattr(args, "json", False) or getattr(args, "quiet", False)
-        with progress.showing(sys.stderr, enabled=sys.stderr.isatty() and not quiet):
+        with _stderr_until_interrupted(), progress.showing(sys.stderr, enabled=sys.stderr.isatty() and not quiet):
             with staged(out) as args.folder:
-                return args.run(args)
+                code = args.run(args)
+                if _STOP.is_set():          # a solver that caught the interrupt and went on
+                    raise KeyboardInterrupt
+                return code
     except TransplanterError as error:
         _say(f"transplanter: error: {error}", args.warned)
         return 2
@@ -342,13 +348,55 @@ def _run(args) -> int:
         _say("transplanter: interrupted" + (f"; {out} is left as it was" if out else ""), args.warned)
         return 130
     finally:
-        if terminate is not None:
-            signal.signal(signal.SIGTERM, terminate)
+        for number, handler in handlers.items():
+            signal.signal(number, handler)
+
+
+#: Set by Ctrl-C or SIGTERM during a run. IPOPT's callbacks turn the KeyboardInterrupt raised inside a solve into a
+#: failed solve, and the refinements would go on: the run checks this after each candidate and before publishing.
+_STOP = threading.Event()
 
 
 def _interrupt(signum, frame):
-    """SIGTERM (a timeout, a job scheduler) ends the run as Ctrl-C does: the output folder's partial copy is removed."""
+    """Ctrl-C or SIGTERM (a timeout, a job scheduler) ends the run: the output folder's partial copy is removed."""
+    _STOP.set()
     raise KeyboardInterrupt
+
+
+class _UntilInterrupted(io.TextIOBase):
+    """stderr that passes everything until the run is interrupted, and nothing after: CasADi reports the
+    KeyboardInterrupt it catches inside IPOPT as a warning of its own, through Python's stderr."""
+
+    def __init__(self, stream):
+        self.stream = stream
+
+    def write(self, text: str) -> int:
+        if not _STOP.is_set():
+            self.stream.write(text)
+        return len(text)
+
+    def flush(self):
+        self.stream.flush()
+
+    def isatty(self) -> bool:
+        return self.stream.isatty()
+
+
+@contextlib.contextmanager
+def _stderr_until_interrupted():
+    """``sys.stderr`` is a ``_UntilInterrupted`` inside the block, the real one again for the run's last line."""
+    real, sys.stderr = sys.stderr, _UntilInterrupted(sys.stderr)
+    try:
+        yield
+    finally:
+        sys.stderr = real
+
+
+def _report(step: str, done: int, total: int) -> None:
+    """``progress.report``, where a run stops after an interrupt that a solver swallowed."""
+    if _STOP.is_set():
+        raise KeyboardInterrupt
+    progress.report(step, done, total)
 
 
 if __name__ == "__main__":
