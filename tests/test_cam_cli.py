@@ -113,6 +113,8 @@ CASES = {
     "limit of 90": (TRANSLATING + "[limits]\npressure_angle_deg = 95.0\n", ["limits.pressure_angle_deg", "95.0", "below 90"]),
     "swing past the farthest point": (EXAMPLE.read_text().replace("swing_deg = 36.0", "swing_deg = 150.0"),
                                       ["segments.swing_deg", "largest swing of 150", "less than 149.1", "128 mm"]),
+    "negative profile margin": (TRANSLATING + "[limits]\nprofile_radius_mm = -1.0\n",
+                                ["limits.profile_radius_mm", "-1.0", "a radius of 0"]),
     "bore beyond the base circle": (TRANSLATING.replace("base_radius = 30.0", "base_radius = 30.0\nbore_radius = 100.0"),
                                     ["cam.bore_radius", "100.0", "less than cam.base_radius = 30 mm"]),
     "pressure limit on a flat face": ((ROOT / "examples/cam_flat_faced.toml").read_text()
@@ -194,3 +196,15 @@ def test_design_mode_fails_a_bore_the_smallest_cam_cannot_hold(tmp_path, run):
                                   f"{report['nearest_profile_mm']['distance']:.4f} mm of the centre at cam angle "
                                   f"{report['nearest_profile_mm']['at_deg']:.2f} deg"]
     assert len(stderr.strip().splitlines()) == 1 and "cam.bore_radius" in stderr
+
+
+def test_a_profile_margin_of_zero_is_the_default_written_out(run, tmp_path):
+    """docs/cam.md's schema writes profile_radius_mm = 0.0, the default: the same cam as without the line."""
+    path = tmp_path / "zero.toml"
+    path.write_text(TRANSLATING + "[limits]\nprofile_radius_mm = 0.0\n")
+    plain = tmp_path / "plain.toml"
+    plain.write_text(TRANSLATING)
+    (code, out, _), (code_plain, out_plain, _) = run(path, "--json"), run(plain, "--json")
+    assert code == code_plain == 0
+    drop = lambda report: {k: v for k, v in report.items() if k not in ("source", "timings_s")}  # noqa: E731
+    assert drop(_strict_json(out)) == drop(_strict_json(out_plain))

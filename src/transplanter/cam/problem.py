@@ -170,6 +170,14 @@ def _positive(read: FieldReader, table: dict, key: str, where: str, default: flo
     return value
 
 
+def _margin(read: FieldReader, limits: dict) -> float:
+    """limits.profile_radius_mm: 0 (the default) or more."""
+    value = read.number(limits, "profile_radius_mm", "limits") if "profile_radius_mm" in limits else 0.0
+    if value < 0:
+        read.fail("limits.profile_radius_mm", value, "a radius of 0 (no cusp: the default) or more (mm)")
+    return value
+
+
 def _choice(read: FieldReader, table: dict, key: str, where: str, choices, default=None) -> str:
     value = table.get(key, default)
     if value not in choices:
@@ -289,7 +297,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> CamProblem:
         follower=follower,
         segments=segments,
         pressure_limit=np.radians(limit),
-        profile_radius_limit=_positive(read, limits, "profile_radius_mm", "limits") if "profile_radius_mm" in limits else 0.0,
+        profile_radius_limit=_margin(read, limits),
         samples=read.integer(cam, "samples", "cam", 360, 100_000, default=3600),   # 36000: 4.6 s; 1e6 ran over 5 min
         bore_radius=_positive(read, cam, "bore_radius", "cam") if "bore_radius" in cam else None,
         max_base_radius=max_base,
