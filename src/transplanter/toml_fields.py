@@ -11,11 +11,12 @@ import math
 import numbers
 import os
 import tomllib
+import warnings
 from pathlib import Path
 
 import numpy as np
 
-from transplanter.errors import ProblemError
+from transplanter.errors import ProblemError, TransplanterWarning
 
 #: Largest magnitude a number of a problem may have: lengths and coordinates in mm (a kilometre
 #: of mechanism and more), counts, ratios and speeds. Beyond it squares and sums of squares of
@@ -39,6 +40,13 @@ def _within(value, field: str) -> bool:
 def _finite_expected(field: str) -> str:
     unit = "deg" if "_deg" in field else "mm for a length"
     return f"a finite number within ±{_limit(field):.0e} ({unit}; beyond it the numerics lose the digits they need)"
+
+
+def warn_if_radians(source: str, field: str, angles_deg: np.ndarray):
+    """A TransplanterWarning when degree fields ``angles_deg`` that differ all lie within ±2 pi: radians, likely."""
+    if np.abs(angles_deg).max() <= 2 * np.pi and np.ptp(angles_deg) > 0:
+        warnings.warn(f"{source}: {field} are all within ±{2 * np.pi:.2f}: these look like radians, but the field "
+                      "is in degrees", TransplanterWarning, stacklevel=3)
 
 
 def require_problem(problem, kind: type, module: str):
@@ -97,7 +105,11 @@ def is_number(value) -> bool:
 
 
 def is_finite_number(value) -> bool:
-    return is_number(value) and math.isfinite(value)
+    """A real number within the floats' range (10**400, an integer TOML and Python allow, is not)."""
+    try:
+        return is_number(value) and math.isfinite(value)
+    except OverflowError:
+        return False
 
 
 def is_sequence(value) -> bool:
@@ -233,8 +245,39 @@ class ClassFields:
             self.fail(field, getattr(self.problem, field), "angles within one turn of zero (|angle| <= 2 pi rad)")
 
     def positive(self, field: str, optional: bool = False):
+        """A positive number up to ``MAGNITUDE_LIMIT``, stored back as a float."""
         value = getattr(self.problem, field)
         if optional and value is None:
             return
         if not is_finite_number(value) or not 0 < value <= MAGNITUDE_LIMIT:
             self.fail(field, value, f"a positive number up to {MAGNITUDE_LIMIT:.0e}" + (" or None" if optional else ""))
+        object.__setattr__(self.problem, field, float(value))
+
+    def number(self, field: str, low: float, high: float, expected: str):
+        """A number in [low, high] (``expected`` says so in words), stored back as a float."""
+        value = getattr(self.problem, field)
+        if not is_finite_number(value) or not low <= value <= high:
+            self.fail(field, value, expected)
+        object.__setattr__(self.problem, field, float(value))
+
+    def whole(self, field: str, low: int, high: int, optional: bool = False):
+        """A whole number from ``low`` to ``high`` (not a bool), stored back as an int."""
+        value = getattr(self.problem, field)
+        if optional and value is None:
+            return
+        if not is_number(value) or not isinstance(value, numbers.Integral) or not low <= value <= high:
+            self.fail(field, value, f"a whole number from {low} to {high}" + (" or None" if optional else ""))
+        object.__setattr__(self.problem, field, int(value))
+
+    def choice(self, field: str, options):
+        value = getattr(self.problem, field)
+        if not isinstance(value, (str, int, float)) or isinstance(value, bool) or value not in options:
+            self.fail(field, value, "one of " + ", ".join(repr(option) for option in options))
+
+    def text(self, *fields: str):
+        """Text fields (a source may be a Path), stored back as str."""
+        for field in fields:
+            value = getattr(self.problem, field)
+            if not isinstance(value, (str, os.PathLike)):
+                self.fail(field, value, "text")
+            object.__setattr__(self.problem, field, str(value))

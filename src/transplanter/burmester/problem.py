@@ -22,15 +22,14 @@ Every error names the file, the field, the value and what was expected.
 """
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from transplanter.geometry.dyad import Link
-from transplanter.errors import TransplanterWarning
-from transplanter.toml_fields import LONGEST_LABEL, LONGEST_TITLE, ClassFields, FieldReader, is_sequence, read_toml
+from transplanter.toml_fields import (LONGEST_LABEL, LONGEST_TITLE, ClassFields, FieldReader, is_sequence, read_toml,
+                                     warn_if_radians)
 
 _TOP_KEYS = {"title", "description", "poses", "relative", "three_poses", "search"}
 _POSE_KEYS = {"x", "y", "angle_deg", "label"}
@@ -85,10 +84,27 @@ class DyadProblem:
         check.array("circle_points", (None, 2))
         check.array("center_points", (None, 2))
         if self.link is not None:
-            phases = np.asarray(self.link.phases, float)
+            if not isinstance(self.link, Link):
+                check.fail("link", self.link, "a geometry.dyad.Link (pivot, phases) or None")
+            pivot, phases = _floats(self.link.pivot), _floats(self.link.phases)
+            if pivot.shape != (2,) or not np.all(np.isfinite(pivot)):
+                check.fail("link.pivot", self.link.pivot, "a point [x, y] of two finite numbers (mm)")
             if phases.shape != (len(poses),) or not np.all(np.isfinite(phases)):
                 check.fail("link.phases", self.link.phases, f"{len(poses)} finite angles (rad), one per pose")
+            check.angles_within_a_turn("link", phases)
         check.positive("radius_mm", optional=True)
+        check.whole("samples", 16, 200_000)
+        if not isinstance(self.labels, tuple) or (self.labels and len(self.labels) != len(poses)):
+            check.fail("labels", self.labels, f"a tuple of {len(poses)} names, one per pose, or ()")
+        check.text("source", "title")
+
+
+def _floats(value) -> np.ndarray:
+    """``value`` as a float array, or [nan] when it is not numbers."""
+    try:
+        return np.asarray(value, float)
+    except (TypeError, ValueError):
+        return np.array([np.nan])
 
 
 def load_problem(path: str | Path) -> DyadProblem:
@@ -137,7 +153,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> DyadProblem:
     if np.any(np.abs(degrees[:, 2]) > 360):
         read.fail("poses[].angle_deg", degrees[:, 2], "directions within one turn of zero (|angle_deg| <= 360)")
     check_distinct(read, degrees, "poses")
-    _warn_radians(source, degrees[:, 2])
+    warn_if_radians(source, "poses[].angle_deg", degrees[:, 2])
     poses = degrees.copy()
     poses[:, 2] = np.radians(degrees[:, 2])
 
@@ -191,9 +207,3 @@ def check_distinct(read: FieldReader, degrees: np.ndarray, field: str):
             if same_place and same_turn:
                 read.fail(f"{field}[{j}]", dict(zip(("x", "y", "angle_deg"), degrees[j, :3].tolist())),
                           f"a pose different from {field}[{i}] (they coincide)")
-
-
-def _warn_radians(source: str, angles_deg: np.ndarray):
-    if np.abs(angles_deg).max() <= 2 * np.pi and np.ptp(angles_deg) > 0:
-        warnings.warn(f"{source}: poses[].angle_deg are all within ±{2 * np.pi:.2f}: "
-                      f"these look like radians, but the field is in degrees", TransplanterWarning, stacklevel=3)

@@ -36,7 +36,8 @@ from pathlib import Path
 
 import numpy as np
 
-from transplanter.toml_fields import LONGEST_TITLE, ClassFields, FieldReader, read_toml
+from transplanter.toml_fields import (LONGEST_TITLE, MAGNITUDE_LIMIT, ClassFields, FieldReader, is_finite_number,
+                                     is_sequence, read_toml)
 
 LAWS = ("harmonic", "cycloidal", "polynomial_345", "modified_trapezoid")
 SEGMENT_KINDS = ("rise", "dwell", "return")
@@ -138,9 +139,13 @@ class CamProblem:
         check.positive("base_radius", optional=True)
         check.positive("max_base_radius", optional=True)
         check.positive("bore_radius", optional=True)
-        check.positive("pressure_limit")
-        if self.direction not in (1, -1):
-            check.fail("direction", self.direction, "+1 (counterclockwise) or -1 (clockwise)")
+        check.number("pressure_limit", 1e-9, np.pi / 2 - 1e-9, "an angle between 0 and pi/2 rad")
+        check.number("profile_radius_limit", 0.0, MAGNITUDE_LIMIT, "a radius of 0 or more (mm)")
+        check.whole("samples", 360, 100_000)
+        check.choice("direction", (1, -1))
+        check.text("source", "title")
+        _check_follower(check, self.follower)
+        _check_segments(check, self.segments, self.follower)
         total = sum(s.angle for s in self.segments)
         if abs(np.degrees(total) - 360.0) > TURN_TOLERANCE_DEG:
             check.fail("segments", f"angles adding up to {np.degrees(total):.6g} deg", "angles adding up to 2 pi")
@@ -148,6 +153,44 @@ class CamProblem:
     @property
     def oscillating(self) -> bool:
         return self.follower.kind == "oscillating"
+
+
+def _check_follower(check: ClassFields, follower):
+    """CamProblem.follower: a Follower of a known kind with positive sizes (mm) and, when it swings, a pivot."""
+    if not isinstance(follower, Follower) or follower.kind not in _FOLLOWER_KEYS:
+        check.fail("follower", follower, f"a Follower of kind {', '.join(map(repr, _FOLLOWER_KEYS))}")
+    sizes = [("roller_radius", follower.roller_radius)] if follower.kind != "flat_faced" else []
+    if follower.kind == "oscillating":
+        sizes.append(("arm_length", follower.arm_length))
+        pivot = np.asarray(follower.pivot, float) if is_sequence(follower.pivot) else None
+        if pivot is None or pivot.shape != (2,) or not np.all(np.isfinite(pivot)):
+            check.fail("follower.pivot", follower.pivot, "a point [x, y] of two finite numbers (mm)")
+        if not isinstance(follower.pulled, (bool, np.bool_)):
+            check.fail("follower.pulled", follower.pulled, "True (pulled) or False (pushed)")
+        object.__setattr__(follower, "pivot", pivot)
+    for name, value in sizes:
+        if not is_finite_number(value) or not 0 < value <= MAGNITUDE_LIMIT:
+            check.fail(f"follower.{name}", value, "a positive length (mm)")
+        object.__setattr__(follower, name, float(value))       # plain floats for the report, as the file gives
+    if not is_finite_number(follower.offset):
+        check.fail("follower.offset", follower.offset, "a finite distance (mm)")
+    object.__setattr__(follower, "offset", float(follower.offset))
+
+
+def _check_segments(check: ClassFields, segments, follower):
+    """CamProblem.segments: Segments of known kinds and laws, positive angles (rad) and, for a swing, lifts
+    (rad) below a half turn."""
+    if not isinstance(segments, tuple) or not segments or not all(isinstance(s, Segment) for s in segments):
+        check.fail("segments", segments, "a tuple of Segment")
+    for k, segment in enumerate(segments):
+        if segment.kind not in SEGMENT_KINDS or (segment.law not in LAWS) != (segment.kind == "dwell"):
+            check.fail(f"segments[{k}]", segment, f"a kind of {SEGMENT_KINDS} with a law of {LAWS} (None on a dwell)")
+        if not is_finite_number(segment.angle) or not 0 < segment.angle <= 2 * np.pi:
+            check.fail(f"segments[{k}].angle", segment.angle, "a positive angle up to 2 pi (rad)")
+        if not is_finite_number(segment.lift) or (follower.kind == "oscillating" and abs(segment.lift) >= np.pi):
+            check.fail(f"segments[{k}].lift", segment.lift, "a finite lift (mm), or for a swing an angle (rad) below pi")
+        object.__setattr__(segment, "angle", float(segment.angle))
+        object.__setattr__(segment, "lift", float(segment.lift))
 
 
 def load_problem(path: str | Path) -> CamProblem:

@@ -24,7 +24,7 @@ from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.result import design_json
 from transplanter.fivebar.support import SupportDesign, design_support
 from transplanter.errors import ProblemError
-from transplanter.toml_fields import FieldReader, read_toml, require_problem, shown
+from transplanter.toml_fields import ClassFields, FieldReader, read_toml, require_problem, shown
 
 _FIELDS = ("carrier_length", "carrier_angle_deg", "rod_length", "rod_angle_deg", "push_plate_length",
            "receiving_plate_length")
@@ -64,6 +64,17 @@ class GivenDesign:
     hinge_b: np.ndarray
     hinge_e: np.ndarray | None
     source: str
+
+    def __post_init__(self):
+        check = ClassFields(self)
+        for name in ("carrier_length", "rod_length", "push_plate_length", "receiving_plate_length"):
+            check.positive(name)
+        for name in ("carrier_angle", "rod_angle"):
+            check.number(name, -2 * np.pi, 2 * np.pi, "an angle within one turn of zero (rad)")
+        check.array("hinge_b", (2,))
+        if self.hinge_e is not None:
+            check.array("hinge_e", (2,))
+        check.text("source")
 
 
 @dataclass(frozen=True)

@@ -45,7 +45,8 @@ import numpy as np
 
 from transplanter.burmester.problem import check_distinct
 from transplanter.fivebar.support_problem import SupportSpec, parse_support
-from transplanter.toml_fields import LONGEST_LABEL, LONGEST_TITLE, ClassFields, FieldReader, read_toml
+from transplanter.toml_fields import (LONGEST_LABEL, LONGEST_TITLE, ClassFields, FieldReader, read_toml,
+                                     warn_if_radians)
 from transplanter.trains.toothed_train import (CUTTERS, LAYOUTS, MODULE_RANGE, PRESSURE_ANGLE_RANGE_DEG,
                                                SHAPER_TEETH_RANGE, Gearing)
 
@@ -261,6 +262,8 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
         read.fail("key_poses[].carrier_turn_deg", turns.tolist(),
                   "0 at the first pose, then strictly increasing and below 360 (clockwise turn since pose 1)")
     check_distinct(read, rows, "key_poses")
+    warn_if_radians(source, "key_poses[].angle_deg", rows[:, 2])
+    warn_if_radians(source, "key_poses[].carrier_turn_deg", rows[:, 3])
     points, return_labels = _table_rows(read, data, "return_points", ("x", "y"))
     if len(points) == 0:
         read.fail("return_points", [], "at least one point of the return stroke (Wang et al. 2025 Table 3 has five)")

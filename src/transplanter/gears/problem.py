@@ -41,7 +41,8 @@ from transplanter.gears.pitch_curves import (PitchCurve, denatured_ellipse, dena
                                        limacon, ratio_formula, ratio_samples, spline)
 from transplanter.gears.ratio_expression import ExpressionError, parse_ratio
 from transplanter.errors import ProblemError
-from transplanter.toml_fields import LONGEST_TITLE, ClassFields, FieldReader, is_finite_number, read_toml, shown
+from transplanter.toml_fields import (LONGEST_TITLE, MAGNITUDE_LIMIT, ClassFields, FieldReader, is_finite_number,
+                                     read_toml, shown)
 
 FAMILIES = ("ellipse", "higher_order_ellipse", "denatured_ellipse", "limacon", "denatured_limacon", "spline", "ratio",
             "composite")
@@ -133,16 +134,22 @@ class GearProblem:
 
     def __post_init__(self):
         check = ClassFields(self)
-        if (self.driver is None) == (self.ratio is None):
-            check.fail("driver", self.driver, "a pitch curve, or None with a ratio")
-        if not np.radians(5) - 1e-12 <= self.pressure_angle <= np.radians(35) + 1e-12:
-            check.fail("pressure_angle", self.pressure_angle, "an angle from 5 to 35 degrees, in radians")
-        if not is_finite_number(self.driver_speed):
-            check.fail("driver_speed", self.driver_speed, "a finite speed (rad/s)")
+        if (self.driver is None) == (self.ratio is None) or not isinstance(self.driver, (PitchCurve, type(None))):
+            check.fail("driver", self.driver, "a pitch curve (gears.pitch_curves.PitchCurve), or None with a ratio")
+        check.number("pressure_angle", np.radians(5) - 1e-12, np.radians(35) + 1e-12,
+                     "an angle from 5 to 35 degrees, in radians")
+        check.number("driver_speed", -MAGNITUDE_LIMIT, MAGNITUDE_LIMIT, "a finite speed (rad/s), not 0")
+        if self.driver_speed == 0:
+            check.fail("driver_speed", self.driver_speed, "a speed other than 0 (rad/s)")
+        check.whole("driven_order", 1, 12)
+        check.whole("teeth", 1, MAX_TEETH, optional=True)
+        check.whole("shaper_teeth", 8, 200)
+        if self.teeth is not None and self.module is None:
+            check.fail("teeth", self.teeth, "None without a module (teeth set the perimeter pi m Z)")
         for name in ("center_distance", "module"):
             check.positive(name, optional=True)
-        if self.cutter not in ("rack", "shaper"):
-            check.fail("cutter", self.cutter, '"rack" or "shaper"')
+        check.choice("cutter", ("rack", "shaper"))
+        check.text("source", "title")
         corner = self.corner_pressure_angle
         if corner is not None and not self.pressure_angle < corner < np.radians(80):
             check.fail("corner_pressure_angle", self.corner_pressure_angle,

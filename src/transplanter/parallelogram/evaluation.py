@@ -18,9 +18,10 @@ import numpy as np
 from transplanter.parallelogram.gear_checks import gear_margins, undercut_limit
 from transplanter.parallelogram.kinematics import mechanisms
 from transplanter.parallelogram.problem import (PRINTED_EQ17, PUBLISHED_FIELDS, Conventions, ParallelogramProblem,
-                                                read_design, read_printed, read_published)
+                                                check_design, check_gear_figures, read_design, read_printed,
+                                                read_published)
 from transplanter.parallelogram.trajectory import measure
-from transplanter.toml_fields import LONGEST_TITLE, FieldReader, read_toml
+from transplanter.toml_fields import LONGEST_TITLE, ClassFields, FieldReader, read_toml
 
 #: Samples per turn of the independent evaluation (finer than the search's grid).
 EVALUATION_SAMPLES = 8192
@@ -35,6 +36,12 @@ class DesignFile:
     published: dict = field(default_factory=dict)    # PUBLISHED_FIELDS -> value
     source: str = "<dict>"
     title: str = ""
+
+    def __post_init__(self):
+        check = ClassFields(self)
+        check_design(check, self.design)
+        check_gear_figures(check, self.printed, self.published)
+        check.text("source", "title")
 
 
 def parse_design(data: dict, source: str = "<dict>") -> DesignFile:

@@ -43,13 +43,15 @@ Eq (17) as printed is reference 0 deg, instant "driver_zero", sense counterclock
 """
 from __future__ import annotations
 
+import numbers
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from transplanter.errors import ProblemError
-from transplanter.toml_fields import LONGEST_TITLE, FieldReader, is_finite_number, is_sequence, read_toml
+from transplanter.toml_fields import (LONGEST_TITLE, MAGNITUDE_LIMIT, ClassFields, FieldReader, is_finite_number,
+                                     is_sequence, read_toml)
 
 #: The eight design variables of seed 001 in file order (mm; alpha in degrees in files, radians inside).
 VARIABLES = ("m11", "b", "l", "l1", "l2", "l5", "l6", "alpha")
@@ -146,6 +148,42 @@ class ParallelogramProblem:
     printed: dict = field(default_factory=dict)
     published: dict = field(default_factory=dict)
 
+    def __post_init__(self):
+        check = ClassFields(self)
+        check_design(check, self.design)
+        for name in ("module", "forward_speed", "depth_window", "depth_target", "vertical_range_target"):
+            check.positive(name)
+        check.number("pressure_angle", np.radians(5), np.radians(35), "an angle from 5 to 35 degrees, in radians")
+        check.number("driver_speed", 1e-9, MAGNITUDE_LIMIT, "a positive speed omega1 (rad/s)")
+        check.array("crank_pivot", (2,))
+        if not isinstance(self.conventions, Conventions):
+            check.fail("conventions", self.conventions, "a Conventions")
+        c = self.conventions
+        for name, value, expected in (("crank_sense", c.crank_sense, (1.0, -1.0)), ("forward", c.forward, (1.0, -1.0)),
+                                      ("alpha_instant", c.alpha_instant, ("slowest", "driver_zero"))):
+            if not isinstance(value, (str, numbers.Real)) or isinstance(value, bool) or value not in expected:
+                check.fail(f"conventions.{name}", value, "one of " + ", ".join(map(repr, expected)))
+        if not is_finite_number(c.alpha_reference) or abs(c.alpha_reference) > 2 * np.pi:
+            check.fail("conventions.alpha_reference", c.alpha_reference, "an angle within one turn of zero (rad)")
+        band = np.asarray(self.depth_band, float) if is_sequence(self.depth_band) else None
+        if band is None or band.shape != (2,) or not np.all(np.isfinite(band)) or not 0 <= band[0] < band[1]:
+            check.fail("depth_band", self.depth_band, "(low, high) in mm with 0 <= low < high")
+        if not isinstance(self.bounds, dict) or any(key not in SEARCHABLE for key in self.bounds):
+            check.fail("bounds", self.bounds, f"a dict of (low, high) for some of {', '.join(SEARCHABLE)}")
+        for key, pair in self.bounds.items():
+            values = np.asarray(pair, float) if is_sequence(pair) else None
+            if values is None or values.shape != (2,) or not np.all(np.isfinite(values)) or not values[0] < values[1] \
+                    or (key == "alpha" and np.abs(values).max() > 2 * np.pi):
+                check.fail(f"bounds[{key!r}]", pair, "(low, high) with low < high" + (" within one turn (rad)"
+                                                                                       if key == "alpha" else ""))
+        check.whole("population", 4, MAX_EVALUATIONS)
+        check.whole("generations", 1, MAX_EVALUATIONS)
+        check.whole("seed", 0, 2**32 - 1)
+        if self.population * self.generations > MAX_EVALUATIONS:
+            check.fail("generations", self.generations, f"at most {MAX_EVALUATIONS:.0e} evaluations in all")
+        check_gear_figures(check, self.printed, self.published)
+        check.text("source", "title")
+
     @property
     def forward_velocity(self) -> float:
         """Signed machine velocity along x (mm/s)."""
@@ -178,6 +216,32 @@ def read_design(read: FieldReader, table, where: str = "design") -> dict:
     if design["b"] >= design["l"]:
         read.fail(f"{where}.b", design["b"], f"less than l = {design['l']:g} mm (the driver radius l - b must stay positive)")
     return design
+
+
+def check_design(check: ClassFields, design):
+    """A class's ``design``: the eight variables (``VARIABLES``), finite, lengths positive (mm), alpha within
+    a turn (rad), m11 > 0.5 and b < l (as ``read_design`` holds the file's)."""
+    if not isinstance(design, dict) or set(design) != set(VARIABLES):
+        check.fail("design", design, f"a dict of exactly {', '.join(VARIABLES)} (mm; alpha in rad)")
+    for name, value in design.items():
+        if not is_finite_number(value) or (name != "alpha" and value <= 0) or (name == "alpha" and abs(value) > 2 * np.pi):
+            check.fail(f"design[{name!r}]", value, "an angle within one turn (rad)" if name == "alpha" else
+                       "a positive number" + (" (mm)" if name != "m11" else ""))
+    if design["m11"] <= 0.5 or design["b"] >= design["l"]:
+        check.fail("design", design, "m11 > 0.5 (eq 2) and b < l (the driver radius l - b stays positive)")
+
+
+def check_gear_figures(check: ClassFields, printed, published):
+    """A class's ``printed`` (m12, center_distance positive; teeth whole) and ``published`` (finite figures)."""
+    if not isinstance(printed, dict) or set(printed) - {"m12", "center_distance", "teeth"}:
+        check.fail("printed", printed, "a dict of some of m12, center_distance (mm), teeth")
+    for key, value in printed.items():
+        whole = key != "teeth" or isinstance(value, numbers.Integral)
+        if not is_finite_number(value) or value <= 0 or not whole:
+            check.fail(f"printed[{key!r}]", value, "a positive number" + (", whole" if key == "teeth" else ""))
+    if not isinstance(published, dict) or set(published) - set(PUBLISHED_FIELDS) or \
+            not all(is_finite_number(value) for value in published.values()):
+        check.fail("published", published, f"a dict of finite numbers for some of {', '.join(PUBLISHED_FIELDS)}")
 
 
 def read_printed(read: FieldReader, table, design: dict) -> dict:

@@ -29,7 +29,8 @@ import numpy as np
 
 from transplanter.gears.pitch_curves import PitchCurve
 from transplanter.gears.problem import FAMILIES, read_driver
-from transplanter.toml_fields import ANGLE_LIMIT_DEG, LONGEST_TITLE, FieldReader, is_finite_number, read_toml
+from transplanter.toml_fields import (ANGLE_LIMIT_DEG, LONGEST_TITLE, MAGNITUDE_LIMIT, ClassFields, FieldReader,
+                                     is_finite_number, read_toml)
 
 _STAGE_FAMILIES = tuple(f for f in FAMILIES if f != "ratio")
 _CARRIER_KEYS = {"first_length", "second_length", "bend_deg", "start_deg", "speed_rpm"}
@@ -56,6 +57,27 @@ class PickupProblem:
     source: str
     title: str = ""
 
+    def __post_init__(self):
+        check = ClassFields(self)
+        if (not isinstance(self.stages, tuple) or len(self.stages) != 2
+                or not all(isinstance(stage, PitchCurve) for stage in self.stages)):
+            check.fail("stages", self.stages, "a tuple of two pitch curves (gears.pitch_curves.PitchCurve)")
+        for name in ("first_length", "second_length", "arm_length"):
+            check.positive(name)
+        for name in ("bend", "start", "mounting"):
+            check.number(name, -2 * np.pi, 2 * np.pi, "an angle within one turn of zero (rad)")
+        check.number("speed", -MAGNITUDE_LIMIT, MAGNITUDE_LIMIT, "a finite speed (rad/s), not 0")
+        if self.speed == 0:
+            check.fail("speed", self.speed, "a speed other than 0 (rad/s)")
+        for name, word in (("picking", "farthest"), ("pushing", "lowest")):
+            value = getattr(self, name)
+            if isinstance(value, str) and value == word:
+                continue
+            if not is_finite_number(value) or abs(value) > np.radians(ANGLE_LIMIT_DEG):
+                check.fail(name, value, f'"{word}" or a carrier turn (rad) from the start')
+            object.__setattr__(self, name, float(value))
+        check.text("source", "title")
+
 
 def load_problem(path: str | Path) -> PickupProblem:
     """Read and validate a pick-up file (schema above); ProblemError names file, field and value."""
@@ -70,7 +92,13 @@ def _length(read, table, key, where):
 
 
 def _angle(read, table, key, where, default):
-    return float(np.radians(read.number(table, key, where))) if key in table else default
+    """An angle of the layout (deg in the file), within one turn."""
+    if key not in table:
+        return default
+    value = read.number(table, key, where)
+    if abs(value) > 360:
+        read.fail(f"{where}.{key}", value, "an angle within one turn of zero (|angle| <= 360 deg)")
+    return float(np.radians(value))
 
 
 def _speed(read, table, key, where, default=60.0):
@@ -83,7 +111,7 @@ def _speed(read, table, key, where, default=60.0):
 
 def _where(read, table, key, word):
     value = table.get(key, word)
-    if value == word:
+    if isinstance(value, str) and value == word:
         return word
     if not is_finite_number(value) or isinstance(value, bool) or abs(value) > ANGLE_LIMIT_DEG:
         read.fail(f"angles.{key}", value, f'"{word}" or a carrier turn in degrees from the start, within '

@@ -26,7 +26,8 @@ from pathlib import Path
 
 import numpy as np
 
-from transplanter.toml_fields import LONGEST_TITLE, SMALLEST_LENGTH, ClassFields, FieldReader, read_toml
+from transplanter.toml_fields import (LONGEST_TITLE, MAGNITUDE_LIMIT, SMALLEST_LENGTH, ClassFields, FieldReader,
+                                     is_finite_number, is_sequence, read_toml)
 
 TOPOLOGIES = {"sun-intermediate-planet": ("sqrt", "peak_to_valley"),
               "pick-up": ("sqrt", "peak_to_valley"),
@@ -87,21 +88,26 @@ class ReverseProblem:
 
     def __post_init__(self):
         check = ClassFields(self)
-        check.array("points", (None, 2), minimum=4)
+        points = check.array("points", (None, 2), minimum=4)
+        check_closed_curve(points, check.fail, "points")
         check.array("pivot", (2,))
-        if self.kind not in ("control_points", "samples"):
-            check.fail("kind", self.kind, '"control_points" or "samples"')
-        if self.lengths is not None and (len(self.lengths) != 2 or min(self.lengths) <= 0):
-            check.fail("lengths", self.lengths, "two positive lengths (carrier, arm) in mm, or None")
-        if self.direction not in (1, -1):
-            check.fail("direction", self.direction, "+1 (counterclockwise) or -1 (clockwise)")
-        if self.branch not in ("auto", "approach", "retraction"):
-            check.fail("branch", self.branch, '"auto", "approach" or "retraction"')
-        if self.split not in TOPOLOGIES.get(self.topology, ()):
+        check.choice("kind", ("control_points", "samples"))
+        for name in ("lengths", "center_distances"):
+            pair = getattr(self, name)
+            if pair is None:
+                continue
+            values = np.asarray(pair, float) if is_sequence(pair) and all(map(is_finite_number, pair)) else None
+            if values is None or values.shape != (2,) or values.min() <= 0 or values.max() > MAGNITUDE_LIMIT:
+                check.fail(name, pair, "two positive lengths (mm), or None")
+            object.__setattr__(self, name, (float(values[0]), float(values[1])))
+        check.choice("direction", (1, -1))
+        check.choice("branch", ("auto", "approach", "retraction"))
+        check.choice("topology", tuple(TOPOLOGIES))
+        if self.split not in TOPOLOGIES[self.topology]:
             check.fail("split", (self.topology, self.split), f"a topology and split of {TOPOLOGIES}")
-        if not 0 < self.peak_to_valley < 1:
-            check.fail("peak_to_valley", self.peak_to_valley, "a number in (0, 1)")
+        check.number("peak_to_valley", 1e-12, 1 - 1e-12, "a number in (0, 1)")
         check.positive("module")
+        check.text("source", "title")
 
 
 def load_problem(path: str | Path) -> ReverseProblem:
@@ -131,20 +137,28 @@ def _trajectory_points(read: FieldReader, table: dict) -> tuple[np.ndarray, str]
         points = points[:-1]                 # closed explicitly: the last point repeats the first
     if len(points) < 4:
         read.fail("trajectory.points", table.get("points"), "at least 4 points [x, y] (mm) of a closed curve")
+    check_closed_curve(points, read.fail, "trajectory.points")
+    return points, kind
+
+
+def check_closed_curve(points: np.ndarray, fail, field: str):
+    """Refuse points that do not make a closed curve (``fail(field, value, expected)``): a point repeating the
+    one before, points on one line, or a way back from the last point to the first much longer than the
+    other steps (an open curve). Tolerances follow the points' own size."""
+    size = np.ptp(points, axis=0).max()
     gaps = np.linalg.norm(np.diff(np.r_[points, points[:1]], axis=0), axis=1)
     if gaps[:-1].min() <= 1e-9 * size:
         k = int(np.argmin(gaps[:-1]))
-        read.fail(f"trajectory.points[{k + 1}]", points[k + 1].tolist(),
-                  f"a point distinct from points[{k}] (a repeated point makes the curve stop there)")
+        fail(f"{field}[{k + 1}]", points[k + 1].tolist(),
+             f"a point distinct from points[{k}] (a repeated point makes the curve stop there)")
     spread = np.linalg.svd(points - points.mean(axis=0), compute_uv=False)
     if spread[1] <= 1e-9 * spread[0]:
-        read.fail("trajectory.points", f"{len(points)} points", "points that enclose an area (these lie on one line)")
+        fail(field, f"{len(points)} points", "points that enclose an area (these lie on one line)")
     if gaps[-1] > OPEN_GAP_FACTOR * gaps[:-1].max():
-        read.fail("trajectory.points", f"{len(points)} points from {points[0].tolist()} to {points[-1].tolist()}",
-                  f"a closed curve: the way back from the last point to the first is {gaps[-1]:.1f} mm, "
-                  f"{gaps[-1] / gaps[:-1].max():.1f} times the longest step between the others (the curve looks "
-                  "open; add the points of the return stroke)")
-    return points, kind
+        fail(field, f"{len(points)} points from {points[0].tolist()} to {points[-1].tolist()}",
+             f"a closed curve: the way back from the last point to the first is {gaps[-1]:.1f} mm, "
+             f"{gaps[-1] / gaps[:-1].max():.1f} times the longest step between the others (the curve looks "
+             "open; add the points of the return stroke)")
 
 
 def _arm(read: FieldReader, table: dict):
