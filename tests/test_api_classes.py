@@ -109,3 +109,22 @@ def test_five_bar_angles_in_radians_warn_as_burmester_poses_do():
         row["angle_deg"] = float(np.radians(row["angle_deg"]))
     with pytest.warns(TransplanterWarning, match=r"rad\.toml: key_poses\[\]\.angle_deg .* look like radians"):
         fivebar.parse_problem(data, "rad.toml")
+
+
+def test_figures_and_drawings_name_a_wrong_result_or_folder(tmp_path):
+    """Output functions given a problem instead of a result, or no folder, a file or a path under a file, say so
+    in one ProblemError (AttributeError, TypeError or FileExistsError came from deep inside; "" wrote into the
+    current folder)."""
+    problem = gears.parse_problem({"driver": {"family": "ellipse", "semi_major_axis": 30.0, "eccentricity": 0.3}})
+    with pytest.raises(ProblemError, match=r"result = GearProblem: expected a GearResult"):
+        gears.draw_figures(problem)
+    for module in (burmester, cam, fivebar, parallelogram, pickup, reverse):
+        with pytest.raises(ProblemError, match=r"result = NoneType: expected a \w+"):
+            module.draw_figures(None)
+    result = gears.synthesize(problem)
+    (tmp_path / "file").write_text("")
+    for folder, words in ((None, "expected the name of a folder"), ("", "expected the name of a folder"),
+                          (tmp_path / "file", "a file is there"), (tmp_path / "file" / "x", "cannot be made")):
+        with pytest.raises(ProblemError, match=words):
+            gears.write_drawings(result, folder)
+    assert [p.name for p in tmp_path.iterdir()] == ["file"]

@@ -85,6 +85,22 @@ def check_file(path: str | Path, option: str, suffixes: set[str], out: str | Pat
     return target
 
 
+def writable_folder(folder) -> Path:
+    """``folder``, a folder a library function writes into, made if missing; ProblemError naming it when it is
+    not a name, names a file, or cannot be made."""
+    if not isinstance(folder, (str, os.PathLike)) or not str(folder):
+        raise ProblemError(f"folder = {folder!r}: expected the name of a folder to write into (str or Path)")
+    path = Path(folder)
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except FileExistsError:
+        raise ProblemError(f"folder = {folder}: a file is there; expected a folder to write into") from None
+    except OSError as error:
+        raise ProblemError(f"folder = {folder}: cannot be made ({error.strerror}); expected a folder this user can "
+                           "write into") from None
+    return path
+
+
 @contextlib.contextmanager
 def staged_file(path: Path):
     """Yield a temporary name beside ``path`` and move it onto ``path`` only when the block succeeds."""

@@ -7,6 +7,7 @@ from matplotlib.figure import Figure
 
 from transplanter.burmester.result import Synthesis
 from transplanter.geometry.curve_trace import CurveTrace
+from transplanter.toml_fields import require_result
 from transplanter.trains.figures import LEGEND_BESIDE
 
 #: How many dyads of a 4-pose family are drawn as links (all of them would hide the curves).
@@ -76,4 +77,5 @@ def draw_figures(result: Synthesis) -> dict[str, Figure]:
     dict of str to matplotlib.figure.Figure
         Save with ``figure.savefig(f"{stem}.png")`` or show in a notebook.
     """
+    require_result(result, Synthesis, "burmester")
     return {"burmester": draw_synthesis(result)}

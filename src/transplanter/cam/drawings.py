@@ -15,6 +15,8 @@ import numpy as np
 
 from transplanter.cam.result import CamResult
 from transplanter.gears.drawings import default_bore_radius, write_svg
+from transplanter.output_folder import writable_folder
+from transplanter.toml_fields import require_result
 
 LAYERS = ("PROFILE", "PITCH", "BASE_CIRCLE", "BORE")
 
@@ -61,8 +63,8 @@ def write_dxf(result: CamResult, path: Path) -> Path:
 
 def write_drawings(result: CamResult, folder: str | Path) -> list[Path]:
     """``cam_profile.csv``, ``cam.dxf`` and ``cam.svg`` in ``folder`` (made if missing); the files written."""
-    folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
+    require_result(result, CamResult, "cam")
+    folder = writable_folder(folder)
     svg = folder / "cam.svg"
     pitch = None if result.problem.follower.kind == "flat_faced" else np.vstack([result.geometry.pitch,
                                                                                  result.geometry.pitch[:1]])

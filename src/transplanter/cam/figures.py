@@ -8,6 +8,7 @@ from matplotlib.figure import Figure
 from transplanter.cam.kinematics import segment_starts
 from transplanter.cam.result import CamResult
 from transplanter.geometry.poses import rotate_about
+from transplanter.toml_fields import require_result
 from transplanter.trains.figures import LEGEND_BESIDE
 
 
@@ -113,5 +114,6 @@ def draw_figures(result: CamResult) -> dict[str, Figure]:
     -------
     dict of str to matplotlib.figure.Figure
     """
+    require_result(result, CamResult, "cam")
     return {"cam_motion": draw_motion(result), "cam_pressure_angle": draw_pressure_angle(result),
             "cam_profile": draw_profile(result)}

@@ -23,6 +23,8 @@ from transplanter.fivebar.loop_closure import close_loop
 from transplanter.fivebar.result import FiveBarResult
 from transplanter.geometry.poses import rotation
 from transplanter.moving_picture import blitted_frames, write_gif, write_mp4
+from transplanter.output_folder import writable_folder
+from transplanter.toml_fields import require_result
 from transplanter.trains.figures import LEGEND_BESIDE
 
 #: Frames per turn: one turn in 6 s at ``moving_picture.FPS``, written in about 2 s.
@@ -139,8 +141,8 @@ def write_animation(result: FiveBarResult, folder: str | Path, teeth: Teeth | No
     list of Path
         The files written.
     """
-    folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
+    require_result(result, FiveBarResult, "fivebar")
+    folder = writable_folder(folder)
     images = render_frames(result, teeth, frames)
     written = [write_gif(images, folder / "animation.gif"), write_mp4(images, folder / "animation.mp4")]
     return [path for path in written if path]

@@ -28,6 +28,8 @@ from transplanter.cam.drawings import write_drawings as write_cam_drawings
 from transplanter.fivebar.result import FiveBarResult
 from transplanter.fivebar.support import SupportDesign
 from transplanter.gears.drawings import GearDrawing, default_bore_radius, write_gear_drawings
+from transplanter.output_folder import writable_folder
+from transplanter.toml_fields import require_result
 
 #: Hinge circle radius and label height as fractions of the largest distance between two hinges in pose 1.
 HINGE_FRACTION = 0.01
@@ -116,8 +118,8 @@ def write_tables(result: FiveBarResult, folder: Path) -> list[Path]:
 def write_drawings(result: FiveBarResult, folder: str | Path) -> list[Path]:
     """The linkage DXF, the CSV tables, each gear's DXF and SVG (teeth, pitch curve, bore, assembly mark) and the
     support cam's files of a five-bar design in ``folder`` (made if missing); the files written."""
-    folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
+    require_result(result, FiveBarResult, "fivebar")
+    folder = writable_folder(folder)
     gears = write_gear_drawings(gear_drawings(result, tooth_outlines(result.toothed)), folder)
     cam = write_cam_drawings(result.support.cam, folder) if result.support else []
     return [write_linkage_dxf(result, folder / "linkage.dxf"), *write_tables(result, folder), *gears, *cam]

@@ -13,6 +13,7 @@ from transplanter.cam.figures import draw_figures as draw_cam_figures
 from transplanter.fivebar.gears_on_carrier import gears_on_carrier, tooth_outlines
 from transplanter.fivebar.result import FiveBarResult
 from transplanter.fivebar.support import SupportDesign
+from transplanter.toml_fields import require_result
 from transplanter.trains.figures import LEGEND_BESIDE
 
 
@@ -210,6 +211,7 @@ def draw_figures(result: FiveBarResult) -> dict[str, Figure]:
     dict of str to matplotlib.figure.Figure
         Save with ``figure.savefig(f"{stem}.png")`` or show in a notebook.
     """
+    require_result(result, FiveBarResult, "fivebar")
     figures = {"region": draw_region(result), "relative_angle": draw_relative_angle(result),
                "gears": draw_gears(result), "trajectory": draw_trajectory(result), "tradeoff": draw_tradeoff(result)}
     if result.support is not None:

@@ -15,6 +15,8 @@ import numpy as np
 
 from transplanter.gears.result import GearResult
 from transplanter.gears.teeth import driven_table, driver_table
+from transplanter.output_folder import writable_folder
+from transplanter.toml_fields import require_result
 
 NAMES = ("driver", "driven")
 #: Bore radius of ``default_bore_radius`` as a fraction of the gear's smallest outline radius (its root).
@@ -177,8 +179,8 @@ def write_drawings(result: GearResult, folder: str | Path) -> list[Path]:
         The files written: CSV (pitch curves, outlines; mm), SVG and DXF (mm, INSUNITS set) per gear, the DXF
         with the outline on layer OUTLINE and the pitch curve on layer PITCH (dashed in the SVG).
     """
-    folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
+    require_result(result, GearResult, "gears")
+    folder = writable_folder(folder)
     written = write_csv(result, folder)
     for (name, outline), pitch_curve in zip(outlines(result).items(), _pitch_curves(result)):
         for suffix, writer in ((".svg", write_svg), (".dxf", write_dxf)):

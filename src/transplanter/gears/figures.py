@@ -11,6 +11,7 @@ from transplanter.gears.drawings import outlines
 from transplanter.gears.rack_teeth import ADDENDUM
 from transplanter.gears.result import GearResult
 from transplanter.geometry.poses import rotate_about
+from transplanter.toml_fields import require_result
 from transplanter.trains.figures import LEGEND_BESIDE
 
 
@@ -91,6 +92,7 @@ def draw_figures(result: GearResult) -> dict[str, Figure]:
     dict of str to matplotlib.figure.Figure
         With composite teeth also ``gear_cusps`` (each corner zoomed). Save with ``figure.savefig(f"{stem}.png")`` or show in a notebook.
     """
+    require_result(result, GearResult, "gears")
     figures = {"gear_mesh": draw_mesh(result), "gear_kinematics": draw_kinematics(result),
                "gear_curvature": draw_curvature(result)}
     if isinstance(result.teeth, CompositeTeeth):

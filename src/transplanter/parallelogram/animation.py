@@ -15,9 +15,11 @@ from matplotlib.figure import Figure
 from transplanter.gears.drawings import outlines
 from transplanter.geometry.poses import rotate_about
 from transplanter.moving_picture import blitted_frames, write_gif
+from transplanter.output_folder import writable_folder
 from transplanter.parallelogram.kinematics import mechanisms
 from transplanter.parallelogram.result import ParallelogramResult
 from transplanter.parallelogram.trajectory import measure, sample_path
+from transplanter.toml_fields import require_result
 
 FRAMES = 72
 FIGURE_SIZE = (10.0, 4.8)
@@ -79,6 +81,6 @@ def _draw_frames(result: ParallelogramResult, frames: int):
 
 def write_animation(result: ParallelogramResult, folder: str | Path, frames: int = FRAMES) -> Path:
     """``animation.gif`` of one driver turn (one plant) in ``folder``."""
-    folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
+    require_result(result, ParallelogramResult, "parallelogram")
+    folder = writable_folder(folder)
     return write_gif(blitted_frames(*_draw_frames(result, frames), frames), folder / "animation.gif")

@@ -8,8 +8,9 @@ from matplotlib.figure import Figure
 
 from transplanter.parallelogram.kinematics import mechanisms
 from transplanter.parallelogram.problem import ParallelogramProblem
-from transplanter.parallelogram.result import objective_values
+from transplanter.parallelogram.result import ParallelogramResult, objective_values
 from transplanter.parallelogram.trajectory import measure, sample_path
+from transplanter.toml_fields import require_result
 from transplanter.trains.figures import LEGEND_BESIDE
 
 TURNS = 3
@@ -100,6 +101,7 @@ def draw_pareto(result) -> Figure:
     return fig
 
 
-def draw_figures(result) -> dict[str, Figure]:
+def draw_figures(result: ParallelogramResult) -> dict[str, Figure]:
     """Pareto front, and the final design's (polished, else chosen) trajectory, velocity and acceleration."""
+    require_result(result, ParallelogramResult, "parallelogram")
     return {"pareto": draw_pareto(result), **draw_design_figures(result.problem, result.final)}

@@ -6,10 +6,12 @@ from pathlib import Path
 
 import numpy as np
 
+from transplanter.output_folder import writable_folder
 from transplanter.parallelogram.kinematics import mechanisms
 from transplanter.parallelogram.objectives import OBJECTIVES
 from transplanter.parallelogram.result import ParallelogramResult
 from transplanter.parallelogram.trajectory import sample_path
+from transplanter.toml_fields import require_result
 
 
 def write_pareto(result: ParallelogramResult, path: Path) -> Path:
@@ -39,6 +41,6 @@ def write_trajectory(result: ParallelogramResult, path: Path, samples: int = 721
 
 
 def write_tables(result: ParallelogramResult, folder: str | Path) -> list[Path]:
-    folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
+    require_result(result, ParallelogramResult, "parallelogram")
+    folder = writable_folder(folder)
     return [write_pareto(result, folder / "pareto.csv"), write_trajectory(result, folder / "trajectory.csv")]

@@ -11,13 +11,16 @@ from PIL import Image
 
 from transplanter.gears.pair import driven_angle
 from transplanter.geometry.poses import rotation
+from transplanter.output_folder import writable_folder
 from transplanter.pickup.result import PickupResult
+from transplanter.toml_fields import require_result
 
 FRAMES, FPS, DPI = 48, 12, 70
 
 
 def write_animation(result: PickupResult, folder: str | Path, frames: int = FRAMES) -> Path:
     """Write ``pickup.gif`` into ``folder``; the path written."""
+    require_result(result, PickupResult, "pickup")
     p = result.problem
     one, two = result.stage_one, result.stage_two
     fig = Figure(figsize=(6, 6), layout="constrained")
@@ -57,6 +60,6 @@ def write_animation(result: PickupResult, folder: str | Path, frames: int = FRAM
         ax.set_title(f"carrier turn {np.degrees(c):5.1f} deg", fontsize=9)
         canvas.draw()
         images.append(Image.fromarray(np.asarray(canvas.buffer_rgba())[..., :3]).quantize(64))
-    target = Path(folder) / "pickup.gif"
+    target = writable_folder(folder) / "pickup.gif"
     images[0].save(target, save_all=True, append_images=images[1:], duration=int(1000 / FPS), loop=0)
     return target

@@ -6,6 +6,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from transplanter.pickup.result import PickupResult
+from transplanter.toml_fields import require_result
 from transplanter.trains.figures import LEGEND_BESIDE
 
 
@@ -50,4 +51,5 @@ def draw_speed(result: PickupResult) -> Figure:
 
 def draw_figures(result: PickupResult) -> dict[str, Figure]:
     """``pickup_path`` and ``pickup_speed`` by file stem."""
+    require_result(result, PickupResult, "pickup")
     return {"pickup_path": draw_path(result), "pickup_speed": draw_speed(result)}

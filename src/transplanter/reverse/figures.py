@@ -9,6 +9,7 @@ from matplotlib.figure import Figure
 from transplanter.geometry.closed_trajectory import TWO_PI
 from transplanter.reverse.idler_train import IdlerTrain
 from transplanter.reverse.result import ReverseResult
+from transplanter.toml_fields import require_result
 from transplanter.trains.figures import LEGEND_BESIDE, draw_four_gear_train
 
 
@@ -112,6 +113,7 @@ def draw_figures(result: ReverseResult) -> dict[str, Figure]:
     dict of str to matplotlib.figure.Figure
         Save with ``figure.savefig(f"{stem}.png")`` or show in a notebook.
     """
+    require_result(result, ReverseResult, "reverse")
     figures = {"path": draw_path(result), "motion": draw_motion(result)}
     if result.train is not None:
         figures["gears"] = draw_gears(result)
