@@ -128,3 +128,17 @@ def test_figures_and_drawings_name_a_wrong_result_or_folder(tmp_path):
         with pytest.raises(ProblemError, match=words):
             gears.write_drawings(result, folder)
     assert [p.name for p in tmp_path.iterdir()] == ["file"]
+
+
+@pytest.mark.parametrize("example", ["gear_ellipse.toml", "gear_ratio_formula.toml", "gear_ratio.toml"])
+def test_gear_results_of_one_pitch_curve_pickle(example):
+    """A gear result goes through pickle (ProcessPoolExecutor sweeps send results between processes) and
+    reports the same; the curves evaluate through classes, not closures."""
+    import pickle
+
+    result = gears.synthesize(gears.load_problem(EXAMPLES / example))
+    again = pickle.loads(pickle.dumps(result))
+    reports = [r.to_json() for r in (result, again)]
+    for report in reports:
+        report.pop("timings_s")
+    assert json.dumps(reports[0]) == json.dumps(reports[1])

@@ -75,16 +75,25 @@ def _mapped(function: ca.Function, count: int) -> ca.Function:
     return function.map(count)
 
 
+@dataclass(frozen=True)
+class _Derivatives:
+    """A casadi Function of one angle giving a value and its first two derivatives, evaluated over an array of
+    angles (a class, not a closure, so that curves and results pickle: casadi Functions do)."""
+
+    function: ca.Function
+
+    def __call__(self, phi: np.ndarray) -> list[np.ndarray]:
+        return [np.asarray(v).ravel() for v in _mapped(self.function, phi.size)(phi[None, :])]
+
+
+def _derivatives(name: str, expression: ca.SX, phi: ca.SX) -> _Derivatives:
+    slope = ca.jacobian(expression, phi)
+    return _Derivatives(ca.Function(name, [phi], [expression, slope, ca.jacobian(slope, phi)]))
+
+
 def _from_expression(family, parameters, lobes, expression_of, joints=()) -> PitchCurve:
     phi = ca.SX.sym("phi")
-    r = expression_of(phi)
-    slope = ca.jacobian(r, phi)
-    bend = ca.jacobian(slope, phi)
-    function = ca.Function(f"{family}_pitch", [phi], [r, slope, bend], ["phi"], ["radius", "slope", "bend"])
-
-    def evaluate(phi):
-        return [np.asarray(v).ravel() for v in _mapped(function, phi.size)(phi[None, :])]
-
+    evaluate = _derivatives(f"{family}_pitch", expression_of(phi), phi)
     return PitchCurve(family, parameters, lobes, evaluate, tuple(joints), tuple(joints))
 
 
@@ -167,25 +176,27 @@ def ratio_samples(phi: np.ndarray, ratio: np.ndarray) -> Callable[[np.ndarray], 
 
 def ratio_formula(expression: ca.SX, phi: ca.SX) -> Callable[[np.ndarray], tuple]:
     """i12 and its two derivatives from a casadi expression of phi (automatic differentiation)."""
-    slope = ca.jacobian(expression, phi)
-    function = ca.Function("ratio", [phi], [expression, slope, ca.jacobian(slope, phi)])
+    return _derivatives("ratio", expression, phi)
 
-    def evaluate(angles):
-        return [np.asarray(v).ravel() for v in _mapped(function, angles.size)(angles[None, :])]
 
-    return evaluate
+@dataclass(frozen=True)
+class _FromRatio:
+    """r1 = a / (1 + k i12) and its two derivatives, from i12 and its own (``from_ratio``)."""
+
+    ratio: Callable[[np.ndarray], tuple]
+    factor: float
+    center_distance: float
+
+    def __call__(self, phi: np.ndarray) -> tuple:
+        a = self.center_distance
+        i, di, ddi = (self.factor * v for v in self.ratio(phi))
+        one = 1 + i
+        return a / one, -a * di / one**2, a * (2 * di**2 / one**3 - ddi / one**2)
 
 
 def from_ratio(ratio: Callable[[np.ndarray], tuple], factor: float, center_distance: float,
                breaks=()) -> PitchCurve:
     """Driver pitch curve r1 = a / (1 + k i12) for a ratio i12 = omega1 / omega2 (the onion-transplanter paper eq 13),
     scaled by a constant k (Wang et al. 2025 eq 12)."""
-
-    def evaluate(phi):
-        i, di, ddi = (factor * v for v in ratio(phi))
-        one = 1 + i
-        return (center_distance / one, -center_distance * di / one**2,
-                center_distance * (2 * di**2 / one**3 - ddi / one**2))
-
     return PitchCurve("ratio", {"center_distance": center_distance, "factor": factor}, 1,
-                      evaluate, (), tuple(breaks))
+                      _FromRatio(ratio, factor, center_distance), (), tuple(breaks))
