@@ -110,6 +110,16 @@ def check_figures(figures: dict, stems: set[str]):
             assert not any(_overlaps(box, ax.get_window_extent()) for ax in shown), stem
 
 
+def test_the_main_job_result_pickles(example_result):
+    import pickle
+
+    again = pickle.loads(pickle.dumps(example_result))
+    reports = [r.to_json() for r in (example_result, again)]
+    for report in reports:
+        report.pop("timings_s")
+    assert json.dumps(reports[0]) == json.dumps(reports[1])
+
+
 def test_figures_of_each_job(example_result):
     check_figures(fivebar.draw_figures(example_result),
                   {"region", "relative_angle", "gears", "trajectory", "tradeoff"})

@@ -24,7 +24,7 @@ import numpy as np
 
 from transplanter.errors import ProblemError
 from transplanter.generated import numpy_twin
-from transplanter.gears.pitch_curves import TWO_PI, PitchCurve, _from_expression, too_small_radius
+from transplanter.gears.pitch_curves import TWO_PI, PitchCurve, Shifted, _from_expression, too_small_radius
 
 _corner_angles = numpy_twin("cusp", "corner_angles")
 _curvature_center = numpy_twin("cusp", "polar_curvature_center")
@@ -73,8 +73,7 @@ def arc(center: tuple[float, float], radius: float) -> PitchCurve:
 
 def rotated(curve: PitchCurve, rotation: float) -> PitchCurve:
     """A family's curve turned counterclockwise by ``rotation`` (rad)."""
-    return PitchCurve(curve.family, {**curve.parameters, "rotation": rotation}, 1,
-                      lambda phi: curve.evaluator(np.mod(phi - rotation, TWO_PI)))
+    return PitchCurve(curve.family, {**curve.parameters, "rotation": rotation}, 1, Shifted(curve.evaluator, -rotation))
 
 
 @dataclass(frozen=True)
@@ -135,23 +134,28 @@ def composite(segments: list[Segment], source: str = "<gear>", where: str = "dri
                                f"segment {k} ends at r = {r_end:.9g} mm (phi = {np.degrees(b.start):g} deg): "
                                f"expected the segments to join (within {JOIN_TOLERANCE * size:.2g} mm)")
     segments = tuple(segments)
-    ends = np.array([s.end for s in segments])
-    first = segments[0].start
+    joints = tuple(float(np.mod(s.start, TWO_PI)) for s in segments)
+    parameters = {"segments": [s.kind for s in segments]}
+    return CompositeCurve("composite", parameters, 1, _Piecewise(segments), joints, joints, segments=segments)
 
-    def evaluate(phi):
+
+@dataclass(frozen=True)
+class _Piecewise:
+    """r, r', r'' of a composite curve: each angle from the segment whose range holds it."""
+
+    segments: tuple
+
+    def __call__(self, phi: np.ndarray) -> list[np.ndarray]:
+        first, ends = self.segments[0].start, np.array([s.end for s in self.segments])
         local = np.mod(phi - first, TWO_PI) + first
-        index = np.minimum(np.searchsorted(ends, local, side="right"), len(segments) - 1)
+        index = np.minimum(np.searchsorted(ends, local, side="right"), len(self.segments) - 1)
         out = [np.empty_like(local) for _ in range(3)]
-        for k, segment in enumerate(segments):
+        for k, segment in enumerate(self.segments):
             chosen = index == k
             if chosen.any():
                 for target, value in zip(out, segment.curve.evaluate(local[chosen])):
                     target[chosen] = value
         return out
-
-    joints = tuple(float(np.mod(s.start, TWO_PI)) for s in segments)
-    parameters = {"segments": [s.kind for s in segments]}
-    return CompositeCurve("composite", parameters, 1, evaluate, joints, joints, segments=segments)
 
 
 def cusps(curve: CompositeCurve, center_distance: float | None = None) -> list[dict]:

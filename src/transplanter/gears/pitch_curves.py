@@ -91,6 +91,17 @@ def _derivatives(name: str, expression: ca.SX, phi: ca.SX) -> _Derivatives:
     return _Derivatives(ca.Function(name, [phi], [expression, slope, ca.jacobian(slope, phi)]))
 
 
+@dataclass(frozen=True)
+class Shifted:
+    """An evaluator read ``angle`` (rad) further round: ``evaluator(phi + angle)``."""
+
+    evaluator: Callable[[np.ndarray], tuple]
+    angle: float
+
+    def __call__(self, phi: np.ndarray):
+        return self.evaluator(np.mod(phi + self.angle, TWO_PI))
+
+
 def _from_expression(family, parameters, lobes, expression_of, joints=()) -> PitchCurve:
     phi = ca.SX.sym("phi")
     evaluate = _derivatives(f"{family}_pitch", expression_of(phi), phi)

@@ -19,6 +19,7 @@ derivatives of Q from casadi's automatic differentiation of the generated eq (15
 from __future__ import annotations
 
 import time
+from dataclasses import dataclass
 
 import casadi as ca
 import numpy as np
@@ -37,12 +38,19 @@ SAMPLES = 1440
 def mirrored(curve: PitchCurve) -> PitchCurve:
     """The curve reflected in its own x axis, r(-theta): what a gear turning counterclockwise shows a pair
     designed for a clockwise driver."""
-    def evaluate(phi):
-        r, slope, bend = curve.evaluate(np.mod(-phi, TWO_PI))
-        return r, -slope, bend
-
     flip = tuple(float(np.mod(-b, TWO_PI)) for b in curve.breaks)
-    return PitchCurve(curve.family, curve.parameters, curve.lobes, evaluate, flip, flip)
+    return PitchCurve(curve.family, curve.parameters, curve.lobes, _Mirrored(curve), flip, flip)
+
+
+@dataclass(frozen=True)
+class _Mirrored:
+    """r(-theta) with its slope and bend (``mirrored``)."""
+
+    curve: PitchCurve
+
+    def __call__(self, phi: np.ndarray) -> tuple:
+        r, slope, bend = self.curve.evaluate(np.mod(-phi, TWO_PI))
+        return r, -slope, bend
 
 
 def stage_at(curve: PitchCurve, center_distance: float, source: str, name: str) -> GearPairDesign:

@@ -27,7 +27,7 @@ import numpy as np
 from transplanter.reverse.arm_inverse import ArmMotion
 from transplanter.gears.pair import GearPairDesign, design_pair
 from transplanter.generated import numpy_twin
-from transplanter.gears.pitch_curves import PeriodicSpline, PitchCurve, spline
+from transplanter.gears.pitch_curves import PeriodicSpline, PitchCurve, Shifted, spline
 from transplanter.trains.planetary import RelativeMotion
 from transplanter.reverse.verification import CHECK_POINTS, ReverseVerification, rebuild_tip
 from transplanter.trains.rolling import arc_map, conjugate_curve
@@ -85,7 +85,7 @@ def seed_iteration(relative: RelativeMotion, center_distance: float):
 
 def _turned(curve: PitchCurve, angle: float) -> PitchCurve:
     """The same curve read from a direction ``angle`` further round."""
-    return dataclasses.replace(curve, evaluator=lambda phi: curve.evaluator(np.mod(phi + angle, TWO_PI)),
+    return dataclasses.replace(curve, evaluator=Shifted(curve.evaluator, angle),
                                breaks=tuple(np.mod(np.asarray(curve.breaks) - angle, TWO_PI)))
 
 

@@ -78,6 +78,33 @@ def _power(relative: RelativeMotion, c, exponent: float):
     return s1**p, p * s1 ** (p - 1) * s2, p * (p - 1) * s1 ** (p - 2) * s2**2 + p * s1 ** (p - 1) * s3
 
 
+@dataclass(frozen=True)
+class _Power:
+    """rho'^p and its two c-derivatives as a ratio of the carrier turn c (the sun's, eq 11)."""
+
+    relative: RelativeMotion
+    exponent: float
+
+    def __call__(self, c):
+        return _power(self.relative, c, self.exponent)
+
+
+@dataclass(frozen=True)
+class _StageTwoRatio:
+    """I2 = k rho'^(p - 1) and its two derivatives against the intermediate gear's angle psi(c)."""
+
+    relative: RelativeMotion
+    psi: TurnMap
+    k: float
+    exponent: float
+
+    def __call__(self, angle):
+        c = self.psi.inverse(angle)
+        f, f_c, f_cc = (self.k * v for v in _power(self.relative, c, self.exponent - 1))
+        psi_c, psi_cc, _ = (self.k * v for v in _power(self.relative, c, self.exponent))
+        return f, f_c / psi_c, (f_cc * psi_c - f_c * psi_cc) / psi_c**3
+
+
 def correction_factor(relative: RelativeMotion, exponent: float = 0.5) -> float:
     """k of eq (12) over the sun's angle: 2 pi / int_0^2pi rho'(c)^exponent dc."""
     return TWO_PI / TurnMap(lambda c: relative.evaluate(c, 1) ** exponent, relative.knots).total
@@ -106,16 +133,9 @@ def design_train(relative: RelativeMotion, center_distances: tuple[float, float]
                               f"{slope.min():.4g}): the gears would have to reverse")
     a1, a2 = center_distances
     k = correction_factor(relative, exponent)
-    sun = from_ratio(lambda c: _power(relative, c, -exponent), 1 / k, a1, relative.knots)
+    sun = from_ratio(_Power(relative, -exponent), 1 / k, a1, relative.knots)
     stage_one = design_pair(sun, 1, a1, source=source)
     psi = TurnMap(lambda c: k * relative.evaluate(c, 1) ** exponent, relative.knots)
-
-    def stage_two_ratio(angle):
-        c = psi.inverse(angle)
-        f, f_c, f_cc = (k * v for v in _power(relative, c, exponent - 1))
-        psi_c, psi_cc, _ = (k * v for v in _power(relative, c, exponent))
-        return f, f_c / psi_c, (f_cc * psi_c - f_c * psi_cc) / psi_c**3
-
-    second = from_ratio(stage_two_ratio, 1.0, a2, psi(relative.knots))
+    second = from_ratio(_StageTwoRatio(relative, psi, k, exponent), 1.0, a2, psi(relative.knots))
     stage_two = design_pair(second, 1, a2, source=source)
     return PlanetaryTrain(relative, (a1, a2), k, stage_one, stage_two, psi, exponent)
