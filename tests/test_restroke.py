@@ -31,14 +31,16 @@ def test_other_passes_are_local_minima_of_the_distance_within_the_stroke_order(e
 
 
 def test_the_example_is_built_with_p8_on_its_other_pass(example_result):
-    """All starts put P8 on the pass of P near carrier turn 304 deg; the built design passes it near 219 deg
-    (its return turn there, by forward kinematics within the 1 mm tolerance), with a larger smallest angle EBF
-    than the starts' optimum, as the report's line says."""
+    """The region's starts put P8 on the pass of P near carrier turn 304 deg; the built design passes it near
+    219 deg (its return turn there, by forward kinematics within the 1 mm tolerance). Whichever path reached it
+    (a start moved by ``restroke`` here; on other hardware a start may reach it directly), an alternative that
+    was moved says so, and its line's angles agree with its own evaluation and rise."""
     problem, built = example_result.problem, example_result.alternatives[0]
     j = problem.return_labels.index("P8")
-    assert built.restroke.startswith("P8 moved from its pass at carrier turn 304.")
-    before, after = (float(v) for v in built.restroke.split("smallest EBF ")[1].rstrip(" deg)").split(" -> "))
-    assert after == pytest.approx(np.degrees(built.transmission_angle), abs=5e-4) and after > before
     turn = built.design.stroke.carrier_turns[j]
     assert 200 < np.degrees(turn) < 240
     assert _distance(built.design, problem.return_points[j], turn)[0] <= problem.return_tolerance_mm * (1 + 1e-6)
+    moved = [a for a in example_result.alternatives if a.restroke]
+    for alternative in moved:
+        before, after = (float(v) for v in alternative.restroke.split("smallest EBF ")[1].rstrip(" deg)").split(" -> "))
+        assert after == pytest.approx(np.degrees(alternative.transmission_angle), abs=5e-4) and after > before
