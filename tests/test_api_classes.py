@@ -94,6 +94,14 @@ def test_numpy_scalars_and_paths_give_plain_json_reports():
     assert json.dumps(reports[1], allow_nan=False) == json.dumps(reports[0], allow_nan=False)
 
 
+def test_numpy_integers_are_taken_where_python_ones_are():
+    """A choice given as a numpy integer (a direction +-1 out of an array) is the same choice, stored as the plain
+    option: the class checks of this session first refused np.int64(1)."""
+    for problem in (_cam(), reverse.load_problem(EXAMPLES / "rice_hoe_reverse.toml")):
+        turned = dataclasses.replace(problem, direction=np.int64(problem.direction))
+        assert turned.direction == problem.direction and type(turned.direction) is int
+
+
 def test_an_onion_design_file_built_in_python_is_checked():
     given = problem_design(_parallelogram())
     with pytest.raises(ProblemError, match=r"DesignFile\.published = .*expected a dict of finite numbers"):

@@ -277,9 +277,11 @@ class ClassFields:
         object.__setattr__(self.problem, field, int(value))
 
     def choice(self, field: str, options):
+        """One of ``options`` (text, or numbers of any kind but bool), stored back as that option."""
         value = getattr(self.problem, field)
-        if not isinstance(value, (str, int, float)) or isinstance(value, bool) or value not in options:
+        if not isinstance(value, (str, numbers.Real)) or isinstance(value, (bool, np.bool_)) or value not in options:
             self.fail(field, value, "one of " + ", ".join(repr(option) for option in options))
+        object.__setattr__(self.problem, field, options[options.index(value)])
 
     def text(self, *fields: str):
         """Text fields (a source may be a Path), stored back as str."""
