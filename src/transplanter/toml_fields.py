@@ -267,6 +267,12 @@ class ClassFields:
             self.fail(field, value, expected)
         object.__setattr__(self.problem, field, float(value))
 
+    def speed(self, field: str):
+        """A turning speed (rad/s) other than 0 (every speed of the report would be 0), stored back as a float."""
+        self.number(field, -MAGNITUDE_LIMIT, MAGNITUDE_LIMIT, "a finite speed (rad/s) other than 0")
+        if getattr(self.problem, field) == 0:
+            self.fail(field, 0.0, "a speed other than 0 (rad/s)")
+
     def whole(self, field: str, low: int, high: int, optional: bool = False):
         """A whole number from ``low`` to ``high`` (not a bool), stored back as an int."""
         value = getattr(self.problem, field)

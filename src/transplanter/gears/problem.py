@@ -41,8 +41,7 @@ from transplanter.gears.pitch_curves import (PitchCurve, denatured_ellipse, dena
                                        limacon, ratio_formula, ratio_samples, spline)
 from transplanter.gears.ratio_expression import ExpressionError, parse_ratio
 from transplanter.errors import ProblemError
-from transplanter.toml_fields import (LONGEST_TITLE, MAGNITUDE_LIMIT, ClassFields, FieldReader, is_finite_number,
-                                     read_toml, shown)
+from transplanter.toml_fields import LONGEST_TITLE, ClassFields, FieldReader, read_toml, shown
 
 FAMILIES = ("ellipse", "higher_order_ellipse", "denatured_ellipse", "limacon", "denatured_limacon", "spline", "ratio",
             "composite")
@@ -138,9 +137,7 @@ class GearProblem:
             check.fail("driver", self.driver, "a pitch curve (gears.pitch_curves.PitchCurve), or None with a ratio")
         check.number("pressure_angle", np.radians(5) - 1e-12, np.radians(35) + 1e-12,
                      "an angle from 5 to 35 degrees, in radians")
-        check.number("driver_speed", -MAGNITUDE_LIMIT, MAGNITUDE_LIMIT, "a finite speed (rad/s), not 0")
-        if self.driver_speed == 0:
-            check.fail("driver_speed", self.driver_speed, "a speed other than 0 (rad/s)")
+        check.speed("driver_speed")
         check.whole("driven_order", 1, 12)
         check.whole("teeth", 1, MAX_TEETH, optional=True)
         check.whole("shaper_teeth", 8, 200)

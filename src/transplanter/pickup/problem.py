@@ -29,7 +29,7 @@ import numpy as np
 
 from transplanter.gears.pitch_curves import PitchCurve
 from transplanter.gears.problem import FAMILIES, read_driver
-from transplanter.toml_fields import (ANGLE_LIMIT_DEG, LONGEST_TITLE, MAGNITUDE_LIMIT, ClassFields, FieldReader,
+from transplanter.toml_fields import (ANGLE_LIMIT_DEG, LONGEST_TITLE, ClassFields, FieldReader,
                                      is_finite_number, read_toml)
 
 _STAGE_FAMILIES = tuple(f for f in FAMILIES if f != "ratio")
@@ -66,9 +66,7 @@ class PickupProblem:
             check.positive(name)
         for name in ("bend", "start", "mounting"):
             check.number(name, -2 * np.pi, 2 * np.pi, "an angle within one turn of zero (rad)")
-        check.number("speed", -MAGNITUDE_LIMIT, MAGNITUDE_LIMIT, "a finite speed (rad/s), not 0")
-        if self.speed == 0:
-            check.fail("speed", self.speed, "a speed other than 0 (rad/s)")
+        check.speed("speed")
         for name, word in (("picking", "farthest"), ("pushing", "lowest")):
             value = getattr(self, name)
             if isinstance(value, str) and value == word:
