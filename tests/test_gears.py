@@ -330,6 +330,28 @@ def test_undercut_and_concavity_are_refused_with_numbers():
         generate_teeth(d, 2.0, np.radians(20), "test")
 
 
+def test_undercut_advice_for_teeth_that_set_the_size_is_what_clears_it():
+    """With pair.teeth setting the size, a smaller module shrinks the curve with it and never clears the undercut:
+    the message's factor of teeth does. Its whole count just above clears the rack's criterion, just below not."""
+    import math
+    import re
+
+    curve = ellipse(1.0, 0.5)
+
+    def teeth_of(count):
+        return design_pair(curve.scaled(count * np.pi * 2.0 / design_pair(curve, 1).perimeters[0]), 1)
+
+    with pytest.raises(InfeasibleError, match=r"where pair.teeth sets the size.*more teeth \(about ([\d.]+) times") as error:
+        generate_teeth(teeth_of(12), 2.0, np.radians(20), "test")
+    enough = math.ceil(12 * float(re.search(r"about ([\d.]+) times", str(error.value)).group(1)) - 1e-9)
+    with pytest.raises(InfeasibleError, match="undercuts the driver"):
+        generate_teeth(teeth_of(enough - 1), 2.0, np.radians(20), "test")
+    try:
+        generate_teeth(teeth_of(enough), 2.0, np.radians(20), "test")
+    except InfeasibleError as refused:
+        assert "undercut" not in str(refused)
+
+
 def test_concave_pitch_curve_is_refused_for_the_rack():
     curve = denatured_limacon(1.0, 0.45, 1.2, denatured_partner(1.2))   # eq (9) < 0: concave driver
     d = design_pair(curve.scaled(40 * np.pi * 2.0 / design_pair(curve, 1).perimeters[0]), 1)
