@@ -25,13 +25,14 @@ from scipy.optimize import least_squares
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
-from ground_truth import dyad_poses  # noqa: E402
 from best_time import best_time  # noqa: E402  (bench/ is the script's own folder)
+from ground_truth import dyad_poses  # noqa: E402
+
 from transplanter.burmester.five_poses import burmester_points  # noqa: E402
 from transplanter.burmester.four_poses import trace_dyads  # noqa: E402
-from transplanter.geometry.poses import Frame, carry, pole, rotation  # noqa: E402
 from transplanter.burmester.problem import load_problem  # noqa: E402
 from transplanter.burmester.synthesis import synthesize  # noqa: E402
+from transplanter.geometry.poses import Frame, carry, pole, rotation  # noqa: E402
 
 SAMPLES = 2000
 

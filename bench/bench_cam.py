@@ -17,9 +17,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+from best_time import best_time  # bench/ is the script's own folder
 from scipy.spatial import cKDTree
 
-from best_time import best_time  # bench/ is the script's own folder
 from transplanter import cam
 from transplanter.cam.kinematics import oscillating_start
 

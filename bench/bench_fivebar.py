@@ -31,9 +31,9 @@ from pathlib import Path  # noqa: E402
 
 import casadi as ca  # noqa: E402
 import numpy as np  # noqa: E402
+from fresh_process import cli_run  # noqa: E402  (bench/ is the script's own folder)
 from scipy.optimize import minimize  # noqa: E402
 
-from fresh_process import cli_run  # noqa: E402  (bench/ is the script's own folder)
 from transplanter.fivebar.nlp import DesignSolver, HollowError, decision_vector, length_unit  # noqa: E402
 from transplanter.fivebar.problem import load_problem  # noqa: E402
 from transplanter.fivebar.region import solution_region  # noqa: E402

@@ -16,8 +16,8 @@ from pathlib import Path
 from unittest import mock
 
 import numpy as np
-
 from best_time import best_time  # bench/ is the script's own folder
+
 from transplanter.gears import teeth
 from transplanter.gears.problem import load_problem
 from transplanter.gears.synthesis import synthesize

@@ -16,8 +16,8 @@ import time
 from pathlib import Path
 
 import numpy as np
-
 from best_time import best_time  # bench/ is the script's own folder
+
 from transplanter.parallelogram import load_problem
 from transplanter.parallelogram.evaluation import evaluate
 from transplanter.parallelogram.objectives import score

@@ -21,9 +21,20 @@ from pathlib import Path
 import numpy as np
 
 from transplanter.errors import ProblemError
-from transplanter.fivebar.candidate import (BRANCH, CRANK, RETURN, Candidate, closure_defect, crank_exists,
-                                            monotonic_defect, order_defect, range_defect, range_values, ratio_defect,
-                                            whole_turn)
+from transplanter.fivebar.candidate import (
+    BRANCH,
+    CRANK,
+    RETURN,
+    Candidate,
+    closure_defect,
+    crank_exists,
+    monotonic_defect,
+    order_defect,
+    range_defect,
+    range_values,
+    ratio_defect,
+    whole_turn,
+)
 from transplanter.fivebar.linkage import FiveBar, assembly_branch, from_hinges
 from transplanter.fivebar.problem import FiveBarProblem, load_problem, parse_problem
 from transplanter.fivebar.region import chain_families, solution_region

@@ -24,10 +24,10 @@ import time
 from pathlib import Path
 
 import numpy as np
+from fresh_process import cli_run  # bench/ is the script's own folder
 from scipy.integrate import cumulative_trapezoid, simpson
 from scipy.interpolate import BSpline
 
-from fresh_process import cli_run  # bench/ is the script's own folder
 from transplanter.reverse.problem import load_problem
 from transplanter.reverse.synthesis import synthesize
 

@@ -28,8 +28,8 @@ from transplanter import fivebar
 from transplanter.gears import swept_teeth
 from transplanter.gears.mesh_check import check_mesh
 from transplanter.gears.pair import GearPairDesign, driven_angle
-from transplanter.gears.rack_teeth import ADDENDUM, DEDENDUM, PitchTable, orientation
 from transplanter.gears.pinion_cutter import shaper_cutter
+from transplanter.gears.rack_teeth import ADDENDUM, DEDENDUM, PitchTable, orientation
 from transplanter.gears.swept_teeth import mate_profile, shaper_profile
 from transplanter.gears.teeth import driven_table, driver_table
 from transplanter.geometry.poses import rotate_about

@@ -10,11 +10,22 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from test_api import EXAMPLES, check_figures
 
 from transplanter.cli import main
 from transplanter.errors import ProblemError, SolverError
-from transplanter.fivebar.alternatives import (ACTIVE_TOLERANCE, ANGLE_TIE, MERGE_TOLERANCE, Failure, active_bounds,
-                                               assess, merge, rank, reach, refine_all)
+from transplanter.fivebar.alternatives import (
+    ACTIVE_TOLERANCE,
+    ANGLE_TIE,
+    MERGE_TOLERANCE,
+    Failure,
+    active_bounds,
+    assess,
+    merge,
+    rank,
+    reach,
+    refine_all,
+)
 from transplanter.fivebar.figures import draw_figures
 from transplanter.fivebar.nlp import CONCAVITY_LIMIT, CURVES, DesignSolver, HollowError
 from transplanter.fivebar.problem import parse_problem
@@ -22,7 +33,6 @@ from transplanter.fivebar.report import to_markdown
 from transplanter.fivebar.result import alternative_json
 from transplanter.fivebar.synthesis import pick_alternative, synthesize
 from transplanter.toml_fields import read_toml
-from test_api import EXAMPLES, check_figures
 
 TURNS = np.linspace(0, 2 * np.pi, 3600, endpoint=False)
 

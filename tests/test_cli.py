@@ -7,8 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from transplanter.geometry.dyad import verify_dyad
 from transplanter.burmester.problem import load_problem
+from transplanter.geometry.dyad import verify_dyad
 from transplanter.toml_fields import read_toml
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -69,6 +69,7 @@ def test_sigterm_ends_a_run_as_ctrl_c_does(tmp_path, monkeypatch, capsys):
     """A timeout's SIGTERM in the middle of the work: exit 130, no half folder beside the target, and the
     process's own SIGTERM handler given back afterwards."""
     import signal
+
     import transplanter.cli as cli
     original = cli._save_figures
 

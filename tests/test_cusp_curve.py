@@ -7,7 +7,7 @@ from derivations import cusp as derivation
 from derivations.gears import phi
 from transplanter.errors import ProblemError
 from transplanter.gears import parse_problem, synthesize
-from transplanter.gears.composite_curve import cusps, curvature
+from transplanter.gears.composite_curve import curvature, cusps
 from transplanter.generated import numpy_twin
 
 A, E = 30.0, 0.3

@@ -9,8 +9,14 @@ import sympy as sp
 from derivations import cusp as derivation
 from transplanter.errors import InfeasibleError
 from transplanter.gears import parse_problem, synthesize
-from transplanter.gears.composite_teeth import (CORNER_PRESSURE_TRIALS_DEG, _check_arches_apart, _check_layout,
-                                                _first_that_passes, carved_mate, layout)
+from transplanter.gears.composite_teeth import (
+    CORNER_PRESSURE_TRIALS_DEG,
+    _check_arches_apart,
+    _check_layout,
+    _first_that_passes,
+    carved_mate,
+    layout,
+)
 from transplanter.gears.mesh_check import ERROR_MODULES, check_mesh
 from transplanter.gears.pair import arc_length, arc_to_angle, design_pair
 from transplanter.gears.pitch_curves import ellipse

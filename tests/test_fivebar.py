@@ -8,11 +8,10 @@ five-bar that closes, and its discriminant misjudges which crank positions can c
 """
 import numpy as np
 import sympy as sp
+from published_script import reproduce
 
 from derivations import fivebar
 from transplanter.generated import casadi_function
-
-from published_script import reproduce
 
 L = sp.symbols("L1:6", positive=True)
 T1, T2, T4, T5 = sp.symbols("theta1 theta2 theta4 theta5", real=True)

@@ -9,26 +9,31 @@ import pytest
 import sympy as sp
 
 from transplanter.cli import main
-from transplanter.errors import InfeasibleError, ProblemError
+from transplanter.errors import InfeasibleError, ProblemError, SolverError
+from transplanter.fivebar import nlp as design_nlp
 from transplanter.fivebar.candidate import evaluate_candidate
 from transplanter.fivebar.evaluation import evaluate_design, load_design
 from transplanter.fivebar.linkage import FiveBar
-from transplanter.errors import SolverError
-from transplanter.fivebar import nlp as design_nlp
-from transplanter.fivebar.nlp import (SLOT_ROWS, DesignSolver, build_nlp, decision_vector, length_unit,
-                                     relative_violation)
+from transplanter.fivebar.nlp import (
+    SLOT_ROWS,
+    DesignSolver,
+    build_nlp,
+    decision_vector,
+    length_unit,
+    relative_violation,
+)
 from transplanter.fivebar.problem import load_problem, parse_problem
 from transplanter.fivebar.region import ChainFamily
-from transplanter.fivebar.synthesis import _empty_family, synthesize
-from transplanter.generated import numpy_twin
-from transplanter.geometry.periodic_bspline import basis_matrix, evaluate, kernel
-from transplanter.gears.pitch_curves import ellipse
-from transplanter.trains.planetary import printed_correction
 from transplanter.fivebar.relative_angle import RelativeAngle, fit_relative_angle, negative_intervals
 from transplanter.fivebar.return_stroke import solve_return_stroke
-from transplanter.toml_fields import read_toml
-from transplanter.trains.rolling import conjugate_curve
+from transplanter.fivebar.synthesis import _empty_family, synthesize
+from transplanter.gears.pitch_curves import ellipse
+from transplanter.generated import numpy_twin
+from transplanter.geometry.periodic_bspline import basis_matrix, evaluate, kernel
 from transplanter.geometry.turn_map import TurnMap
+from transplanter.toml_fields import read_toml
+from transplanter.trains.planetary import printed_correction
+from transplanter.trains.rolling import conjugate_curve
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples/vegetable_planting.toml"

@@ -15,11 +15,16 @@ from transplanter import fivebar, gears
 from transplanter.cli import main
 from transplanter.fivebar.animation import FRAMES, render_frames, write_animation
 from transplanter.fivebar.drawings import gear_drawings, write_drawings
-from transplanter.fivebar.gears_on_carrier import DRAWN_WITHIN_MODULES, carrier_to_world, gears_on_carrier, tooth_outlines
-from transplanter.geometry.outline_thinning import thinned
+from transplanter.fivebar.gears_on_carrier import (
+    DRAWN_WITHIN_MODULES,
+    carrier_to_world,
+    gears_on_carrier,
+    tooth_outlines,
+)
 from transplanter.fivebar.loop_closure import close_loop
 from transplanter.gears.drawings import GearDrawing, default_bore_radius, write_gear_drawings
 from transplanter.gears.teeth import driven_table, driver_table
+from transplanter.geometry.outline_thinning import thinned
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples/vegetable_planting.toml"

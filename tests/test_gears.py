@@ -5,21 +5,21 @@ import numpy as np
 import pytest
 import shapely
 import sympy as sp
-from shapely import affinity
 from scipy.spatial import cKDTree
+from shapely import affinity
 
 from derivations import gears as derivation
 from transplanter.errors import InfeasibleError
-from transplanter.gears.pair import design_pair, driven_angle
 from transplanter.gears.mesh_check import ERROR_MODULES, check_mesh
-from transplanter.geometry.poses import rotate_about
+from transplanter.gears.pair import design_pair, driven_angle
+from transplanter.gears.pinion_cutter import shaper_cutter, shaper_cutter_radii
+from transplanter.gears.pitch_curves import denatured_ellipse, denatured_limacon, denatured_partner, ellipse, limacon
+from transplanter.gears.rack_teeth import _flank, pitch_table, rack_profile
+from transplanter.gears.swept_teeth import mate_profile, shaper_profile
 from transplanter.gears.teeth import driven_table, generate_teeth
 from transplanter.generated import casadi_function, numpy_twin
-from transplanter.gears.pitch_curves import denatured_ellipse, denatured_limacon, denatured_partner, ellipse, limacon
+from transplanter.geometry.poses import rotate_about
 from transplanter.geometry.turn_quadrature import PIECE_PANELS
-from transplanter.gears.rack_teeth import pitch_table, rack_profile, _flank
-from transplanter.gears.pinion_cutter import shaper_cutter, shaper_cutter_radii
-from transplanter.gears.swept_teeth import mate_profile, shaper_profile
 
 ellipse_center = casadi_function("gears", "ellipse_center_distance")
 limacon_center = casadi_function("gears", "limacon_center_distance")

@@ -248,10 +248,10 @@ def test_reports_are_json_without_nan_or_infinity():
 def test_an_infeasible_five_bar_says_which_limit_to_move_and_that_value_admits_a_pair(limits):
     """Limits no pair of the example meets: the message gives new [conditions] values, and a problem with
     those values has a feasible pair (the hint's ground truth is the region judged again)."""
+    from transplanter.errors import InfeasibleError
     from transplanter.fivebar.problem import parse_problem
     from transplanter.fivebar.region import solution_region
     from transplanter.fivebar.relaxation import relaxation
-    from transplanter.errors import InfeasibleError
     from transplanter.toml_fields import read_toml
 
     data = read_toml(EXAMPLES / "vegetable_planting.toml")

@@ -7,12 +7,21 @@ import numpy as np
 import pytest
 
 from transplanter.errors import ProblemError
-from transplanter.fivebar.nlp import (CHECK_POINTS, CONCAVITY_LIMIT, CURVATURE_GAP, CURVES, SLOT_ROWS, DesignSolver,
-                                      build_nlp, decision_vector, length_unit)
+from transplanter.fivebar.nlp import (
+    CHECK_POINTS,
+    CONCAVITY_LIMIT,
+    CURVATURE_GAP,
+    CURVES,
+    SLOT_ROWS,
+    DesignSolver,
+    build_nlp,
+    decision_vector,
+    length_unit,
+)
 from transplanter.fivebar.problem import FiveBarProblem, load_problem, parse_problem
 from transplanter.fivebar.region import solution_region
-from transplanter.toml_fields import read_toml
 from transplanter.gears.rack_teeth import ADDENDUM
+from transplanter.toml_fields import read_toml
 from transplanter.trains.planetary import correction_factor, design_train
 from transplanter.trains.toothed_train import Gearing, stage_shape
 

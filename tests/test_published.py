@@ -12,14 +12,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 import sympy as sp
+from published_script import reproduce
 
 from derivations.gears import driven_rate_for_ratio
 from transplanter.burmester import load_problem, nearest_center, synthesize
 from transplanter.fivebar.relative_angle import RelativeAngle
 from transplanter.geometry.turn_map import TurnMap
 from transplanter.trains.planetary import correction_factor, design_train, printed_correction
-
-from published_script import reproduce
 
 ROOT = Path(__file__).resolve().parents[1]
 

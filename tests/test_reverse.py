@@ -6,15 +6,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from transplanter.reverse.arm_inverse import solve_arm
-from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, interpolating_polygon
+from transplanter.gears.pitch_curves import ellipse
 from transplanter.generated import numpy_twin
+from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, interpolating_polygon
+from transplanter.reverse.arm_inverse import solve_arm
 from transplanter.reverse.idler_train import build_idler_train, roll_idler_train
 from transplanter.reverse.monotonicity import stationary_radii, violations
-from transplanter.gears.pitch_curves import ellipse
-from transplanter.trains.planetary import printed_peak_to_valley_turn
 from transplanter.reverse.problem import load_problem, parse_problem
 from transplanter.reverse.synthesis import synthesize
+from transplanter.trains.planetary import printed_peak_to_valley_turn
 
 ROOT = Path(__file__).resolve().parents[1]
 inverse = numpy_twin("planetary", "two_link_inverse")

@@ -4,16 +4,16 @@ import sys
 
 import numpy as np
 import pytest
+from ground_truth import dyad_poses, fourbar_poses
 from scipy.optimize import least_squares
 
-from ground_truth import dyad_poses, fourbar_poses
-from transplanter.geometry.dyad import Link, verify_dyad
+from derivations.burmester import circular_cubic
 from transplanter.burmester.five_poses import center_cubic
 from transplanter.burmester.four_poses import circle_cubic
-from transplanter.geometry.poses import Frame, carry, relative_to_link, rotate_about
 from transplanter.burmester.problem import DyadProblem
 from transplanter.burmester.synthesis import synthesize
-from derivations.burmester import circular_cubic
+from transplanter.geometry.dyad import Link, verify_dyad
+from transplanter.geometry.poses import Frame, carry, relative_to_link, rotate_about
 
 
 def _has_pair(dyads, center, circle, tol):

@@ -15,6 +15,7 @@ from transplanter.generated import casadi_function
 from transplanter.geometry.pivot_pairing import circles_for_centers, polish
 from transplanter.geometry.poses import carry, pole
 
+
 def pencil_pose_order(poses: np.ndarray) -> np.ndarray:
     """Pose 1 first, then the pose turned most against it (its pole is best conditioned)."""
     turn = 1 - np.cos(poses[1:, 2] - poses[0, 2])

@@ -10,11 +10,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from transplanter.geometry.curve_trace import CurveTrace, trace_circular_cubic
 from transplanter.burmester.five_poses import center_cubic, pencil_pose_order
 from transplanter.generated import casadi_function
+from transplanter.geometry.curve_trace import CurveTrace, trace_circular_cubic
 from transplanter.geometry.pivot_pairing import centers_for_circles, circles_for_centers, polish
 from transplanter.geometry.poses import pole
+
 
 def circle_cubic(poses: np.ndarray) -> np.ndarray:
     cubic = casadi_function("burmester", "burmester_circle_cubic")

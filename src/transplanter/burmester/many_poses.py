@@ -10,9 +10,9 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
-from transplanter.errors import SolverError
 from transplanter.burmester.five_poses import burmester_points
 from transplanter.burmester.four_poses import trace_dyads
+from transplanter.errors import SolverError
 from transplanter.generated import casadi_function
 
 _ACCEPTED = {"Solve_Succeeded", "Solved_To_Acceptable_Level"}

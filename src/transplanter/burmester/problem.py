@@ -28,8 +28,15 @@ from pathlib import Path
 import numpy as np
 
 from transplanter.geometry.dyad import Link
-from transplanter.toml_fields import (LONGEST_LABEL, LONGEST_TITLE, ClassFields, FieldReader, is_sequence, read_toml,
-                                     warn_if_radians)
+from transplanter.toml_fields import (
+    LONGEST_LABEL,
+    LONGEST_TITLE,
+    ClassFields,
+    FieldReader,
+    is_sequence,
+    read_toml,
+    warn_if_radians,
+)
 
 _TOP_KEYS = {"title", "description", "poses", "relative", "three_poses", "search"}
 _POSE_KEYS = {"x", "y", "angle_deg", "label"}

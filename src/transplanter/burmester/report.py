@@ -3,8 +3,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from transplanter.geometry.dyad import Dyad
 from transplanter.burmester.result import Synthesis
+from transplanter.geometry.dyad import Dyad
 
 #: Rows a text or Markdown table shows at most; JSON always has every dyad.
 TABLE_ROWS = 24

@@ -9,14 +9,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from transplanter.geometry.curve_trace import CurveTrace
-from transplanter.geometry.dyad import verify_dyads
-from transplanter.errors import ProblemError
 from transplanter.burmester.five_poses import burmester_points
 from transplanter.burmester.four_poses import dyads_of_circle_curve, trace_center_curve, trace_circle_curve, trace_dyads
 from transplanter.burmester.many_poses import least_squares_dyads
 from transplanter.burmester.problem import DyadProblem
 from transplanter.burmester.result import Synthesis
+from transplanter.errors import ProblemError
+from transplanter.geometry.curve_trace import CurveTrace
+from transplanter.geometry.dyad import verify_dyads
 from transplanter.geometry.pivot_pairing import centers_for_circles, circles_for_centers
 from transplanter.geometry.poses import Frame, pole, relative_to_link
 from transplanter.toml_fields import require_problem

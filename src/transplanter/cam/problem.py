@@ -36,8 +36,15 @@ from pathlib import Path
 
 import numpy as np
 
-from transplanter.toml_fields import (LONGEST_TITLE, MAGNITUDE_LIMIT, ClassFields, FieldReader, is_finite_number,
-                                     is_sequence, read_toml)
+from transplanter.toml_fields import (
+    LONGEST_TITLE,
+    MAGNITUDE_LIMIT,
+    ClassFields,
+    FieldReader,
+    is_finite_number,
+    is_sequence,
+    read_toml,
+)
 
 LAWS = ("harmonic", "cycloidal", "polynomial_345", "modified_trapezoid")
 SEGMENT_KINDS = ("rise", "dwell", "return")

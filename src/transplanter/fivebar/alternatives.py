@@ -14,18 +14,32 @@ gentler ratio, i.e. the smaller spread i0_max / i0_min; then to the earlier star
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import Callable
 
 import numpy as np
 
 from transplanter.errors import SolverError, TransplanterError
-from transplanter.fivebar.candidate import (GRID, Candidate, closure_defect, monotonic_defect, range_defect,
-                                            range_values, ratio_defect)
+from transplanter.fivebar.candidate import (
+    GRID,
+    Candidate,
+    closure_defect,
+    monotonic_defect,
+    range_defect,
+    range_values,
+    ratio_defect,
+)
 from transplanter.fivebar.lanes import refine_in_lanes
 from transplanter.fivebar.linkage import FiveBar
-from transplanter.fivebar.nlp import (CURVES, DesignSolution, DesignSolver, HollowError, concavity_text, other_passes,
-                                      reach)
+from transplanter.fivebar.nlp import (
+    CURVES,
+    DesignSolution,
+    DesignSolver,
+    HollowError,
+    concavity_text,
+    other_passes,
+    reach,
+)
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.relative_angle import ratio_range
 from transplanter.trains.toothed_train import TrainSize, train_size

@@ -11,8 +11,8 @@ tooth outlines when given. Hinges and plate come from ``loop_closure``, gear tur
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
-from typing import Callable
 
 import numpy as np
 from matplotlib.figure import Figure

@@ -23,8 +23,8 @@ from pathlib import Path
 import ezdxf
 import numpy as np
 
-from transplanter.fivebar.gears_on_carrier import gears_on_carrier, tooth_outlines
 from transplanter.cam.drawings import write_drawings as write_cam_drawings
+from transplanter.fivebar.gears_on_carrier import gears_on_carrier, tooth_outlines
 from transplanter.fivebar.result import FiveBarResult
 from transplanter.fivebar.support import SupportDesign
 from transplanter.gears.drawings import GearDrawing, default_bore_radius, write_gear_drawings

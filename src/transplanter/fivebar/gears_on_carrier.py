@@ -11,8 +11,8 @@ every contact point lies on its line of centres.
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 

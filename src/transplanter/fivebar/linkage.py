@@ -70,11 +70,11 @@ class FiveBar:
     f_local: np.ndarray
     branch: float | np.ndarray
 
-    def __getitem__(self, index) -> "FiveBar":
+    def __getitem__(self, index) -> FiveBar:
         """The mechanism(s) at ``index`` of a batch."""
         return FiveBar(*(value[index] for value in vars(self).values()))
 
-    def as_batch(self) -> "FiveBar":
+    def as_batch(self) -> FiveBar:
         """One mechanism as a batch of one (fields (1, 1) and (1, 1, 2))."""
         return FiveBar(*(np.asarray(value, float)[None, None] for value in vars(self).values()))
 

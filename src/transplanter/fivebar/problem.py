@@ -45,10 +45,15 @@ import numpy as np
 
 from transplanter.burmester.problem import check_distinct
 from transplanter.fivebar.support_problem import SupportSpec, parse_support
-from transplanter.toml_fields import (LONGEST_LABEL, LONGEST_TITLE, ClassFields, FieldReader, read_toml,
-                                     warn_if_radians)
-from transplanter.trains.toothed_train import (CUTTERS, LAYOUTS, MODULE_RANGE, PRESSURE_ANGLE_RANGE_DEG,
-                                               SHAPER_TEETH_RANGE, Gearing)
+from transplanter.toml_fields import LONGEST_LABEL, LONGEST_TITLE, ClassFields, FieldReader, read_toml, warn_if_radians
+from transplanter.trains.toothed_train import (
+    CUTTERS,
+    LAYOUTS,
+    MODULE_RANGE,
+    PRESSURE_ANGLE_RANGE_DEG,
+    SHAPER_TEETH_RANGE,
+    Gearing,
+)
 
 RANGE_FIELDS = {"ep": "|EP| (mm)", "fp": "|FP| (mm)", "x_e": "x of E in pose 1 (mm)", "x_f": "x of F in pose 1 (mm)"}
 _TOP_KEYS = {"title", "description", "key_poses", "return_points", "ranges", "conditions", "spline", "region", "gears",

@@ -21,16 +21,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from transplanter.geometry.dyad import Link
-from transplanter.fivebar.candidate import Candidate, judge_candidates
-from transplanter.fivebar.linkage import from_hinges
-from transplanter.errors import ProblemError
-from transplanter.fivebar.problem import FiveBarProblem
-from transplanter.geometry.poses import carry
-from transplanter.toml_fields import require_problem
 from transplanter.burmester.problem import DyadProblem
 from transplanter.burmester.result import Synthesis
 from transplanter.burmester.synthesis import synthesize
+from transplanter.errors import ProblemError
+from transplanter.fivebar.candidate import Candidate, judge_candidates
+from transplanter.fivebar.linkage import from_hinges
+from transplanter.fivebar.problem import FiveBarProblem
+from transplanter.geometry.dyad import Link
+from transplanter.geometry.poses import carry
+from transplanter.toml_fields import require_problem
 
 TWO_PI = 2 * np.pi
 #: Five-bars judged in one set of arrays (bounds the memory: CHUNK x 720 turns per array).

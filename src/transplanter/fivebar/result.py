@@ -6,7 +6,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from transplanter.fivebar.alternatives import RANKING_RULE, ActiveBound, Alternative, Failure
-from transplanter.trains.toothed_train import TrainSize
 from transplanter.fivebar.candidate import Candidate
 from transplanter.fivebar.linkage import FiveBar
 from transplanter.fivebar.nlp import BENDING_WEIGHT, DesignSolution
@@ -15,7 +14,7 @@ from transplanter.fivebar.region import Region
 from transplanter.fivebar.support import SupportDesign
 from transplanter.fivebar.verification import Verification
 from transplanter.trains.planetary import PlanetaryTrain, printed_correction
-from transplanter.trains.toothed_train import ToothedTrain, toothed_train_json
+from transplanter.trains.toothed_train import ToothedTrain, TrainSize, toothed_train_json
 
 
 def design_json(mech: FiveBar, pose1: np.ndarray) -> dict:

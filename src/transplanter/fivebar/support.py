@@ -16,8 +16,8 @@ from transplanter.cam.kinematics import motion_at
 from transplanter.cam.problem import parse_problem as parse_cam
 from transplanter.cam.result import CamResult
 from transplanter.cam.synthesis import synthesize as synthesize_cam
-from transplanter.cam.timing import STAGES, plate_clearance, timed_segments
 from transplanter.cam.table5 import evaluate_table5
+from transplanter.cam.timing import STAGES, plate_clearance, timed_segments
 from transplanter.errors import ProblemError
 from transplanter.fivebar.linkage import FiveBar
 from transplanter.fivebar.loop_closure import close_loop

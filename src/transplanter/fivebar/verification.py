@@ -17,9 +17,9 @@ import numpy as np
 from transplanter.fivebar.linkage import FiveBar
 from transplanter.fivebar.loop_closure import close_loop
 from transplanter.fivebar.problem import FiveBarProblem
+from transplanter.fivebar.relative_angle import RelativeAngle, ratio_range
 from transplanter.generated import numpy_twin
 from transplanter.trains.planetary import PlanetaryTrain
-from transplanter.fivebar.relative_angle import RelativeAngle, ratio_range
 from transplanter.trains.rolling import roll_train
 
 TWO_PI = 2 * np.pi

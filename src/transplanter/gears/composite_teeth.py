@@ -29,8 +29,14 @@ import shapely.affinity
 from transplanter import progress
 from transplanter.errors import InfeasibleError
 from transplanter.gears.composite_curve import CompositeCurve, cusps
-from transplanter.gears.cycloid_teeth import (STRAIGHT_POINTS, CycloidArch, arch, arch_pressure_range, corner_heights,
-                                              polyline_min_curvature_radius)
+from transplanter.gears.cycloid_teeth import (
+    STRAIGHT_POINTS,
+    CycloidArch,
+    arch,
+    arch_pressure_range,
+    corner_heights,
+    polyline_min_curvature_radius,
+)
 from transplanter.gears.mesh_check import MeshCheck, check_mesh
 from transplanter.gears.pair import GearPairDesign, arc_to_angle, driven_angle
 from transplanter.gears.rack_teeth import ADDENDUM

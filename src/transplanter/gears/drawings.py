@@ -10,8 +10,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import ezdxf
-from ezdxf.entities.lwpolyline import LWPolylinePoints
 import numpy as np
+from ezdxf.entities.lwpolyline import LWPolylinePoints
 
 from transplanter.gears.result import GearResult
 from transplanter.gears.teeth import driven_table, driver_table

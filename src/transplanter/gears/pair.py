@@ -14,8 +14,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from transplanter.errors import InfeasibleError, ProblemError
-from transplanter.generated import numpy_twin
 from transplanter.gears.pitch_curves import TWO_PI, PitchCurve, too_small_radius
+from transplanter.generated import numpy_twin
 from transplanter.geometry.hermite import hermite
 from transplanter.geometry.turn_quadrature import NODES, PANELS, Panels, panels
 

@@ -66,7 +66,7 @@ class PitchCurve:
         values = self.evaluator(np.mod(phi.ravel(), TWO_PI))
         return tuple(self.scale * np.asarray(v, float).reshape(phi.shape) for v in values)
 
-    def scaled(self, factor: float) -> "PitchCurve":
+    def scaled(self, factor: float) -> PitchCurve:
         return dataclasses.replace(self, scale=self.scale * factor)
 
 

@@ -36,11 +36,20 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 
-from transplanter.gears.composite_fields import read_composite
-from transplanter.gears.pitch_curves import (PitchCurve, denatured_ellipse, denatured_limacon, denatured_partner, ellipse,
-                                       limacon, ratio_formula, ratio_samples, spline)
-from transplanter.gears.ratio_expression import ExpressionError, parse_ratio
 from transplanter.errors import ProblemError
+from transplanter.gears.composite_fields import read_composite
+from transplanter.gears.pitch_curves import (
+    PitchCurve,
+    denatured_ellipse,
+    denatured_limacon,
+    denatured_partner,
+    ellipse,
+    limacon,
+    ratio_formula,
+    ratio_samples,
+    spline,
+)
+from transplanter.gears.ratio_expression import ExpressionError, parse_ratio
 from transplanter.toml_fields import LONGEST_TITLE, ClassFields, FieldReader, read_toml, shown
 
 FAMILIES = ("ellipse", "higher_order_ellipse", "denatured_ellipse", "limacon", "denatured_limacon", "spline", "ratio",

@@ -25,10 +25,10 @@ import shapely
 from scipy.spatial import cKDTree
 
 from transplanter.gears.pair import GearPairDesign, driven_angle
-from transplanter.geometry.outline_thinning import thinned
-from transplanter.geometry.poses import rotate_about
 from transplanter.gears.pinion_cutter import shaper_cutter
 from transplanter.gears.rack_teeth import ADDENDUM, DEDENDUM, PitchTable
+from transplanter.geometry.outline_thinning import thinned
+from transplanter.geometry.poses import rotate_about
 
 ORIGIN = (0.0, 0.0)
 

@@ -9,11 +9,11 @@ from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.gears.composite_curve import CompositeCurve, cusps, with_exact_curvature
 from transplanter.gears.composite_teeth import generate_composite_teeth
 from transplanter.gears.pair import GearPairDesign, arc_length, design_pair
-from transplanter.geometry.turn_quadrature import panels
+from transplanter.gears.pitch_curves import from_ratio
 from transplanter.gears.problem import MAX_TEETH, GearProblem, ratio_defect
 from transplanter.gears.result import GearResult, ToothCounts
 from transplanter.gears.teeth import generate_teeth
-from transplanter.gears.pitch_curves import from_ratio
+from transplanter.geometry.turn_quadrature import panels
 from transplanter.toml_fields import require_problem
 
 

@@ -117,7 +117,7 @@ class ClosedTrajectory:
         """Distance of each sample (N, 2), sample k taken at x = 2 pi k / N, from the curve there (mm)."""
         return np.linalg.norm(self.evaluate(periodic_bspline.knots(len(samples))) - samples, axis=1)
 
-    def radially_remapped(self, farthest: float, nearest: float) -> "ClosedTrajectory":
+    def radially_remapped(self, farthest: float, nearest: float) -> ClosedTrajectory:
         """The curve with its control points moved radially, r -> a + b r about the pivot, so that its
         farthest and nearest distances from the pivot are exactly ``farthest`` and ``nearest`` (Newton
         on a, b; the curve's extremes, not the control points', are matched)."""

@@ -59,7 +59,7 @@ class Frame:
     scale: float
 
     @classmethod
-    def of(cls, poses: np.ndarray) -> "Frame":
+    def of(cls, poses: np.ndarray) -> Frame:
         origin = poses[:, :2].mean(axis=0)
         return cls(origin, pose_scale(poses))
 

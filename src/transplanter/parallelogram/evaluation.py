@@ -17,9 +17,16 @@ import numpy as np
 
 from transplanter.parallelogram.gear_checks import gear_margins, undercut_limit
 from transplanter.parallelogram.kinematics import mechanisms
-from transplanter.parallelogram.problem import (PRINTED_EQ17, PUBLISHED_FIELDS, Conventions, ParallelogramProblem,
-                                                check_design, check_gear_figures, read_design, read_printed,
-                                                read_published)
+from transplanter.parallelogram.problem import (
+    PRINTED_EQ17,
+    Conventions,
+    ParallelogramProblem,
+    check_design,
+    check_gear_figures,
+    read_design,
+    read_printed,
+    read_published,
+)
 from transplanter.parallelogram.trajectory import measure
 from transplanter.toml_fields import LONGEST_TITLE, ClassFields, FieldReader, read_toml
 

@@ -50,8 +50,15 @@ from pathlib import Path
 import numpy as np
 
 from transplanter.errors import ProblemError
-from transplanter.toml_fields import (LONGEST_TITLE, MAGNITUDE_LIMIT, ClassFields, FieldReader, is_finite_number,
-                                     is_sequence, read_toml)
+from transplanter.toml_fields import (
+    LONGEST_TITLE,
+    MAGNITUDE_LIMIT,
+    ClassFields,
+    FieldReader,
+    is_finite_number,
+    is_sequence,
+    read_toml,
+)
 
 #: The eight design variables of seed 001 in file order (mm; alpha in degrees in files, radians inside).
 VARIABLES = ("m11", "b", "l", "l1", "l2", "l5", "l6", "alpha")

@@ -49,7 +49,7 @@ def evaluation_markdown(report: dict, figures: list[str] = ()) -> str:
     """report.md of ``--design``."""
     published = report["published"]
     lines = [f"# Given design {report['design_source']}", "", report["title"], "", *_variables(report["design"]), "",
-             f"l2, l5, l6 only translate the path: no objective depends on them.", "",
+             "l2, l5, l6 only translate the path: no objective depends on them.", "",
              *_published(published), *_trajectory(report["trajectory"]), *_gear(report["gear"])]
     lines += [f"![{name}]({name})" for name in figures]
     return "\n".join(lines) + "\n"
@@ -83,6 +83,6 @@ def to_markdown(report: dict, figures: list[str] = ()) -> str:
                   "this design's.", ""]
     elif p:
         lines += ["", f"NLP polish failed: IPOPT status {p['status']}.", ""]
-    lines += ["", f"Timings (s): " + ", ".join(f"{k} {v:.2f}" for k, v in report["timings_s"].items()), ""]
+    lines += ["", "Timings (s): " + ", ".join(f"{k} {v:.2f}" for k, v in report["timings_s"].items()), ""]
     lines += [f"![{name}]({name})" for name in figures]
     return "\n".join(lines) + "\n"

@@ -7,8 +7,14 @@ from collections.abc import Callable
 import numpy as np
 
 from transplanter.errors import ProblemError, SolverError, TransplanterError
-from transplanter.parallelogram.evaluation import (EVALUATION_SAMPLES, DesignFile, Evaluation, evaluate,
-                                                   evaluate_published, problem_design)
+from transplanter.parallelogram.evaluation import (
+    EVALUATION_SAMPLES,
+    DesignFile,
+    Evaluation,
+    evaluate,
+    evaluate_published,
+    problem_design,
+)
 from transplanter.parallelogram.gear_pair import gear_json, gear_pair
 from transplanter.parallelogram.kinematics import mechanisms
 from transplanter.parallelogram.nlp import polish

@@ -29,8 +29,14 @@ import numpy as np
 
 from transplanter.gears.pitch_curves import PitchCurve
 from transplanter.gears.problem import FAMILIES, read_driver
-from transplanter.toml_fields import (ANGLE_LIMIT_DEG, LONGEST_TITLE, ClassFields, FieldReader,
-                                     is_finite_number, read_toml)
+from transplanter.toml_fields import (
+    ANGLE_LIMIT_DEG,
+    LONGEST_TITLE,
+    ClassFields,
+    FieldReader,
+    is_finite_number,
+    read_toml,
+)
 
 _STAGE_FAMILIES = tuple(f for f in FAMILIES if f != "ratio")
 _CARRIER_KEYS = {"first_length", "second_length", "bend_deg", "start_deg", "speed_rpm"}

@@ -22,8 +22,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, RadialExtreme
 from transplanter.generated import numpy_twin
+from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, RadialExtreme
 
 _inverse = numpy_twin("planetary", "two_link_inverse")
 _rates = numpy_twin("planetary", "two_link_rates")

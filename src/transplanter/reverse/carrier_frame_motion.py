@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from transplanter.reverse.arm_inverse import ArmMotion
-from transplanter.geometry.turn_quadrature import panels
 from transplanter.geometry.turn_map import PANELS, TurnMap
+from transplanter.geometry.turn_quadrature import panels
+from transplanter.reverse.arm_inverse import ArmMotion
 
 
 class CarrierFrameMotion:

@@ -24,12 +24,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from transplanter.reverse.arm_inverse import ArmMotion
 from transplanter.gears.pair import GearPairDesign, design_pair
-from transplanter.generated import numpy_twin
 from transplanter.gears.pitch_curves import PeriodicSpline, PitchCurve, Shifted, spline
-from transplanter.trains.planetary import RelativeMotion
+from transplanter.generated import numpy_twin
+from transplanter.reverse.arm_inverse import ArmMotion
 from transplanter.reverse.verification import CHECK_POINTS, ReverseVerification, rebuild_tip
+from transplanter.trains.planetary import RelativeMotion
 from transplanter.trains.rolling import arc_map, conjugate_curve
 
 _total_ratio = numpy_twin("planetary", "idler_total_ratio")

@@ -13,8 +13,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from transplanter.reverse.arm_inverse import BRANCH_NAMES, DIRECTION_NAMES, ArmMotion, solve_arm, touched_circle
 from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory
+from transplanter.reverse.arm_inverse import BRANCH_NAMES, DIRECTION_NAMES, ArmMotion, solve_arm, touched_circle
+
 
 @dataclass(frozen=True)
 class Violation:

@@ -26,8 +26,16 @@ from pathlib import Path
 
 import numpy as np
 
-from transplanter.toml_fields import (LONGEST_TITLE, MAGNITUDE_LIMIT, SMALLEST_LENGTH, ClassFields, FieldReader,
-                                     is_finite_number, is_sequence, read_toml)
+from transplanter.toml_fields import (
+    LONGEST_TITLE,
+    MAGNITUDE_LIMIT,
+    SMALLEST_LENGTH,
+    ClassFields,
+    FieldReader,
+    is_finite_number,
+    is_sequence,
+    read_toml,
+)
 
 TOPOLOGIES = {"sun-intermediate-planet": ("sqrt", "peak_to_valley"),
               "pick-up": ("sqrt", "peak_to_valley"),

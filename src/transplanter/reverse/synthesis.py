@@ -10,18 +10,18 @@ from __future__ import annotations
 
 import numpy as np
 
-from transplanter.reverse.arm_inverse import TOUCH_TOLERANCE, ArmMotion, solve_arm
-from transplanter.reverse.carrier_frame_motion import CarrierFrameMotion
-from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, fitted_polygon
 from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.generated import numpy_twin
+from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, fitted_polygon
+from transplanter.reverse.arm_inverse import TOUCH_TOLERANCE, ArmMotion, solve_arm
+from transplanter.reverse.carrier_frame_motion import CarrierFrameMotion
 from transplanter.reverse.idler_train import design_idler_train, verify_idler_train
 from transplanter.reverse.monotonicity import fix_hints, violations
-from transplanter.trains.planetary import design_train
 from transplanter.reverse.problem import ReverseProblem
 from transplanter.reverse.result import ReverseResult
 from transplanter.reverse.verification import CarrierGeometry, verify_reverse
 from transplanter.toml_fields import require_problem
+from transplanter.trains.planetary import design_train
 
 _arm_lengths = numpy_twin("planetary", "arm_lengths_from_extremes")
 #: A curve fitted to samples that comes within this fraction of the reach s + l of a reach circle

@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from transplanter.reverse.arm_inverse import ArmMotion
 from transplanter.generated import numpy_twin
+from transplanter.reverse.arm_inverse import ArmMotion
 from transplanter.trains.planetary import PlanetaryTrain
 from transplanter.trains.rolling import roll_train
 

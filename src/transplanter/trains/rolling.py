@@ -17,8 +17,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from transplanter.gears.pitch_curves import PitchCurve
-from transplanter.trains.planetary import PlanetaryTrain
 from transplanter.geometry.turn_map import TurnMap
+from transplanter.trains.planetary import PlanetaryTrain
 
 #: Panels per turn of the rolling maps (0.25 deg): a train that uses its whole ratio range has
 #: sharp stage-two curves, which 180 panels roll to only 1e-5 rad with 1e-4 mm contact gaps (720:
