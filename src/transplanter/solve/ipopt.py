@@ -1,0 +1,103 @@
+"""The one place an NLP meets IPOPT (``casadi.nlpsol``): one option set, one rule for what counts as
+success, and solutions read back by block name.
+
+Options: IPOPT's adaptive barrier update, a stationarity tolerance ``tolerance`` (1e-10 unless a caller
+needs a tighter one) and a constraint violation tolerance of 1e-12, at most ``max_iterations``; no
+parameter multipliers (casadi then skips building the NLP's gradient function). Success is
+``ACCEPTED``; any other end, or a stall (``solve.stall``), raises a ``SolverError`` naming it.
+"""
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import casadi as ca
+import numpy as np
+
+from transplanter.errors import SolverError
+from transplanter.solve.active import ActiveBound, active_bounds
+from transplanter.solve.layout import Bounds, NLPLayout
+from transplanter.solve.stall import IterationWatch, StallRule
+
+#: IPOPT return statuses that count as a solution (every result is checked again independently).
+ACCEPTED = frozenset({"Solve_Succeeded", "Solved_To_Acceptable_Level"})
+TOLERANCE = 1e-10
+CONSTRAINT_TOLERANCE = 1e-12
+MAX_ITERATIONS = 1000
+
+
+def ipopt_options(tolerance: float, max_iterations: int) -> dict:
+    """The option set every solver of the package uses."""
+    return {"ipopt.print_level": 0, "ipopt.sb": "yes", "print_time": False, "ipopt.tol": tolerance,
+            "ipopt.constr_viol_tol": CONSTRAINT_TOLERANCE, "ipopt.max_iter": max_iterations,
+            "ipopt.mu_strategy": "adaptive", "calc_lam_p": False, "no_nlp_grad": True}
+
+
+@dataclass(frozen=True)
+class Solution:
+    """A successful solve: values, constraint rows and multipliers, each readable by block name."""
+
+    layout: NLPLayout
+    bounds: Bounds
+    x: np.ndarray
+    g: np.ndarray
+    lam_x: np.ndarray
+    lam_g: np.ndarray
+    objective: float
+    iterations: int
+    status: str
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        """The values of variable block ``name``."""
+        return self.layout.variables[name].read(self.x)
+
+    def row(self, name: str) -> np.ndarray:
+        """The values of constraint block ``name`` at the solution."""
+        return self.layout.rows[name].read(self.g)
+
+    def values(self) -> dict[str, np.ndarray]:
+        """Every variable block's values, by name (a start for another solve)."""
+        return {name: block.read(self.x) for name, block in self.layout.variables.items()}
+
+    def active_bounds(self) -> tuple[ActiveBound, ...]:
+        """The named bounds the solution sits on (``solve.active``)."""
+        return active_bounds(self.layout, self.bounds, self.x, self.g, self.lam_x, self.lam_g)
+
+
+class Solver:
+    """One IPOPT solver of a layout, reused for every start: parameters and bounds change per solve,
+    the expressions do not."""
+
+    def __init__(self, name: str, layout: NLPLayout, tolerance: float = TOLERANCE,
+                 max_iterations: int = MAX_ITERATIONS, stall: StallRule | None = None):
+        self.layout = layout
+        self.watch = IterationWatch(layout.x.shape[0], layout.g.shape[0], stall)
+        problem = {"x": layout.x, "p": layout.p, "f": layout.f, "g": layout.g}
+        options = {**ipopt_options(tolerance, max_iterations), "iteration_callback": self.watch}
+        self.function = ca.nlpsol(name, "ipopt", problem, options)
+
+    def solve(self, start: Mapping[str, object], bounds: Bounds | None = None,
+              parameters: Mapping[str, object] | None = None, iteration_limit: int | None = None,
+              failure: str = "the NLP did not converge") -> Solution:
+        """Solve from ``start`` (a value per variable block), within ``bounds`` (default: the declared
+        ones), at ``parameters``; a ``SolverError`` starting with ``failure`` and naming the status (or
+        the stall) when IPOPT does not succeed."""
+        layout = self.layout
+        bounds = bounds or layout.bounds()
+        self.watch.watch(iteration_limit, bounds.lbg, bounds.ubg, layout.row_scales())
+        arguments = {"x0": layout.vector(start), "lbx": bounds.lbx, "ubx": bounds.ubx, "lbg": bounds.lbg,
+                     "ubg": bounds.ubg}
+        if layout.p.shape[0]:
+            arguments["p"] = layout.parameter_vector(parameters or {})
+        result = self.function(**arguments)
+        stats = self.function.stats()
+        status = stats["return_status"]
+        if self.watch.stalled:
+            rule = self.watch.rule
+            assert rule is not None
+            status = (f"a stall (a row off its bounds by more than {rule.violation:g} of its size for "
+                      f"{rule.iterations} iterations in a row, after {self.watch.count})")
+        if status not in ACCEPTED:
+            raise SolverError(failure, status)
+        x, g, lam_x, lam_g = (np.asarray(result[key]).ravel() for key in ("x", "g", "lam_x", "lam_g"))
+        return Solution(layout, bounds, x, g, lam_x, lam_g, float(result["f"]), int(stats["iter_count"]), status)
