@@ -45,12 +45,59 @@ def half_angle_quadratic(lengths, theta1, theta2, theta5):
     return p - q, 2 * r, p + q
 
 
+def _rotate(angle, vector):
+    return sp.Matrix([[sp.cos(angle), -sp.sin(angle)], [sp.sin(angle), sp.cos(angle)]]) * vector
+
+
+def _cross(u, v):
+    return u[0] * v[1] - u[1] * v[0]
+
+
+def plate_hinges(pose, plate_points):
+    """E and F of the plate in pose (x_P, y_P, direction), from their plate-frame coordinates
+    (e_x, e_y, f_x, f_y) relative to P."""
+    p = sp.Matrix(pose[:2])
+    return (p + _rotate(pose[2], sp.Matrix(plate_points[:2])), p + _rotate(pose[2], sp.Matrix(plate_points[2:])))
+
+
+def pose_closure(pose, plate_points, hinge_b, lengths, angles):
+    """The loop of eq (7) closed at a pose of the plate, at position level: |E - B|^2 - L4^2 (E on the
+    circle about B) and F - A - L2 e(theta2) (F at the end of the rod), for lengths (L1, L2, L4) and
+    absolute angles (theta1 of the carrier, theta2 of the rod)."""
+    e, f = plate_hinges(pose, plate_points)
+    b = sp.Matrix(hinge_b)
+    l1, l2, l4 = lengths
+    theta1, theta2 = angles
+    rod_end = f - l1 * _unit(theta1) - l2 * _unit(theta2)
+    return ((e - b).dot(e - b) - l4**2, rod_end[0], rod_end[1])
+
+
+def assembly_sine(pose, plate_points, hinge_b, receiving_length):
+    """sin of the signed angle from BF to BE, |BE| taken as L4 (equal where the pose closes): its sign
+    is the assembly branch of the dyad B-E-F, its square the closure margin at the pose."""
+    e, f = plate_hinges(pose, plate_points)
+    b = sp.Matrix(hinge_b)
+    return _cross(f - b, e - b) / (receiving_length * sp.sqrt((f - b).dot(f - b)))
+
+
+def transmission_margin(lengths, theta1, theta2, theta5):
+    """sin^2 of the angle BEF at E: by the sine rule in triangle B-E-F, sin(BEF) = |BF| sin(EBF) / L3, so
+    sin^2(BEF) = margin |BF|^2 / L3^2 with the closure margin sin^2(EBF) and F - B = OA + AF - OB."""
+    l1, l2, l3, _, l5 = lengths
+    p, q, r = closure_parts(lengths, theta1, theta2, theta5)
+    bf = l1 * _unit(theta1) + l2 * _unit(theta2) - l5 * sp.Matrix([-sp.cos(theta5), sp.sin(theta5)])
+    return (q**2 + r**2 - p**2) / (q**2 + r**2) * bf.dot(bf) / l3**2
+
+
 def derive() -> list[Derived]:
     lengths = symbol_group("lengths", 5)
     angles = symbol_group("angles", 4)            # theta1, theta2, theta4, theta5
     crank = symbol_group("crank_angles", 3)       # theta1, theta2, theta5
     p, q, r = closure_parts(lengths, *crank)
     a, b, c = half_angle_quadratic(lengths, *crank)
+    pose, plate = symbol_group("pose", 3), symbol_group("plate_points", 4)
+    hinge_b, link = symbol_group("hinge_b", 2), symbol_group("receiving_length", 1)
+    chain, chain_angles = symbol_group("chain_lengths", 3), symbol_group("chain_angles", 2)
     return [
         Derived(name="fivebar_closure",
                 doc="Eq (8): |OA + AF - OB - BE|^2 - L3^2 for lengths L1..L5 and angles theta1, theta2, theta4, theta5.",
@@ -68,4 +115,24 @@ def derive() -> list[Derived]:
                 doc="(Q^2 + R^2 - P^2) / (Q^2 + R^2) = sin^2(angle EBF): eq (10) without its scale, in [0, 1] where it closes.",
                 inputs=(("lengths", lengths), ("crank_angles", crank)),
                 outputs=(("margin", ((q**2 + r**2 - p**2) / (q**2 + r**2),)),)),
+        Derived(name="fivebar_transmission_margin",
+                doc="sin^2 of the angle BEF at E = margin |BF|^2 / L3^2 (sine rule), for theta1, theta2, theta5.",
+                inputs=(("lengths", lengths), ("crank_angles", crank)),
+                outputs=(("margin", (transmission_margin(lengths, *crank),)),)),
+        Derived(name="fivebar_plate_hinges",
+                doc="E and F of the plate in pose (x_P, y_P, direction) from plate points (e_x, e_y, f_x, f_y).",
+                inputs=(("pose", pose), ("plate_points", plate)),
+                outputs=tuple(zip(("hinge_e", "hinge_f"), (tuple(h) for h in plate_hinges(pose, plate)),
+                                  strict=True))),
+        Derived(name="fivebar_pose_closure",
+                doc="Eq (7) closed at a plate pose (x_P, y_P, direction): |E - B|^2 - L4^2 and F - A - L2 e(theta2), "
+                    "for plate points (e_x, e_y, f_x, f_y), hinge B, lengths (L1, L2, L4), angles (theta1, theta2).",
+                inputs=(("pose", pose), ("plate_points", plate), ("hinge_b", hinge_b), ("chain_lengths", chain),
+                        ("chain_angles", chain_angles)),
+                outputs=(("residual", pose_closure(pose, plate, hinge_b, chain, chain_angles)),)),
+        Derived(name="fivebar_assembly_sine",
+                doc="sin of the signed angle from BF to BE at a plate pose, |BE| taken as L4: the assembly branch.",
+                inputs=(("pose", pose), ("plate_points", plate), ("hinge_b", hinge_b),
+                        ("receiving_length", link)),
+                outputs=(("sine", (assembly_sine(pose, plate, hinge_b, link[0]),)),)),
     ]

@@ -7,17 +7,28 @@ alone would be harmless); C1 = C. With the printed A1 the quadratic's roots miss
 five-bar that closes, and its discriminant misjudges which crank positions can close.
 """
 import numpy as np
+import pytest
 import sympy as sp
 from published_script import reproduce
 
 from derivations import fivebar
+from transplanter._generated.fivebar import (
+    fivebar_assembly_sine,
+    fivebar_closure,
+    fivebar_discriminant,
+    fivebar_half_angle_quadratic,
+    fivebar_plate_hinges,
+    fivebar_pose_closure,
+    fivebar_transmission_margin,
+)
+from transplanter.fivebar.linkage import FiveBar
 from transplanter.generated import casadi_function
 
 L = sp.symbols("L1:6", positive=True)
 T1, T2, T4, T5 = sp.symbols("theta1 theta2 theta4 theta5", real=True)
-quadratic = casadi_function("fivebar", "fivebar_half_angle_quadratic")
-discriminant = casadi_function("fivebar", "fivebar_discriminant")
-closure = casadi_function("fivebar", "fivebar_closure")
+quadratic = casadi_function(fivebar_half_angle_quadratic)
+discriminant = casadi_function(fivebar_discriminant)
+closure = casadi_function(fivebar_closure)
 
 
 def _published(l1, l2, l3, l4, l5, t1, t2, t5, lib=sp):
@@ -80,3 +91,42 @@ def test_discriminant_says_when_the_chain_can_close(rng):
         a1, b1, c1 = _published(*lengths, t1, t2, t5, lib=np)
         disagreements_printed += (b1**2 - 4 * a1 * c1 >= 0) != closes
     assert checked > 350 and disagreements_printed > 0
+
+
+def test_position_closure_vanishes_and_assembly_sine_is_the_margin_along_forward_kinematics(rng):
+    """The rows the design NLP imposes at a pose (``fivebar_pose_closure``, ``fivebar_assembly_sine``, the plate's
+    hinges and the transmission margin) evaluated on the hinges the independent forward kinematics places
+    (circle intersections, no closure algebra): the loop closes to rounding, the sine's sign is the assembly
+    branch and its square the closure margin, and sin^2(BEF) is the angle at E measured by atan2."""
+    hinges = casadi_function(fivebar_plate_hinges)
+    residual = casadi_function(fivebar_pose_closure)
+    sine = casadi_function(fivebar_assembly_sine)
+    transmission = casadi_function(fivebar_transmission_margin)
+    checked = 0
+    for _ in range(40):
+        mech = FiveBar(carrier_length=rng.uniform(40, 80), carrier_angle=rng.uniform(-np.pi, np.pi),
+                       rod_length=rng.uniform(150, 250), hinge_b=rng.uniform(-100, 100, 2),
+                       receiving_length=rng.uniform(150, 300), e_local=rng.uniform(-60, 60, 2),
+                       f_local=rng.uniform(-60, 60, 2), branch=rng.choice([-1.0, 1.0]))
+        turns, rho = rng.uniform(0, 2 * np.pi, 5), rng.uniform(-np.pi, np.pi, 5)
+        state = mech.forward(turns, rho)
+        for k in np.flatnonzero(state["margin"] > 1e-3):
+            pose = [*state["p"][k], state["direction"][k]]
+            plate = [*mech.e_local, *mech.f_local]
+            theta1 = mech.carrier_angle - turns[k]
+            e, f = (np.asarray(h).ravel() for h in hinges(pose, plate))
+            assert np.allclose(e, state["e"][k], atol=1e-9) and np.allclose(f, state["f"][k], atol=1e-9)
+            rows = np.asarray(residual(pose, plate, mech.hinge_b, [mech.carrier_length, mech.rod_length,
+                                                                   mech.receiving_length],
+                                       [theta1, theta1 + rho[k]])).ravel()
+            assert np.abs(rows).max() < 1e-8
+            value = float(sine(pose, plate, mech.hinge_b, mech.receiving_length))
+            assert np.sign(value) == mech.branch and value**2 == pytest.approx(state["margin"][k], rel=1e-9)
+            b = mech.hinge_b
+            lengths = [mech.carrier_length, mech.rod_length, mech.link_length, mech.receiving_length, np.hypot(*b)]
+            u, v = b - e, f - e
+            at_e = np.arctan2(abs(u[0] * v[1] - u[1] * v[0]), np.dot(u, v))
+            assert float(transmission(lengths, [theta1, theta1 + rho[k], np.arctan2(b[1], -b[0])])) == \
+                pytest.approx(np.sin(at_e) ** 2, rel=1e-9, abs=1e-12)
+            checked += 1
+    assert checked > 50
