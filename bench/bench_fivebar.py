@@ -34,7 +34,8 @@ import numpy as np  # noqa: E402
 from fresh_process import cli_run  # noqa: E402  (bench/ is the script's own folder)
 from scipy.optimize import minimize  # noqa: E402
 
-from transplanter.fivebar.nlp import DesignSolver, HollowError, decision_vector, length_unit  # noqa: E402
+from transplanter.fivebar.design_solver import DesignSolver, HollowError  # noqa: E402
+from transplanter.fivebar.nlp import length_unit  # noqa: E402
 from transplanter.fivebar.problem import load_problem  # noqa: E402
 from transplanter.fivebar.region import solution_region  # noqa: E402
 
@@ -49,15 +50,15 @@ SLSQP_FTOL = 1e-12
 class SlsqpBaseline:
     """The package's NLP handed to scipy SLSQP, with casadi's exact first derivatives."""
 
-    def __init__(self, nlp):
-        x, p = nlp.x, nlp.p
-        self.nlp = nlp
-        self.f = ca.Function("f", [x, p], [nlp.objective])
-        self.grad = ca.Function("grad_f", [x, p], [ca.gradient(nlp.objective, x)])
-        self.g = ca.Function("g", [x, p], [nlp.constraints])
-        self.jac = ca.Function("jac_g", [x, p], [ca.jacobian(nlp.constraints, x)])
+    def __init__(self, layout):
+        x, p = layout.x, layout.p
+        self.f = ca.Function("f", [x, p], [layout.f])
+        self.grad = ca.Function("grad_f", [x, p], [ca.gradient(layout.f, x)])
+        self.g = ca.Function("g", [x, p], [layout.g])
+        self.jac = ca.Function("jac_g", [x, p], [ca.jacobian(layout.g, x)])
 
-    def solve(self, x0, p, lbg, ubg):
+    def solve(self, x0, p, bounds):
+        lbg, ubg = bounds.lbg, bounds.ubg
         equal = lbg == ubg
         lower = np.isfinite(lbg) & ~equal
         upper = np.isfinite(ubg) & ~equal
@@ -73,9 +74,10 @@ class SlsqpBaseline:
             {"type": "ineq", "fun": lambda v: np.r_[g(v)[lower] - lbg[lower], ubg[upper] - g(v)[upper]],
              "jac": lambda v: np.r_[jac(v)[lower], -jac(v)[upper]]},
         ]
-        bounds = [(lo if np.isfinite(lo) else None, None) for lo in self.nlp.lbx]
+        box = [(lo if np.isfinite(lo) else None, hi if np.isfinite(hi) else None)
+               for lo, hi in zip(bounds.lbx, bounds.ubx, strict=True)]
         result = minimize(lambda v: float(self.f(v, p)), x0, jac=lambda v: np.asarray(self.grad(v, p)).ravel(),
-                          method="SLSQP", bounds=bounds, constraints=constraints,
+                          method="SLSQP", bounds=box, constraints=constraints,
                           options={"maxiter": 1000, "ftol": SLSQP_FTOL})
         violation = max(np.abs(g(result.x)[equal] - lbg[equal]).max(),
                         np.fmax(lbg[lower] - g(result.x)[lower], 0).max(initial=0),
@@ -95,22 +97,23 @@ def main():
     solver = DesignSolver(problem)
     build = time.perf_counter() - start
     start = time.perf_counter()
-    baseline = SlsqpBaseline(solver.nlp)
+    baseline = SlsqpBaseline(solver.nlp.layout)
     baseline_build = time.perf_counter() - start
     print(f"design NLP, built once per problem: package IPOPT solver (exact Hessian) {build:.3f} s; "
           f"baseline casadi objective/gradient/constraint/Jacobian Functions {baseline_build:.3f} s")
 
     nlp = solver.nlp
-    lbg, ubg = nlp.bounds(0)
+    layout, unit = nlp.layout, length_unit(problem)
     ours, theirs, refines = [], [], []
     for candidate in region.feasible[:CANDIDATES]:
         begin = time.perf_counter()
         design = solver.solve(candidate)
         ours.append(time.perf_counter() - begin)
-        x0 = decision_vector(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points,
-                              length_unit(problem))
+        values = nlp.start(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points)
+        bounds = nlp.bounds(0, None, values["least_curvature"])
         begin = time.perf_counter()
-        result, violation = baseline.solve(x0, nlp.parameters(candidate.mech.branch, []), lbg, ubg)
+        result, violation = baseline.solve(layout.vector(values),
+                                           layout.parameter_vector(nlp.parameters(candidate.mech.branch, [])), bounds)
         theirs.append(time.perf_counter() - begin)
         begin = time.perf_counter()
         try:
@@ -118,9 +121,10 @@ def main():
         except HollowError as error:        # the start fails: timed all the same, as the main job spends it
             refined = f"failed ({error.reason[:60]}...)"
         refines.append(time.perf_counter() - begin)
-        unit = length_unit(problem)
-        apart = np.abs(result.x - decision_vector(design.mech, design.relative_angle, design.stroke,
-                                                  design.reached_return_points, unit))[:10].max() * unit
+        reached = layout.vector(nlp.start(design.mech, design.relative_angle, design.stroke,
+                                          design.reached_return_points))
+        lengths = slice(0, layout.variables["relative_angle_start"].start)     # lengths and hinges, before rho1
+        apart = np.abs(result.x - reached)[lengths].max() * unit
         print(f"  candidate: package {ours[-1]:.3f} s, {design.iterations} iterations, objective "
               f"{design.objective:.10e}; SLSQP {theirs[-1]:.3f} s, {result.nit} iterations, objective "
               f"{result.fun:.10e}, constraint violation {violation:.1e}, {result.message!r}, "

@@ -21,6 +21,9 @@ from pathlib import Path
 import numpy as np
 
 from transplanter import burmester, fivebar, reverse
+from transplanter._generated.fivebar import fivebar_discriminant, fivebar_half_angle_quadratic
+from transplanter._generated.gears import limacon_driven_convexity, ratio_pair_pitch
+from transplanter._generated.planetary import arm_lengths_from_extremes, pickup_tip
 from transplanter.errors import TransplanterWarning
 from transplanter.fivebar.relative_angle import RelativeAngle
 from transplanter.gears.pair import design_pair
@@ -85,7 +88,7 @@ def wang_fivebar_closure(samples: int = EQ10_SAMPLES, seed: int = EQ10_SEED) -> 
     rng = np.random.default_rng(seed)
     lengths = rng.uniform(0.3, 2.0, (5, samples))
     angles = rng.uniform(-np.pi, np.pi, (3, samples))
-    a, b, c = numpy_twin("fivebar", "fivebar_half_angle_quadratic")(lengths, angles)[0]
+    a, b, c = numpy_twin(fivebar_half_angle_quadratic)(lengths, angles)[0]
     a1, b1, c1 = printed_eq9(lengths, angles)
     l1, l2, l3, l4, l5 = lengths
     t1, t2, t5 = angles
@@ -95,7 +98,7 @@ def wang_fivebar_closure(samples: int = EQ10_SAMPLES, seed: int = EQ10_SEED) -> 
     distance = np.hypot(f[0] + l5 * np.cos(t5), f[1] - l5 * np.sin(t5))
     closes = (np.abs(l3 - l4) <= distance) & (distance <= l3 + l4)
     clear = np.minimum(np.abs(distance - np.abs(l3 - l4)), np.abs(distance - (l3 + l4))) > 1e-9
-    derived_says = numpy_twin("fivebar", "fivebar_discriminant")(lengths, angles)[0][0] >= 0
+    derived_says = numpy_twin(fivebar_discriminant)(lengths, angles)[0][0] >= 0
     printed_says = b1**2 - 4 * a1 * c1 >= 0
     wrong_printed = int((printed_says != closes)[clear].sum())
     wrong_derived = int((derived_says != closes)[clear].sum())
@@ -118,7 +121,7 @@ def wang_gear_train() -> list[Finding]:
     k = correction_factor(relative)
     k_printed, turn_printed = printed_correction(relative)
     ratio = lambda c: 1 / (k * np.sqrt(relative.evaluate(c, 1)))   # noqa: E731
-    rate = numpy_twin("gears", "ratio_pair_pitch")
+    rate = numpy_twin(ratio_pair_pitch)
     rolled = TurnMap(lambda c: rate([1.0], ratio(c)[None])[1][0], relative.knots).total
     eq13_printed = TurnMap(ratio, relative.knots).total
     return [
@@ -190,7 +193,7 @@ def onion_gear() -> list[Finding]:
     eq10 = (m**2 + 1) * k**2 + (2 - m**2) * k - m**2 * k**3 + 1
     partner = denatured_partner(m)
     driven = design_pair(denatured_limacon(1.0, k, m, partner), 1)
-    convexity = numpy_twin("gears", "limacon_driven_convexity")
+    convexity = numpy_twin(limacon_driven_convexity)
     cosine = np.linspace(-1, 1, 401)
     derived = min(convexity([k], [order], [driven.center_distance], [cosine])[0][0].min() for order in (m, partner))
     return [
@@ -211,7 +214,7 @@ def onion_gear() -> list[Finding]:
 
 def rice_arm_lengths() -> list[Finding]:
     """The rice-transplanter paper's eq (1-2), derived from the reach annulus."""
-    l1, l2 = numpy_twin("planetary", "arm_lengths_from_extremes")([254.3, 69.7])[0]
+    l1, l2 = numpy_twin(arm_lengths_from_extremes)([254.3, 69.7])[0]
     return [Finding("rice_L1", RICE, "eq (1-2): L1 from Lmax = 254.3, Lmin = 69.7", 92.3, float(l1), "mm", 1),
             Finding("rice_L2", RICE, "eq (1-2): L2", 162.0, float(l2), "mm", 1)]
 
@@ -248,7 +251,7 @@ def cusp_eq15(samples: int = 200, seed: int = EQ10_SEED) -> list[Finding]:
     rng = np.random.default_rng(seed)
     carrier, bend, planet, mounting = rng.uniform(-3, 3, (4, samples))
     first, second, arm = 90.0, 90.0, 207.81
-    tip = numpy_twin("planetary", "pickup_tip")([first, second, arm], [carrier, bend, planet, mounting])[0]
+    tip = numpy_twin(pickup_tip)([first, second, arm], [carrier, bend, planet, mounting])[0]
     unit = lambda t: np.array([np.cos(t), np.sin(t)])   # noqa: E731
     arm_tip = first * unit(carrier) + second * unit(carrier + bend) + arm * unit(carrier + bend + planet + mounting)
     return [Finding("cusp_eq15", CUSP, "eq (15): phi0 + phi1 is the carrier's angle (tip vs two-link arm)",

@@ -15,7 +15,6 @@ from test_api import EXAMPLES, check_figures
 from transplanter.cli import main
 from transplanter.errors import ProblemError, SolverError
 from transplanter.fivebar.alternatives import (
-    ACTIVE_TOLERANCE,
     ANGLE_TIE,
     MERGE_TOLERANCE,
     Failure,
@@ -26,12 +25,15 @@ from transplanter.fivebar.alternatives import (
     reach,
     refine_all,
 )
+from transplanter.fivebar.design_solver import DesignSolver, HollowError
 from transplanter.fivebar.figures import draw_figures
-from transplanter.fivebar.nlp import CONCAVITY_LIMIT, CURVES, DesignSolver, HollowError
+from transplanter.fivebar.nlp import CONCAVITY_LIMIT
 from transplanter.fivebar.problem import parse_problem
 from transplanter.fivebar.report import to_markdown
 from transplanter.fivebar.result import alternative_json
 from transplanter.fivebar.synthesis import pick_alternative, synthesize
+from transplanter.fivebar.whole_turn import CURVES
+from transplanter.solve import ActiveBound as SolvedBound
 from transplanter.toml_fields import read_toml
 
 TURNS = np.linspace(0, 2 * np.pi, 3600, endpoint=False)
@@ -150,35 +152,36 @@ def test_transmission_angles_match_the_hinge_positions(run):
     assert report["transmission_angle_min_deg"] == pytest.approx(np.degrees(result.alternatives[1].transmission_angle))
 
 
-def test_an_active_bound_is_flagged_and_a_slack_one_is_not(run):
+def test_the_bounds_the_nlp_sits_on_are_reported_with_the_problems_limits_and_the_designs_own_values(run):
+    """The NLP decides which bounds bind (``solve.active``); the report gives each with the problem's limit
+    and the value of the design's own evaluation, in the order ranges, margin, ratio, return tolerance
+    (with its points), a kappa; with a tolerance of 0 every return point is on it."""
     result, _ = run
     problem = result.problem
     alternative = result.alternatives[0]
-    mech, margin, ratios = alternative.design.mech, alternative.min_closure_margin, alternative.ratio_range
-    misses, curvature = alternative.return_misses_mm, alternative.design.min_curvature
-    low = problem.ranges["ep"][0]
-    width = mech.ep - low
-    roomy = replace(problem, return_tolerance_mm=2 * misses.max() + 1.0)
-    unheld = replace(alternative.design, curvature_floor=None)
-
-    def names(edited, design=unheld):
-        return {(b.name, b.side) for b in active_bounds(edited, design, margin, ratios, misses)}
-
-    at_limit = replace(roomy, ranges={"ep": (low, float(mech.ep))}, min_closure_margin=margin,
-                       ratio_bounds=(ratios[0], 10.0))
-    assert names(at_limit) == {("ranges.ep", "upper"), ("min_closure_margin", "lower"), ("ratio", "lower")}
-    slack = replace(roomy, ranges={"ep": (low, float(mech.ep) + 0.01 * width)}, min_closure_margin=0.99 * margin,
-                    ratio_bounds=(0.99 * ratios[0], 10.0))
-    assert names(slack) == set()
-    farthest, tightest = int(np.argmax(misses)), int(np.argmin(curvature))
-    on_tolerance = replace(slack, return_tolerance_mm=float(misses[farthest]))
-    on = [name for name, side in names(on_tolerance) if name.startswith("conditions.return_tolerance_mm")]
-    assert len(on) == 1 and f"{farthest + 1})" in on[0]
-    beyond = float(misses.max()) + 2 * ACTIVE_TOLERANCE * reach(problem)
-    assert names(replace(slack, return_tolerance_mm=beyond)) == set()
-    held = replace(unheld, curvature_floor=float(curvature[tightest]))
-    assert names(slack, held) == {(f"a kappa of the {CURVES[tightest]} pitch curve", "lower")}
-    assert names(slack, replace(unheld, curvature_floor=float(curvature[tightest]) - 0.01)) == set()
+    design = alternative.design
+    margin, ratios, misses = alternative.min_closure_margin, alternative.ratio_range, alternative.return_misses_mm
+    tightest = int(np.argmin(design.min_curvature))
+    nlp_says = (SolvedBound(f"a kappa of the {CURVES[tightest]} pitch curve", "lower", -6.0, -6.0, "curvature", (3,)),
+                SolvedBound("ratio", "lower", 4.0, 4.0, "slope", (7,)),
+                SolvedBound("conditions.return_tolerance_mm", "upper", 0.01, 0.01, "return_misses", (0, 2)),
+                SolvedBound("ranges.ep", "upper", 1.0, 1.0, "ranges.ep", (0,)),
+                SolvedBound("min_closure_margin", "lower", 0.01, 0.01, "quality", (0,)))
+    held = replace(design, active_bounds=nlp_says)
+    reported = active_bounds(problem, held, margin, ratios, misses)
+    assert [(b.name, b.side) for b in reported] == [
+        ("ranges.ep", "upper"), ("min_closure_margin", "lower"), ("ratio", "lower"),
+        ("conditions.return_tolerance_mm (return points 1, 3)", "upper"),
+        (f"a kappa of the {CURVES[tightest]} pitch curve", "lower")]
+    assert [b.limit for b in reported] == [problem.ranges["ep"][1], problem.min_closure_margin, problem.ratio_bounds[0],
+                                           problem.return_tolerance_mm, design.curvature_floor]
+    assert [b.value for b in reported] == [pytest.approx(design.mech.ep, abs=1e-12), margin, ratios[0],
+                                           max(misses[0], misses[2]), design.min_curvature[tightest]]
+    none_held = replace(design, active_bounds=())
+    assert active_bounds(problem, none_held, margin, ratios, misses) == ()
+    exact = active_bounds(replace(problem, return_tolerance_mm=0.0), none_held, margin, ratios, misses)
+    assert [b.name for b in exact] == [f"conditions.return_tolerance_mm (return points "
+                                       f"{', '.join(str(j + 1) for j in range(len(misses)))})"]
 
 
 def test_a_refined_design_that_breaks_a_condition_fails_with_the_reason(run):

@@ -3,6 +3,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
+from transplanter._generated.cam_support import support_rocker_closure
 from transplanter.cam import table5
 from transplanter.cam.support_linkage import SupportLinkage, support_swing
 from transplanter.generated import numpy_twin
@@ -22,7 +23,7 @@ def test_rocker_angle_recovers_a_constructed_linkage(rng):
         solved = linkage.rocker_angles(h_y - 116.0)
         assert np.abs(np.angle(np.exp(1j * (solved - angle)))).min() < 1e-9
         assert np.abs(linkage.closure_residual(h_y - 116.0, solved)).max() < 1e-9 * rocker
-        (residual,) = numpy_twin("cam_support", "support_rocker_closure")([*pivot, rocker, rod], [x, h_y], [solved[0]])
+        (residual,) = numpy_twin(support_rocker_closure)([*pivot, rocker, rod], [x, h_y], [solved[0]])
         assert abs(residual[0]) < 1e-8 * rocker**2
 
 

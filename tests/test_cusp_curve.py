@@ -5,6 +5,8 @@ import sympy as sp
 
 from derivations import cusp as derivation
 from derivations.gears import phi
+from transplanter._generated.cusp import corner_angles
+from transplanter._generated.gears import ellipse_center_distance
 from transplanter.errors import ProblemError
 from transplanter.gears import parse_problem, synthesize
 from transplanter.gears.composite_curve import curvature, cusps
@@ -32,7 +34,7 @@ def test_driven_radius_tangent_angle_equals_the_drivers():
     assert sp.simplify(r2 / rate - f / f.diff(phi)) == 0
     rng = np.random.default_rng(4)
     r, slope = rng.uniform(1, 5, 50), rng.normal(0, 5, 50)
-    mu1, mu2 = numpy_twin("cusp", "corner_angles")([r + rng.uniform(0.1, 5, 50)], [r], [slope])
+    mu1, mu2 = numpy_twin(corner_angles)([r + rng.uniform(0.1, 5, 50)], [r], [slope])
     assert np.allclose(mu1, mu2, rtol=0, atol=1e-14)
 
 
@@ -105,7 +107,7 @@ def test_one_family_split_in_two_is_the_family():
     halves = parse_problem({"driver": {"family": "composite", "segments": [
         {"kind": "ellipse", "phi_deg": [0, 180], "semi_major_axis": A, "eccentricity": E},
         {"kind": "ellipse", "phi_deg": [180, 360], "semi_major_axis": A, "eccentricity": E}]}})
-    closed = numpy_twin("gears", "ellipse_center_distance")
+    closed = numpy_twin(ellipse_center_distance)
     result = synthesize(halves)
     assert result.design.center_distance == pytest.approx(float(np.ravel(closed([A], [E], [1.0])[0])[0]), rel=1e-12)
     assert result.to_json()["cusps"] == []

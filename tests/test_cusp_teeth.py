@@ -7,6 +7,7 @@ import pytest
 import sympy as sp
 
 from derivations import cusp as derivation
+from transplanter._generated.cusp import cycloid_trace, incomplete_cycloid
 from transplanter.errors import InfeasibleError
 from transplanter.gears import parse_problem, synthesize
 from transplanter.gears.composite_teeth import (
@@ -27,8 +28,8 @@ from transplanter.gears.tooth_contact import SAMPLES_PER_PITCH, measure_contact_
 from transplanter.generated import numpy_twin
 from transplanter.geometry.turn_quadrature import panels
 
-trace = numpy_twin("cusp", "cycloid_trace")
-incomplete = numpy_twin("cusp", "incomplete_cycloid")
+trace = numpy_twin(cycloid_trace)
+incomplete = numpy_twin(incomplete_cycloid)
 
 
 def test_rolling_circle_on_a_line_is_the_cycloid():

@@ -8,20 +8,15 @@ import numpy as np
 import pytest
 import sympy as sp
 
+from transplanter._generated.fivebar import fivebar_closure_margin
 from transplanter.cli import main
 from transplanter.errors import InfeasibleError, ProblemError, SolverError
-from transplanter.fivebar import nlp as design_nlp
+from transplanter.fivebar import design_solver
 from transplanter.fivebar.candidate import evaluate_candidate
+from transplanter.fivebar.design_solver import DesignSolver
 from transplanter.fivebar.evaluation import evaluate_design, load_design
 from transplanter.fivebar.linkage import FiveBar
-from transplanter.fivebar.nlp import (
-    SLOT_ROWS,
-    DesignSolver,
-    build_nlp,
-    decision_vector,
-    length_unit,
-    relative_violation,
-)
+from transplanter.fivebar.nlp import CONCAVITY_LIMIT, GRID_BLOCKS, build_nlp
 from transplanter.fivebar.problem import load_problem, parse_problem
 from transplanter.fivebar.region import ChainFamily
 from transplanter.fivebar.relative_angle import RelativeAngle, fit_relative_angle, negative_intervals
@@ -31,6 +26,7 @@ from transplanter.gears.pitch_curves import ellipse
 from transplanter.generated import numpy_twin
 from transplanter.geometry.periodic_bspline import basis_matrix, evaluate, kernel
 from transplanter.geometry.turn_map import TurnMap
+from transplanter.solve import StallRule, relative_violation
 from transplanter.toml_fields import read_toml
 from transplanter.trains.planetary import printed_correction
 from transplanter.trains.rolling import conjugate_curve
@@ -102,7 +98,7 @@ def test_conjugate_of_a_focal_ellipse_is_the_same_ellipse():
 
 def test_derived_closure_margin_is_sin_squared_of_angle_ebf(rng):
     """The generated margin against the circle intersection of the linkage (no shared algebra)."""
-    margin = numpy_twin("fivebar", "fivebar_closure_margin")
+    margin = numpy_twin(fivebar_closure_margin)
     mech = FiveBar(48.0, -0.5, 246.0, np.array([-78.6, -30.1]), 186.0, np.array([99.4, -11.3]),
                    np.array([35.0, -33.1]), -1.0)
     c = rng.uniform(0, 2 * np.pi, 50)
@@ -157,18 +153,22 @@ def test_exchange_slots_are_the_closure_margin_and_slope_of_forward_kinematics(r
     independent forward kinematics gives there (less t, for the margin); an unused slot constrains nothing."""
     candidate = result.region.feasible[0]
     nlp = build_nlp(problem, capacity=3)
+    layout = nlp.layout
     turns = np.radians([14.2, 123.45])
-    x0 = decision_vector(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points,
-                          length_unit(problem))
-    g = ca.Function("g", [nlp.x, nlp.p], [nlp.constraints])(x0, nlp.parameters(candidate.mech.branch, turns))
+    values = nlp.start(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points)
+    g = ca.Function("g", [layout.x, layout.p], [layout.g])(
+        layout.vector(values), layout.parameter_vector(nlp.parameters(candidate.mech.branch, turns)))
     g = np.asarray(g).ravel()
+    slots = slice(nlp.fixed_points, nlp.fixed_points + 2)
     forward = candidate.mech.forward(turns, candidate.relative_angle.evaluate(turns))["margin"]
-    margin_row, slope_row = nlp.slot_rows[SLOT_ROWS.index("angle EBF")], nlp.slot_rows[SLOT_ROWS.index("ratio")]
-    assert np.abs(g[margin_row[:2]] + x0[-3] - forward).max() < 1e-12
-    assert np.abs(g[slope_row[:2]] - candidate.relative_angle.evaluate(turns, 1)).max() < 1e-12
-    lbg, ubg = nlp.bounds(len(turns), convex=True)
-    assert np.isfinite(lbg[nlp.slot_rows[:, :2]]).all() and np.isneginf(lbg[nlp.slot_rows[:, 2]]).all()
-    assert np.isposinf(ubg[nlp.slot_rows[:, 2]]).all()
+    margin, slope = layout.rows["closure_quality"].read(g)[slots], layout.rows["slope"].read(g)[slots]
+    assert np.abs(margin + values["quality"] - forward).max() < 1e-12
+    assert np.abs(slope - candidate.relative_angle.evaluate(turns, 1)).max() < 1e-12
+    bounds = nlp.bounds(len(turns), -CONCAVITY_LIMIT, -CONCAVITY_LIMIT)
+    for name in GRID_BLOCKS:
+        lower, upper = layout.rows[name].read(bounds.lbg), layout.rows[name].read(bounds.ubg)
+        assert np.isfinite(lower[slots]).all() and np.isneginf(lower[nlp.fixed_points + 2])
+        assert np.isposinf(upper[nlp.fixed_points + 2])
 
 
 def test_one_solver_serves_every_start_and_round(result, problem):
@@ -177,12 +177,12 @@ def test_one_solver_serves_every_start_and_round(result, problem):
     start may end at another local optimum of the max-min: the turns change IPOPT's path.)"""
     first, second = result.region.feasible[:2]
     solver = DesignSolver(problem)
-    function = solver.function
+    ipopt = solver.solver
     solver.refine(first)
     offered = solver.exchange_turns
     assert offered.size > 0
     reused = solver.refine(second)
-    assert solver.builds == 1 and solver.function is function
+    assert solver.builds == 1 and solver.solver is ipopt
     fresh = DesignSolver(problem)
     fresh.exchange_turns = offered
     same_grid = fresh.refine(second)
@@ -205,31 +205,31 @@ def test_a_solve_held_off_its_bounds_for_the_stall_window_is_stopped_and_says_so
     """Every iterate of a solve from a region candidate breaks some row by more than 1e-30 of its size, so
     with that as the stall threshold and a window of 3 the solve stops after 3 iterations, and the error
     names the stall, not IPOPT's own status."""
-    monkeypatch.setattr(design_nlp, "STALL_VIOLATION", 1e-30)
-    monkeypatch.setattr(design_nlp, "STALL_ITERATIONS", 3)
+    monkeypatch.setattr(design_solver, "STALL", StallRule(violation=1e-30, iterations=3))
     solver = DesignSolver(problem)
     with pytest.raises(SolverError) as raised:
         solver.solve(result.region.feasible[0])
-    assert solver.cap.count == 3 and solver.cap.stalled
+    assert solver.solver.watch.count == 3 and solver.solver.watch.stalled
     assert "a stall" in raised.value.status and "100" not in raised.value.status
 
 
 def test_a_feasible_iterate_restarts_the_stall_count(problem):
     solver = DesignSolver(problem)
-    nlp, cap = solver.nlp, solver.cap
-    lbg, ubg = nlp.bounds(0)
-    cap.watch(None, lbg, ubg, nlp.bound_scales)
+    nlp, cap, window = solver.nlp, solver.solver.watch, design_solver.STALL.iterations
+    bounds = nlp.bounds(0, -CONCAVITY_LIMIT, -CONCAVITY_LIMIT)
+    lbg, ubg = bounds.lbg, bounds.ubg
+    cap.watch(None, lbg, ubg, nlp.layout.row_scales())
     order = ca.nlpsol_out()
     inside, outside = np.where(np.isfinite(lbg), lbg, np.fmin(ubg, 0.0)), np.where(np.isfinite(lbg), lbg - 1.0, ubg + 1.0)
 
     def iterate(g):
-        values = {"g": g, "f": 0.0, "x": np.zeros(nlp.x.shape[0]), "lam_x": np.zeros(nlp.x.shape[0]),
+        values = {"g": g, "f": 0.0, "x": np.zeros(nlp.layout.x.shape[0]), "lam_x": np.zeros(nlp.layout.x.shape[0]),
                   "lam_g": np.zeros(len(g))}
         return cap.eval([values.get(name, np.zeros(0)) for name in order])[0]
 
-    assert [iterate(outside) for _ in range(design_nlp.STALL_ITERATIONS - 1)] == [0] * (design_nlp.STALL_ITERATIONS - 1)
+    assert [iterate(outside) for _ in range(window - 1)] == [0] * (window - 1)
     assert iterate(inside) == 0 and not cap.stalled
-    assert [iterate(outside) for _ in range(design_nlp.STALL_ITERATIONS)][-1] == 1 and cap.stalled
+    assert [iterate(outside) for _ in range(window)][-1] == 1 and cap.stalled
 
 
 def test_exchange_beyond_the_solver_room_rebuilds_it_larger(result, problem):

@@ -9,6 +9,12 @@ from scipy.spatial import cKDTree
 from shapely import affinity
 
 from derivations import gears as derivation
+from transplanter._generated.gears import (
+    ellipse_center_distance,
+    limacon_center_distance,
+    limacon_driven_convexity,
+    limacon_driver_convexity,
+)
 from transplanter.errors import InfeasibleError
 from transplanter.gears.mesh_check import ERROR_MODULES, check_mesh
 from transplanter.gears.pair import design_pair, driven_angle
@@ -21,8 +27,8 @@ from transplanter.generated import casadi_function, numpy_twin
 from transplanter.geometry.poses import rotate_about
 from transplanter.geometry.turn_quadrature import PIECE_PANELS
 
-ellipse_center = casadi_function("gears", "ellipse_center_distance")
-limacon_center = casadi_function("gears", "limacon_center_distance")
+ellipse_center = casadi_function(ellipse_center_distance)
+limacon_center = casadi_function(limacon_center_distance)
 
 
 @pytest.mark.parametrize("e", [0.1, 0.3, 0.5])
@@ -67,7 +73,7 @@ def test_driver_convexity_criterion_of_seed_001_eq9():
     derived = derivation.limacon_driver_convexity(k, m, c)
     published = (1 - (m**2 + 1) * k) * (1 - k)
     assert sp.expand(derived.subs(c, -1) - published) == 0
-    convexity = numpy_twin("gears", "limacon_driver_convexity")
+    convexity = numpy_twin(limacon_driver_convexity)
     cosine = np.linspace(-1, 1, 401)
     for kk, mm in [(0.1, 1.0), (0.3, 1.5), (0.45, 1.2), (0.2, 2.5), (0.05, 3.0)]:
         values = convexity([kk], [mm], [cosine])[0][0]
@@ -97,14 +103,14 @@ def test_driven_convexity_criterion_of_seed_001_eq10_disagrees():
     assert published == pytest.approx(-0.09375)
     d = design_pair(denatured_limacon(1.0, k, m11, m12), 1)
     assert _turns_one_way(d.points[1][:-1])
-    derived = numpy_twin("gears", "limacon_driven_convexity")
+    derived = numpy_twin(limacon_driven_convexity)
     cosine = np.linspace(-1, 1, 401)
     assert min(derived([k], [m], [d.center_distance], [cosine])[0][0].min() for m in (m11, m12)) > 0
 
 
 def test_derived_driven_convexity_matches_the_points():
     """Where the derived driven condition says concave, the driven points do turn both ways."""
-    derived = numpy_twin("gears", "limacon_driven_convexity")
+    derived = numpy_twin(limacon_driven_convexity)
     cosine = np.linspace(-1, 1, 401)
     verdicts = []
     for k in (0.2, 0.4, 0.6):

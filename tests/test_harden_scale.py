@@ -129,7 +129,8 @@ def test_fivebar_design_nlp_scales_with_the_poses():
     example in micrometres, millimetres and metres (ranges and return tolerance scaled alike) refines its
     first candidate to the same mechanism (with a fixed 100 mm unit, all 17 candidates failed at 1e-3)."""
     from transplanter import fivebar
-    from transplanter.fivebar.nlp import DesignSolver, length_unit
+    from transplanter.fivebar.design_solver import DesignSolver
+    from transplanter.fivebar.nlp import length_unit
     from transplanter.fivebar.region import solution_region
 
     base = read_toml(ROOT / "examples" / "vegetable_planting.toml")

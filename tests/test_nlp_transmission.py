@@ -7,19 +7,11 @@ import numpy as np
 import pytest
 
 from transplanter.errors import ProblemError
-from transplanter.fivebar.nlp import (
-    CHECK_POINTS,
-    CONCAVITY_LIMIT,
-    CURVATURE_GAP,
-    CURVES,
-    SLOT_ROWS,
-    DesignSolver,
-    build_nlp,
-    decision_vector,
-    length_unit,
-)
+from transplanter.fivebar.design_solver import CURVATURE_GAP, DesignSolver
+from transplanter.fivebar.nlp import CONCAVITY_LIMIT, CURVATURE_BLOCKS, RETURN_TOLERANCE, build_nlp
 from transplanter.fivebar.problem import FiveBarProblem, load_problem, parse_problem
 from transplanter.fivebar.region import solution_region
+from transplanter.fivebar.whole_turn import CHECK_POINTS, CURVES
 from transplanter.gears.rack_teeth import ADDENDUM
 from transplanter.toml_fields import read_toml
 from transplanter.trains.planetary import correction_factor, design_train
@@ -84,24 +76,26 @@ def test_key_poses_are_exact_and_return_points_within_the_tolerance(design, prob
 
 
 def test_every_named_active_bound_is_met_by_the_design_and_the_others_are_not(design, problem):
-    """Each name in active_bounds is checked on the design itself; the ranges left out are inside."""
-    active = set(design.active_bounds)
+    """Each bound the NLP reports active is checked on the design itself; the ranges left out are inside."""
+    active = {(bound.name, bound.side) for bound in design.active_bounds}
     e1, f1 = design.mech.plate_points(problem.poses[0])
     values = {"ep": design.mech.ep, "fp": design.mech.fp, "x_e": e1[0], "x_f": f1[0]}
     for key, (low, high) in problem.ranges.items():
         size = max(abs(low), abs(high))
         for side, bound in (("lower", low), ("upper", high)):
             on = abs(values[key] - bound) <= 1e-6 * size
-            assert on == (f"ranges.{key} {side}" in active), (key, side, values[key])
+            assert on == ((f"ranges.{key}", side) in active), (key, side, values[key])
     slope = design.relative_angle.evaluate(FINE, 1)
-    if "ratio upper" in active:
+    if ("ratio", "upper") in active:
         assert 1 / slope.min() == pytest.approx(problem.ratio_bounds[1], rel=1e-4)
-    for label, miss in zip(problem.return_labels, design.return_misses_mm):
-        if f"return point {label} tolerance" in active:
+    on_tolerance = [j for bound in design.active_bounds if bound.name == RETURN_TOLERANCE for j in bound.entries]
+    for j, miss in enumerate(design.return_misses_mm):
+        if j in on_tolerance:
             assert miss == pytest.approx(problem.return_tolerance_mm, rel=1e-4)
         else:
             assert miss < problem.return_tolerance_mm * (1 - 1e-6)
-    assert ("closure margin floor" in active) == (design.min_closure_margin <= problem.min_closure_margin * (1 + 1e-6))
+    assert (("min_closure_margin", "lower") in active) == (
+        design.min_closure_margin <= problem.min_closure_margin * (1 + 1e-6))
 
 
 def test_pitch_curves_keep_hollows_a_shaper_cuts_by_the_gear_library_curves(design):
@@ -120,7 +114,7 @@ def test_pitch_curves_keep_hollows_a_shaper_cuts_by_the_gear_library_curves(desi
     assert [value < 0 for value in library] == [value < 0 for value in design.min_curvature]
     assert design.curvature_floor == -CONCAVITY_LIMIT
     tightest = CURVES[int(np.argmin(design.min_curvature))]
-    assert f"curvature {tightest}" in design.active_bounds
+    assert (f"a kappa of the {tightest} pitch curve", "lower") in {(b.name, b.side) for b in design.active_bounds}
     assert "shaper" in design.convexity_note and f"tightest the {tightest}" in design.convexity_note
     assert all(f"{curve} {value:.3f}" in design.convexity_note for curve, value in zip(CURVES, design.min_curvature))
     assert design.correction == pytest.approx(train.correction, rel=1e-12)
@@ -144,22 +138,25 @@ def test_quadrature_of_k_and_the_convexity_switch(problem, start):
     slot's BEF row is sin^2 of the angle BEF by plain geometry, less t; the convexity rows are on by
     default and free when switched off, with no rebuild."""
     nlp = build_nlp(problem, capacity=2)
-    x0 = decision_vector(start.mech, start.relative_angle, start.stroke, problem.return_points, length_unit(problem))
-    assert x0[-2] == correction_factor(start.relative_angle)
-    g = np.asarray(ca.Function("g", [nlp.x, nlp.p], [nlp.constraints])(
-        x0, nlp.parameters(start.mech.branch, []))).ravel()
-    quadrature_row = np.flatnonzero((nlp.lbg == 0) & (nlp.ubg == 0))[-1]
-    assert abs(g[quadrature_row]) < 1e-12
+    layout, values = nlp.layout, nlp.start(start.mech, start.relative_angle, start.stroke, problem.return_points)
+    assert values["correction"] == correction_factor(start.relative_angle)
+    rows = ca.Function("g", [layout.x, layout.p], [layout.g])
+
+    def g_at(turns):
+        return np.asarray(rows(layout.vector(values), layout.parameter_vector(
+            nlp.parameters(start.mech.branch, turns)))).ravel()
+
+    assert abs(layout.rows["correction_closure"].read(g_at([]))[0]) < 1e-12
     turns = np.radians([33.3, 251.7])
-    g = np.asarray(ca.Function("g", [nlp.x, nlp.p], [nlp.constraints])(
-        x0, nlp.parameters(start.mech.branch, turns))).ravel()
+    slots = layout.rows["transmission_quality"].read(g_at(turns))[nlp.fixed_points:nlp.fixed_points + 2]
     state = start.mech.forward(turns, start.relative_angle.evaluate(turns))
     bef = _angle(start.mech.hinge_b - state["e"], state["f"] - state["e"])
-    assert np.abs(g[nlp.slot_rows[SLOT_ROWS.index("angle BEF"), :2]] + x0[-3] - np.sin(bef) ** 2).max() < 1e-12
-    on, _ = nlp.bounds(0, convex=True)
-    off, _ = nlp.bounds(0, convex=False)
-    grid_rows = nlp.curvature_rows[np.isin(nlp.curvature_rows, nlp.slot_rows, invert=True)]
-    assert (on[grid_rows] == 0).all() and np.isneginf(off[nlp.curvature_rows]).all()
+    assert np.abs(slots + values["quality"] - np.sin(bef) ** 2).max() < 1e-12
+    on = nlp.bounds(0, -CONCAVITY_LIMIT, values["least_curvature"])
+    off = nlp.bounds(0, None, values["least_curvature"])
+    for name in CURVATURE_BLOCKS:
+        grid = layout.rows[name].read(on.lbg)[:nlp.fixed_points]
+        assert (grid == 0).all() and np.isneginf(layout.rows[name].read(off.lbg)).all()
 
 
 def _edited(tolerance):

@@ -1,9 +1,10 @@
-"""Other passes of P by a return point (``nlp.other_passes``, ``DesignSolver.restroke``): the NLP keeps each
+"""Other passes of P by a return point (``return_passes.other_passes``, ``DesignSolver.restroke``): the NLP keeps each
 return point on the pass its start assigns, and the example's better optimum has P8 on its other pass."""
 import numpy as np
 import pytest
 
-from transplanter.fivebar.nlp import MIN_STEP, other_passes
+from transplanter.fivebar.nlp import MIN_STEP
+from transplanter.fivebar.return_passes import other_passes
 
 
 def _distance(design, point, turns):

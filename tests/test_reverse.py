@@ -6,6 +6,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from transplanter._generated.gears import conjugate_pitch, ratio_pair_pitch
+from transplanter._generated.planetary import (
+    arm_lengths_from_extremes,
+    pickup_tip,
+    planetary_relative_per_carrier,
+    two_link_inverse,
+    two_link_rates,
+)
 from transplanter.gears.pitch_curves import ellipse
 from transplanter.generated import numpy_twin
 from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, interpolating_polygon
@@ -17,10 +25,10 @@ from transplanter.reverse.synthesis import synthesize
 from transplanter.trains.planetary import printed_peak_to_valley_turn
 
 ROOT = Path(__file__).resolve().parents[1]
-inverse = numpy_twin("planetary", "two_link_inverse")
-rates = numpy_twin("planetary", "two_link_rates")
-slope = numpy_twin("planetary", "planetary_relative_per_carrier")
-pickup_tip = numpy_twin("planetary", "pickup_tip")
+inverse = numpy_twin(two_link_inverse)
+rates = numpy_twin(two_link_rates)
+slope = numpy_twin(planetary_relative_per_carrier)
+tip_of_eq15 = numpy_twin(pickup_tip)
 
 
 def _unit(angle):
@@ -74,7 +82,7 @@ def test_gears_stop_where_the_distance_from_the_pivot_is_stationary():
 
 def test_arm_lengths_from_extremes_match_seed_002():
     """The rice-transplanter paper prints Lmax = 254.3, Lmin = 69.7 -> L1 = 92.3, L2 = 162 (eq 1-2)."""
-    lengths = numpy_twin("planetary", "arm_lengths_from_extremes")([254.3, 69.7])[0]
+    lengths = numpy_twin(arm_lengths_from_extremes)([254.3, 69.7])[0]
     assert lengths == pytest.approx([92.3, 162.0], abs=1e-12)
 
 
@@ -84,7 +92,7 @@ def test_pickup_tip_of_eq15_is_the_two_link_arm(rng):
     L1, L2, S = 90.0, 90.0, 207.81
     for _ in range(5):
         carrier, bend, planet, mounting = rng.uniform(-3, 3, size=4)
-        tip = pickup_tip([L1, L2, S], [carrier, bend, planet, mounting])[0]
+        tip = tip_of_eq15([L1, L2, S], [carrier, bend, planet, mounting])[0]
         o2 = L1 * _unit(carrier) + L2 * _unit(carrier + bend)
         assert tip == pytest.approx(o2 + S * _unit(carrier + bend + planet + mounting), abs=1e-12)
 
@@ -120,7 +128,7 @@ def test_peak_to_valley_as_printed_does_not_close():
     turn int r1 / (a - r1) dc (``conjugate_pitch``) by the trapezoid rule. The intermediate gear turns
     600 deg per cycle, and the package's own split (the exponent bs, corrected) turns it 360 deg."""
     result = synthesize(load_problem(ROOT / "examples" / "pickup_arm_reverse.toml"))
-    pair, conjugate = numpy_twin("gears", "ratio_pair_pitch"), numpy_twin("gears", "conjugate_pitch")
+    pair, conjugate = numpy_twin(ratio_pair_pitch), numpy_twin(conjugate_pitch)
     c = np.linspace(0, TWO_PI, 200001)
     a = 50.0
     printed_ratio = 0.6 / result.relative.evaluate(c, 1)                     # i1 = i25 bs, i25 = 1 / rho'

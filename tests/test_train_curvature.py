@@ -2,12 +2,13 @@
 import numpy as np
 import pytest
 
+from transplanter._generated.train_pitch_curvature import train_pitch_curvature
 from transplanter.fivebar.relative_angle import RelativeAngle
 from transplanter.generated import numpy_twin
 from transplanter.geometry.periodic_bspline import basis_matrix, evaluate, knots
 from transplanter.trains.planetary import design_train
 
-curvature = numpy_twin("train_pitch_curvature", "train_pitch_curvature")
+curvature = numpy_twin(train_pitch_curvature)
 
 
 def _derived(relative: RelativeAngle, c: np.ndarray, k: float):

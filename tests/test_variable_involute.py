@@ -5,6 +5,7 @@ import pytest
 import sympy as sp
 
 from derivations import cusp as derivation
+from transplanter._generated import cusp
 from transplanter.gears.pair import arc_length, design_pair
 from transplanter.gears.pinion_cutter import shaper_cutter_radii
 from transplanter.gears.pitch_curves import ellipse
@@ -14,8 +15,8 @@ from transplanter.gears.variable_involute import involute_deviation
 from transplanter.generated import numpy_twin
 from transplanter.geometry.turn_quadrature import panels
 
-reach = numpy_twin("cusp", "shaper_reach")
-variable_involute = numpy_twin("cusp", "variable_involute")
+reach = numpy_twin(cusp.shaper_reach)
+variable_involute = numpy_twin(cusp.variable_involute)
 
 
 @pytest.mark.parametrize("side", [1, -1])

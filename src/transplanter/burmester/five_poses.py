@@ -11,6 +11,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from transplanter._generated.burmester import (
+    burmester_center_cubic,
+    circular_cubic_pencil,
+    circular_cubic_pencil_resultant,
+)
 from transplanter.generated import casadi_function
 from transplanter.geometry.pivot_pairing import circles_for_centers, polish
 from transplanter.geometry.poses import carry, pole
@@ -24,7 +29,7 @@ def pencil_pose_order(poses: np.ndarray) -> np.ndarray:
 
 
 def center_cubic(poses: np.ndarray) -> np.ndarray:
-    cubic = casadi_function("burmester", "burmester_center_cubic")
+    cubic = casadi_function(burmester_center_cubic)
     return np.asarray(cubic(poses[:, 0], poses[:, 1], poses[:, 2])).ravel()
 
 
@@ -41,14 +46,14 @@ def burmester_points(poses: np.ndarray, tolerance: float = 1e-10):
     pivot = pole(ordered[0], ordered[1])
     first = center_cubic(ordered[[0, 1, 2, 3]])
     second = center_cubic(ordered[[0, 1, 2, 4]])
-    resultant = casadi_function("burmester", "circular_cubic_pencil_resultant")
+    resultant = casadi_function(circular_cubic_pencil_resultant)
     polynomial = np.asarray(resultant(first, second, pivot)).ravel()
     taus = np.roots(polynomial / np.abs(polynomial).max())
     real = taus[np.abs(taus.imag) <= 1e-7 * (1 + np.abs(taus))].real
     directions = [np.array([1.0, tau]) / np.hypot(1.0, tau) for tau in real]
     if abs(polynomial[0]) <= 1e-12 * np.abs(polynomial).max():
         directions.append(np.array([0.0, 1.0]))  # a root at tau = infinity
-    pencil = casadi_function("burmester", "circular_cubic_pencil")
+    pencil = casadi_function(circular_cubic_pencil)
     candidates = []
     for direction in directions:
         alpha, beta, gamma = np.asarray(pencil(first, pivot, direction)).ravel()

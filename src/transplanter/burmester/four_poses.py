@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from transplanter._generated.burmester import burmester_circle_cubic
 from transplanter.burmester.five_poses import center_cubic, pencil_pose_order
 from transplanter.generated import casadi_function
 from transplanter.geometry.curve_trace import CurveTrace, trace_circular_cubic
@@ -18,7 +19,7 @@ from transplanter.geometry.poses import pole
 
 
 def circle_cubic(poses: np.ndarray) -> np.ndarray:
-    cubic = casadi_function("burmester", "burmester_circle_cubic")
+    cubic = casadi_function(burmester_circle_cubic)
     return np.asarray(cubic(poses[:, 0], poses[:, 1], poses[:, 2])).ravel()
 
 

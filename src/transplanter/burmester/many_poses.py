@@ -10,22 +10,25 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
+from transplanter._generated.burmester import dyad_pivot_distance
 from transplanter.burmester.five_poses import burmester_points
 from transplanter.burmester.four_poses import trace_dyads
 from transplanter.errors import SolverError
 from transplanter.generated import casadi_function
+from transplanter.solve import NLPBuilder, Solver
 
-_ACCEPTED = {"Solve_Succeeded", "Solved_To_Acceptable_Level"}
+#: Stationarity tolerance of the least-squares solves: exact poses make the residuals and their gradient
+#: vanish, so the solves can go far below the design NLPs' 1e-10.
+TOLERANCE = 1e-14
 
 
-def _solver(poses: np.ndarray):
-    z = ca.SX.sym("z", 5)  # center (2), circle (2), length
-    distance = casadi_function("burmester", "dyad_pivot_distance")
-    distances = distance.map(len(poses))(ca.DM(poses[0]), ca.DM(poses.T), z[:2], z[2:4])
-    residual = distances.T - z[4]
-    nlp = {"x": z, "f": 0.5 * ca.sumsqr(residual)}
-    options = {"print_time": False, "ipopt": {"print_level": 0, "sb": "yes", "tol": 1e-14}}
-    return ca.nlpsol("dyad_least_squares", "ipopt", nlp, options)
+def _solver(poses: np.ndarray, radius: float) -> Solver:
+    nlp = NLPBuilder()
+    center = nlp.variables("center", 2, -radius, radius)
+    circle = nlp.variables("circle", 2, -radius, radius)
+    length = nlp.variables("length", 1, 0.0, 4 * radius)
+    distances = casadi_function(dyad_pivot_distance).map(len(poses))(ca.DM(poses[0]), ca.DM(poses.T), center, circle)
+    return Solver("dyad_least_squares", nlp.build(0.5 * ca.sumsqr(distances.T - length)), tolerance=TOLERANCE)
 
 
 def _starts(poses: np.ndarray, radius: float, count: int = 16):
@@ -39,17 +42,16 @@ def _starts(poses: np.ndarray, radius: float, count: int = 16):
 
 def least_squares_dyads(poses: np.ndarray, radius: float, keep: int = 4):
     """Distinct local optima, best first: arrays of centers, circles and RMS length errors."""
-    solver = _solver(poses)
-    bound = [radius] * 4 + [4 * radius]
+    solver = _solver(poses, radius)
     found, statuses = [], []
     for center, circle in _starts(poses, radius):
-        length = np.linalg.norm(circle - center)
-        result = solver(x0=[*center, *circle, length], lbx=[-b for b in bound[:4]] + [0.0], ubx=bound)
-        status = solver.stats()["return_status"]
-        statuses.append(status)
-        if status in _ACCEPTED:
-            z = np.asarray(result["x"]).ravel()
-            found.append((float(result["f"]), z))
+        try:
+            solution = solver.solve({"center": center, "circle": circle, "length": np.linalg.norm(circle - center)})
+        except SolverError as error:
+            statuses.append(error.status)
+            continue
+        statuses.append(solution.status)
+        found.append((solution.objective, solution.x))
     if not found:
         raise SolverError("least-squares dyad synthesis found no optimum from any start",
                           ", ".join(sorted(set(statuses))) or "no start")

@@ -14,14 +14,17 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
+from transplanter._generated.burmester import dyad_constraint
 from transplanter.burmester.result import Synthesis
 from transplanter.burmester.synthesis import working_poses
-from transplanter.errors import ProblemError, SolverError
+from transplanter.errors import ProblemError
 from transplanter.generated import casadi_function
 from transplanter.geometry.dyad import Dyad, verify_dyad
 from transplanter.geometry.poses import Frame
+from transplanter.solve import NLPBuilder, Solver
 
-_ACCEPTED = {"Solve_Succeeded", "Solved_To_Acceptable_Level"}
+#: Stationarity tolerance: the distance to a point of the exact curve, in the unit frame of the synthesis.
+TOLERANCE = 1e-14
 
 
 @dataclass(frozen=True)
@@ -44,15 +47,15 @@ class NearestCenter:
     sample_distance_mm: float
 
 
-def _solver(poses: np.ndarray, length: float | None):
-    z, target = ca.SX.sym("z", 4), ca.SX.sym("target", 2)   # center (2), circle point (2)
-    constraint = casadi_function("burmester", "dyad_constraint").map(len(poses) - 1)
-    residuals = constraint(ca.DM(poses[0]), ca.DM(poses[1:].T), z[:2], z[2:]).T
+def _solver(poses: np.ndarray, length: float | None) -> Solver:
+    nlp = NLPBuilder()
+    center, circle = nlp.variables("center", 2), nlp.variables("circle", 2)
+    target = nlp.parameters("target", 2)
+    constraint = casadi_function(dyad_constraint).map(len(poses) - 1)
+    nlp.constraints("dyad_constraint", constraint(ca.DM(poses[0]), ca.DM(poses[1:].T), center, circle).T, 0.0, 0.0)
     if length is not None:
-        residuals = ca.vertcat(residuals, 0.5 * (ca.sumsqr(z[2:] - z[:2]) - length**2))
-    nlp = {"x": z, "p": target, "f": 0.5 * ca.sumsqr(z[:2] - target), "g": residuals}
-    options = {"print_time": False, "ipopt": {"print_level": 0, "sb": "yes", "tol": 1e-14}}
-    return ca.nlpsol("nearest_center", "ipopt", nlp, options)
+        nlp.constraints("length", 0.5 * (ca.sumsqr(circle - center) - length**2), 0.0, 0.0)
+    return Solver("nearest_center", nlp.build(0.5 * ca.sumsqr(center - target)), tolerance=TOLERANCE)
 
 
 def nearest_center(result: Synthesis, point, length: float | None = None) -> NearestCenter:
@@ -83,11 +86,9 @@ def nearest_center(result: Synthesis, point, length: float | None = None) -> Nea
     misfit = gaps if length is None else gaps + np.abs([d.length - length for d in result.dyads])
     start = result.dyads[int(np.argmin(misfit))]
     solver = _solver(frame.local_poses(poses), None if length is None else length / frame.scale)
-    solution = solver(x0=[*frame.to_local(start.center), *frame.to_local(start.circle)], p=frame.to_local(point),
-                      lbg=0.0, ubg=0.0)
-    status = solver.stats()["return_status"]
-    if status not in _ACCEPTED:
-        raise SolverError("the nearest point of the center-point curve was not found", status)
-    z = np.asarray(solution["x"]).ravel()
-    dyad = verify_dyad(problem.poses, frame.to_world(z[:2]), frame.to_world(z[2:]), problem.link)
+    solution = solver.solve({"center": frame.to_local(start.center), "circle": frame.to_local(start.circle)},
+                            parameters={"target": frame.to_local(point)},
+                            failure="the nearest point of the center-point curve was not found")
+    dyad = verify_dyad(problem.poses, frame.to_world(solution["center"]), frame.to_world(solution["circle"]),
+                       problem.link)
     return NearestCenter(dyad, float(np.linalg.norm(dyad.center - point)), float(gaps.min()))

@@ -10,8 +10,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from transplanter.cam.problem import CamProblem, Follower, Segment
+from transplanter._generated import cam as derived_cam
+from transplanter._generated.cam import (
+    cam_flat_faced,
+    cam_oscillating_roller,
+    cam_pitch_profile,
+    cam_translating_roller,
+)
+from transplanter.cam.problem import LAWS, CamProblem, Follower, Segment
 from transplanter.generated import numpy_twin
+
+#: The derived unit rise of each motion law (``cam_law_<law>``), by law.
+_MOTION_LAWS = {law: numpy_twin(getattr(derived_cam, f"cam_law_{law}")) for law in LAWS}
 
 
 @dataclass(frozen=True)
@@ -66,7 +76,7 @@ def segment_motion(segment: Segment, level: float, into) -> np.ndarray:
     into = np.asarray(into, float)
     if segment.law is None:
         return np.stack([np.full_like(into, level), *np.zeros((3, *into.shape))])
-    (motion,) = numpy_twin("cam", f"cam_law_{segment.law}")(group(into, segment.angle, segment.lift, level))
+    (motion,) = _MOTION_LAWS[segment.law](group(into, segment.angle, segment.lift, level))
     return motion
 
 
@@ -109,16 +119,16 @@ def roller_center(problem: CamProblem, base_radius: float, motion: np.ndarray):
     follower, pitch_radius = problem.follower, base_radius + problem.follower.roller_radius
     if follower.kind == "translating":
         height = np.sqrt(pitch_radius**2 - follower.offset**2)
-        return numpy_twin("cam", "cam_translating_roller")(group(follower.offset, height), motion[:3])
+        return numpy_twin(cam_translating_roller)(group(follower.offset, height), motion[:3])
     start, sense = oscillating_start(follower, pitch_radius, problem.direction)
-    return numpy_twin("cam", "cam_oscillating_roller")(group(*follower.pivot, follower.arm_length, start, sense),
+    return numpy_twin(cam_oscillating_roller)(group(*follower.pivot, follower.arm_length, start, sense),
                                                        motion[:3])
 
 
 def _flat_faced(problem: CamProblem, base_radius: float, angle, index, motion) -> CamGeometry:
     """A flat-faced follower has no pitch curve: ``pitch`` holds the profile too, ``center`` the contact point on
     the ground (its x: the offset along the face), the pressure angle is nil."""
-    profile, radius, face = numpy_twin("cam", "cam_flat_faced")(group(angle, problem.direction, base_radius), motion[:3])
+    profile, radius, face = numpy_twin(cam_flat_faced)(group(angle, problem.direction, base_radius), motion[:3])
     contact = np.column_stack([face[0], base_radius + motion[0]])
     return CamGeometry(base_radius=base_radius, angle=angle, segment=index, motion=motion, center=contact,
                        pitch=profile.T, profile=profile.T, pressure_angle=np.zeros_like(angle),
@@ -136,7 +146,7 @@ def evaluate(problem: CamProblem, base_radius: float, angle=None, segment: int |
         return _flat_faced(problem, base_radius, angle, index, motion)
     center, rate, accel, direction = roller_center(problem, base_radius, motion)
     with np.errstate(divide="ignore"):          # a straight stretch of pitch curve has an infinite radius
-        pitch, profile, pressure, radii = numpy_twin("cam", "cam_pitch_profile")(
+        pitch, profile, pressure, radii = numpy_twin(cam_pitch_profile)(
             group(angle, problem.direction, problem.follower.roller_radius), center, rate, accel, direction)
     return CamGeometry(base_radius=base_radius, angle=angle, segment=index, motion=motion, center=center.T,
                        pitch=pitch.T, profile=profile.T, pressure_angle=pressure[0], curvature_radius=radii[0],

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from transplanter._generated.cam_support import support_rocker_parts
 from transplanter.cam.kinematics import group
 from transplanter.generated import numpy_twin
 
@@ -55,7 +56,7 @@ class SupportLinkage:
     def rocker_angles(self, plate_height) -> np.ndarray:
         """theta_CG (rad) of each assembly (``ASSEMBLIES``), shape (2, ...); NaN where the chain cannot close."""
         h = self.slider_point(plate_height)
-        (p, q, r), = numpy_twin("cam_support", "support_rocker_parts")(
+        (p, q, r), = numpy_twin(support_rocker_parts)(
             group(*self.pivot, self.rocker_length, self.rod_length), np.moveaxis(h, -1, 0))
         ratio = -p / np.hypot(q, r)
         spread = np.arccos(np.where(np.abs(ratio) <= 1, ratio, np.nan))

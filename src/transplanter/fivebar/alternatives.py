@@ -29,19 +29,14 @@ from transplanter.fivebar.candidate import (
     range_values,
     ratio_defect,
 )
+from transplanter.fivebar.design_solver import DesignSolver, HollowError, concavity_text
 from transplanter.fivebar.lanes import refine_in_lanes
 from transplanter.fivebar.linkage import FiveBar
-from transplanter.fivebar.nlp import (
-    CURVES,
-    DesignSolution,
-    DesignSolver,
-    HollowError,
-    concavity_text,
-    other_passes,
-    reach,
-)
+from transplanter.fivebar.nlp import RETURN_TOLERANCE, DesignSolution, reach
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.relative_angle import ratio_range
+from transplanter.fivebar.return_passes import other_passes
+from transplanter.fivebar.whole_turn import CURVES
 from transplanter.trains.toothed_train import TrainSize, train_size
 
 TWO_PI = 2 * np.pi
@@ -159,39 +154,34 @@ def transmission_angles(mech: FiveBar, state: dict) -> tuple[np.ndarray, np.ndar
     return _folded_angle(e - mech.hinge_b, f - mech.hinge_b), _folded_angle(f - e, mech.hinge_b - e)
 
 
-def _near(value: float, limit: float, scale: float) -> bool:
-    return abs(value - limit) <= ACTIVE_TOLERANCE * scale
-
-
 def active_bounds(problem: FiveBarProblem, design: DesignSolution, min_margin: float,
                   ratios: tuple[float, float], misses: np.ndarray) -> tuple[ActiveBound, ...]:
-    """The ``[ranges]`` limits, the margin floor, the ratio bounds, the return tolerance and the
-    pitch curves' curvature floor that the design sits on, each judged within ``ACTIVE_TOLERANCE`` of
-    the bound's own scale (the reach for the return tolerance, |floor| for a kappa)."""
-    found = []
+    """The bounds the design NLP found its solution on (``DesignSolution.active_bounds``, decided by the
+    ``solve`` layer), each with the problem's limit and the value of the design's own evaluation (mm,
+    margin, ratio, a kappa): ``[ranges]``, the margin floor, the ratio bounds, the return tolerance (with
+    the return points on it; every point when the tolerance is 0) and the pitch curves' curvature floor."""
     values = range_values(problem, design.mech)
-    for key, (low, high) in problem.ranges.items():
-        value = float(values[key])
-        found += [ActiveBound(f"ranges.{key}", side, limit, value)
-                  for side, limit in (("lower", low), ("upper", high)) if _near(value, limit, high - low)]
-    if _near(min_margin, problem.min_closure_margin, problem.min_closure_margin):
-        found.append(ActiveBound("min_closure_margin", "lower", problem.min_closure_margin, min_margin))
-    low, high = problem.ratio_bounds
-    found += [ActiveBound("ratio", side, limit, value)
-              for side, limit, value in (("lower", low, ratios[0]), ("upper", high, ratios[1]))
-              if _near(value, limit, high - low)]
-    tolerance = problem.return_tolerance_mm
-    on = [j for j, miss in enumerate(misses) if _near(float(miss), tolerance, reach(problem))]
-    if on:
-        points = f"return point{'s' * (len(on) > 1)} {', '.join(str(j + 1) for j in on)}"
-        found.append(ActiveBound(f"conditions.return_tolerance_mm ({points})", "upper", tolerance,
-                                 float(misses[on].max())))
-    floor = design.curvature_floor
-    if floor is not None:       # on the floor, or below it within the gap the NLP's fine check allows
-        found += [ActiveBound(f"a kappa of the {curve} pitch curve", "lower", floor, float(value))
-                  for curve, value in zip(CURVES, design.min_curvature)
-                  if value - floor <= ACTIVE_TOLERANCE * abs(floor)]
-    return tuple(found)
+    found = []
+    on_tolerance = [j for j in range(len(problem.return_points)) if problem.return_tolerance_mm == 0] or [
+        j for bound in design.active_bounds if bound.name == RETURN_TOLERANCE for j in bound.entries]
+    for bound in design.active_bounds:
+        side = ("lower", "upper").index(bound.side)
+        if bound.name.startswith("ranges."):
+            key = bound.name.removeprefix("ranges.")
+            found.append(ActiveBound(bound.name, bound.side, problem.ranges[key][side], float(values[key])))
+        elif bound.name == "min_closure_margin":
+            found.append(ActiveBound(bound.name, bound.side, problem.min_closure_margin, min_margin))
+        elif bound.name == "ratio":
+            found.append(ActiveBound(bound.name, bound.side, problem.ratio_bounds[side], ratios[side]))
+        elif bound.name.startswith("a kappa of the"):
+            curve = CURVES.index(bound.name.removeprefix("a kappa of the ").removesuffix(" pitch curve"))
+            found.append(ActiveBound(bound.name, bound.side, design.curvature_floor, design.min_curvature[curve]))
+    if on_tolerance:
+        points = f"return point{'s' * (len(on_tolerance) > 1)} {', '.join(str(j + 1) for j in on_tolerance)}"
+        found.append(ActiveBound(f"{RETURN_TOLERANCE} ({points})", "upper", problem.return_tolerance_mm,
+                                 float(misses[on_tolerance].max())))
+    order = ("ranges.", "min_closure_margin", "ratio", RETURN_TOLERANCE, "a kappa of the")
+    return tuple(sorted(found, key=lambda b: next(k for k, head in enumerate(order) if b.name.startswith(head))))
 
 
 def _defects(problem: FiveBarProblem, design: DesignSolution, slope: np.ndarray,

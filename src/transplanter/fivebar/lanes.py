@@ -18,7 +18,7 @@ import time
 from collections.abc import Callable
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 
-from transplanter.fivebar.nlp import DesignSolver
+from transplanter.fivebar.design_solver import DesignSolver
 
 LANES = 2
 #: Lane 1 in a forked process: on Linux only (macOS lists fork, but its system libraries are not

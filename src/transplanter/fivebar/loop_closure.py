@@ -18,6 +18,7 @@ import functools
 import casadi as ca
 import numpy as np
 
+from transplanter._generated.fivebar import fivebar_closure, fivebar_closure_margin, fivebar_half_angle_quadratic
 from transplanter.fivebar.linkage import FiveBar, assembly_branch
 from transplanter.generated import casadi_function, numpy_twin
 from transplanter.geometry.poses import rotation
@@ -25,14 +26,14 @@ from transplanter.geometry.poses import rotation
 #: Newton steps after the eq (9) start (two suffice at rounding level; the rest guard a poor start).
 NEWTON_STEPS = 6
 
-_half_angle_quadratic = numpy_twin("fivebar", "fivebar_half_angle_quadratic")
-_closure_margin = numpy_twin("fivebar", "fivebar_closure_margin")
+_half_angle_quadratic = numpy_twin(fivebar_half_angle_quadratic)
+_closure_margin = numpy_twin(fivebar_closure_margin)
 
 
 @functools.cache
 def _closure_and_slope() -> ca.Function:
     """Eq (8) residual (mm^2) and its derivative in theta4 (mm^2/rad), by casadi's AD."""
-    closure = casadi_function("fivebar", "fivebar_closure")
+    closure = casadi_function(fivebar_closure)
     lengths, angles = ca.SX.sym("lengths", 5), ca.SX.sym("angles", 4)
     residual = closure(lengths, angles)
     return ca.Function("closure_and_slope", [lengths, angles], [residual, ca.jacobian(residual, angles[2])])

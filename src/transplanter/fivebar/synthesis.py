@@ -17,7 +17,7 @@ import numpy as np
 
 from transplanter.errors import InfeasibleError, ProblemError, SolverError
 from transplanter.fivebar.alternatives import Alternative, Progress, refine_all, with_gear_sizes
-from transplanter.fivebar.nlp import DesignSolver
+from transplanter.fivebar.design_solver import DesignSolver
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import ChainFamily, Region, solution_region
 from transplanter.fivebar.relaxation import relaxation_hint

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from transplanter._generated.fivebar import fivebar_discriminant
 from transplanter.fivebar.linkage import FiveBar
 from transplanter.fivebar.loop_closure import close_loop
 from transplanter.fivebar.problem import FiveBarProblem
@@ -31,7 +32,7 @@ RELATIVE_TOLERANCE = 3e-9
 #: Relative slack on the closure-margin floor, which the NLP meets on its grid, checked here on a finer one.
 MARGIN_FLOOR_SLACK = 1e-6
 
-_discriminant = numpy_twin("fivebar", "fivebar_discriminant")
+_discriminant = numpy_twin(fivebar_discriminant)
 
 
 @dataclass(frozen=True)

@@ -22,12 +22,13 @@ from dataclasses import dataclass, field
 import casadi as ca
 import numpy as np
 
+from transplanter._generated.cusp import corner_angles, polar_curvature_center
 from transplanter.errors import ProblemError
 from transplanter.gears.pitch_curves import TWO_PI, PitchCurve, Shifted, _from_expression, too_small_radius
 from transplanter.generated import numpy_twin
 
-_corner_angles = numpy_twin("cusp", "corner_angles")
-_curvature_center = numpy_twin("cusp", "polar_curvature_center")
+_corner_angles = numpy_twin(corner_angles)
+_curvature_center = numpy_twin(polar_curvature_center)
 #: One-sided values at a joint are taken this far (rad) inside each segment.
 SIDE = 1e-9
 #: Joints whose radii differ by more than this fraction of the largest radius do not join.

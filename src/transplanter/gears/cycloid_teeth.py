@@ -16,11 +16,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from transplanter._generated.cusp import cycloid_trace, incomplete_cycloid
 from transplanter.gears.composite_curve import CompositeCurve, segment_frame
 from transplanter.generated import numpy_twin
 
-_trace = numpy_twin("cusp", "cycloid_trace")
-_incomplete = numpy_twin("cusp", "incomplete_cycloid")
+_trace = numpy_twin(cycloid_trace)
+_incomplete = numpy_twin(incomplete_cycloid)
 #: Points per arch (rolling, pivot) and on the straight flank below it.
 ARCH_POINTS, PIVOT_POINTS, STRAIGHT_POINTS = 600, 60, 20
 

@@ -13,15 +13,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from transplanter._generated.gears import conjugate_pitch, pair_kinematics, polar_curvature
 from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.gears.pitch_curves import TWO_PI, PitchCurve, too_small_radius
 from transplanter.generated import numpy_twin
 from transplanter.geometry.hermite import hermite
 from transplanter.geometry.turn_quadrature import NODES, PANELS, Panels, panels
 
-_conjugate = numpy_twin("gears", "conjugate_pitch")
-_curvature = numpy_twin("gears", "polar_curvature")
-_kinematics = numpy_twin("gears", "pair_kinematics")
+_conjugate = numpy_twin(conjugate_pitch)
+_curvature = numpy_twin(polar_curvature)
+_kinematics = numpy_twin(pair_kinematics)
 
 def arc_length(curve: PitchCurve, grid: Panels) -> np.ndarray:
     """Arc length of the pitch curve from phi = 0 to every panel edge: int sqrt(r^2 + r'^2) dphi (mm)."""

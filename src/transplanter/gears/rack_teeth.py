@@ -23,10 +23,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from transplanter._generated.cusp import variable_involute
 from transplanter.generated import numpy_twin
 from transplanter.geometry.hermite import hermite
 
-_VARIABLE_INVOLUTE = numpy_twin("cusp", "variable_involute")
+_VARIABLE_INVOLUTE = numpy_twin(variable_involute)
 ADDENDUM, DEDENDUM = 1.0, 1.25  # in modules
 
 

@@ -22,11 +22,12 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
+from transplanter._generated.cusp import shaper_reach
 from transplanter.gears.pinion_cutter import shaper_cutter_radii
 from transplanter.gears.rack_teeth import ADDENDUM, PitchTable, flank_points
 from transplanter.generated import numpy_twin
 
-_REACH = numpy_twin("cusp", "shaper_reach")
+_REACH = numpy_twin(shaper_reach)
 #: Points of the closed form per flank, spread over q = -side (s_f - s) from the reach's inward end to the tip.
 POINTS_PER_FLANK = 60
 

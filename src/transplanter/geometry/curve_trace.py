@@ -11,9 +11,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from transplanter._generated.burmester import circular_cubic_pencil
 from transplanter.generated import numpy_twin
 
-_pencil = numpy_twin("burmester", "circular_cubic_pencil")
+_pencil = numpy_twin(circular_cubic_pencil)
 
 
 @dataclass(frozen=True)

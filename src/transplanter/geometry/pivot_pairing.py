@@ -8,10 +8,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from transplanter._generated.burmester import dyad_rows_in_center, dyad_rows_in_circle
 from transplanter.generated import numpy_twin
 
-_rows_in_circle = numpy_twin("burmester", "dyad_rows_in_circle")
-_rows_in_center = numpy_twin("burmester", "dyad_rows_in_center")
+_rows_in_circle = numpy_twin(dyad_rows_in_circle)
+_rows_in_center = numpy_twin(dyad_rows_in_center)
 
 
 def _rows(twin, poses: np.ndarray, known: np.ndarray):

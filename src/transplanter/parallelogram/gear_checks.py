@@ -15,13 +15,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from transplanter._generated.gears import (
+    conjugate_pitch,
+    limacon_driven_convexity,
+    limacon_driver_convexity,
+    polar_curvature,
+)
 from transplanter.gears.rack_teeth import ADDENDUM
 from transplanter.generated import numpy_twin
 
-_driver_convexity = numpy_twin("gears", "limacon_driver_convexity")
-_driven_convexity = numpy_twin("gears", "limacon_driven_convexity")
-_curvature = numpy_twin("gears", "polar_curvature")
-_conjugate = numpy_twin("gears", "conjugate_pitch")
+_driver_convexity = numpy_twin(limacon_driver_convexity)
+_driven_convexity = numpy_twin(limacon_driven_convexity)
+_curvature = numpy_twin(polar_curvature)
+_conjugate = numpy_twin(conjugate_pitch)
 COSINES = np.cos(np.linspace(0.0, np.pi, 97))
 
 

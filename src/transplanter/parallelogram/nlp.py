@@ -26,17 +26,24 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-from transplanter.errors import SolverError
+from transplanter._generated.gears import (
+    conjugate_pitch,
+    limacon_center_distance,
+    limacon_driven_convexity,
+    limacon_driver_convexity,
+    polar_curvature,
+)
+from transplanter._generated.parallelogram import limacon_driven_angle, parallelogram_tip
 from transplanter.generated import casadi_function
 from transplanter.parallelogram.gear_checks import undercut_limit
 from transplanter.parallelogram.kinematics import TWO_PI, mechanisms
 from transplanter.parallelogram.problem import ParallelogramProblem
 from transplanter.parallelogram.trajectory import TrajectoryMeasures
+from transplanter.solve import NLPBuilder, Solver
 
 INTERIOR = np.linspace(0, 1, 18)[1:-1]      # fractions of the way from tau_E to each end
 COSINES = np.cos(np.linspace(0.0, np.pi, 33))   # where the gear constraints are imposed (the gear library checks after)
-IPOPT_OPTIONS = {"ipopt.print_level": 0, "ipopt.sb": "yes", "print_time": False, "ipopt.tol": 1e-10,
-                 "ipopt.constr_viol_tol": 1e-10, "ipopt.max_iter": 500}
+MAX_ITERATIONS = 500
 
 
 @dataclass(frozen=True)
@@ -52,10 +59,10 @@ class Polish:
 
 def _gear_constraints(m11, m12, b, l, a, limit):
     """Convexity (scale-free) and curvature margin (rho / limit - 1) of both curves, both halves, on COSINES."""
-    driver = casadi_function("gears", "limacon_driver_convexity")
-    driven = casadi_function("gears", "limacon_driven_convexity")
-    curvature = casadi_function("gears", "polar_curvature")
-    conjugate = casadi_function("gears", "conjugate_pitch")
+    driver = casadi_function(limacon_driver_convexity)
+    driven = casadi_function(limacon_driven_convexity)
+    curvature = casadi_function(polar_curvature)
+    conjugate = casadi_function(conjugate_pitch)
     rows = []
     for m in (m11, m12):
         for c in COSINES:
@@ -76,21 +83,25 @@ def polish(problem: ParallelogramProblem, start: dict, measures: TrajectoryMeasu
         When IPOPT does not succeed (the status is named).
     """
     names = tuple(n for n in problem.bounds if n != "l")
-    x = ca.SX.sym("x", len(names))
-    tau = ca.SX.sym("tau", 3)
-    v = {**{k: float(val) for k, val in start.items()}, **{n: x[i] for i, n in enumerate(names)}}
+    start_angles = np.array([measures.planting_angle[0], *measures.window[:, 0]])
+    laps = np.floor(start_angles / TWO_PI)
+    nlp = NLPBuilder()
+    searched = nlp.variables("design", len(names), [problem.bounds[n][0] for n in names],
+                             [problem.bounds[n][1] for n in names])
+    # each angle stays within its whole turn and within a quarter turn of its start
+    tau = nlp.variables("angles", 3, np.maximum(TWO_PI * laps, start_angles - np.pi / 2),
+                        np.minimum(TWO_PI * (laps + 1), start_angles + np.pi / 2))
+    v = {**{k: float(val) for k, val in start.items()}, **{n: searched[i] for i, n in enumerate(names)}}
     m12 = 1 / (2 - 1 / v["m11"])
-    a = casadi_function("gears", "limacon_center_distance")(v["l"], v["b"], 1.0)
+    a = casadi_function(limacon_center_distance)(v["l"], v["b"], 1.0)
     pitch = ca.vertcat(v["l"], v["b"], v["m11"], m12)
     c = problem.conventions
     instant = ca.pi / v["m11"] if c.alpha_instant == "slowest" else 0.0
-    phase = c.alpha_reference - c.crank_sense * (casadi_function("parallelogram", "limacon_driven_angle")(
+    phase = c.alpha_reference - c.crank_sense * (casadi_function(limacon_driven_angle)(
         instant, pitch, a)[0] + v["alpha"])
-    tip = casadi_function("parallelogram", "parallelogram_tip")
+    tip = casadi_function(parallelogram_tip)
     links = ca.vertcat(v["l1"], v["l2"], v["l5"], v["l6"])
     motion = ca.vertcat(problem.driver_speed, problem.forward_velocity)
-    start_angles = np.array([measures.planting_angle[0], *measures.window[:, 0]])
-    laps = np.floor(start_angles / TWO_PI)
 
     def state(angle, lap):
         crank = ca.vertcat(phase + c.crank_sense * lap * TWO_PI, c.crank_sense,
@@ -113,26 +124,21 @@ def polish(problem: ParallelogramProblem, start: dict, measures: TrajectoryMeasu
     w, target = problem.depth_window, problem.depth_target
     limit = undercut_limit(problem.module, problem.pressure_angle)
     speed = problem.forward_speed        # scales: mm/s by the machine speed, mm by the depth target
-    g = [velocity[1] / speed, velocity[0] / speed, acceleration[1] / (speed * problem.driver_speed),
-         (ends[0][0] - bottom[0]) / w - sides[0], (ends[1][0] - bottom[0]) / w - sides[1],
-         (ends[higher - 1][1] - bottom[1]) / target - 1, (ends[2 - higher][1] - bottom[1]) / target - 1,
-         tau[0] - tau[1], tau[2] - tau[0], *interior, _gear_constraints(v["m11"], m12, v["b"], v["l"], a, limit)]
-    lbg = [0, 0, 0, 0, 0, 0, -np.inf, 0, 0] + [-1] * len(interior)
-    ubg = [0, 0, np.inf, 0, 0, 0, 0, np.inf, np.inf] + [1] * len(interior)
-    gear_count = g[-1].numel()
+    nlp.constraints("lowest_point", velocity[1] / speed, 0.0, 0.0)
+    nlp.constraints("zero_speed", velocity[0] / speed, 0.0, 0.0)
+    nlp.constraints("rising_after", acceleration[1] / (speed * problem.driver_speed), 0.0, np.inf)
+    nlp.constraints("band_edges", ca.vertcat((ends[0][0] - bottom[0]) / w - sides[0],
+                                             (ends[1][0] - bottom[0]) / w - sides[1]), 0.0, 0.0)
+    nlp.constraints("depth_at_target", (ends[higher - 1][1] - bottom[1]) / target - 1, 0.0, 0.0)
+    nlp.constraints("depth_within_target", (ends[2 - higher][1] - bottom[1]) / target - 1, -np.inf, 0.0)
+    nlp.constraints("angle_order", ca.vertcat(tau[0] - tau[1], tau[2] - tau[0]), 0.0, np.inf)
+    nlp.constraints("run_in_band", ca.vertcat(*interior), -1.0, 1.0)
+    nlp.constraints("gear", _gear_constraints(v["m11"], m12, v["b"], v["l"], a, limit), 0.0, np.inf)
     objective = (2 * v["l1"] - problem.vertical_range_target) ** 2 / problem.vertical_range_target**2
-    solver = ca.nlpsol("parallelogram_polish", "ipopt", {"x": ca.vertcat(x, tau), "f": objective, "g": ca.vertcat(*g)},
-                       IPOPT_OPTIONS)
-    # each angle stays within its whole turn and within a quarter turn of its start
-    low = [problem.bounds[n][0] for n in names] + list(np.maximum(TWO_PI * laps, start_angles - np.pi / 2))
-    high = [problem.bounds[n][1] for n in names] + list(np.minimum(TWO_PI * (laps + 1), start_angles + np.pi / 2))
-    x0 = [start[n] for n in names] + list(start_angles)
+    solver = Solver("parallelogram_polish", nlp.build(objective), max_iterations=MAX_ITERATIONS)
     began = time.perf_counter()
-    solution = solver(x0=x0, lbx=low, ubx=high, lbg=lbg + [0.0] * gear_count, ubg=ubg + [np.inf] * gear_count)
+    solution = solver.solve({"design": [start[n] for n in names], "angles": start_angles},
+                            failure=f"{problem.source}: the NLP polish did not converge from the knee")
     seconds = time.perf_counter() - began
-    stats = solver.stats()
-    if not stats["success"]:
-        raise SolverError(f"{problem.source}: the NLP polish did not converge from the knee", stats["return_status"])
-    z = np.asarray(solution["x"]).ravel()
-    return Polish({**start, **dict(zip(names, (float(val) for val in z[:len(names)])))}, z[len(names):],
-                  stats["return_status"], int(stats["iter_count"]), seconds)
+    return Polish({**start, **dict(zip(names, (float(val) for val in solution["design"]), strict=True))},
+                  solution["angles"], solution.status, solution.iterations, seconds)

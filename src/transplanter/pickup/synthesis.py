@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
+from transplanter._generated.planetary import pickup_tip
 from transplanter.errors import InfeasibleError
 from transplanter.gears.pair import GearPairDesign, design_pair, driven_angle
 from transplanter.gears.pitch_curves import TWO_PI, PitchCurve
@@ -64,7 +65,7 @@ def stage_at(curve: PitchCurve, center_distance: float, source: str, name: str) 
 
 def _tip_and_rates():
     """Q and dQ/d(angles) as one casadi Function of the generated eq (15)."""
-    tip = casadi_function("planetary", "pickup_tip")
+    tip = casadi_function(pickup_tip)
     lengths, angles = ca.SX.sym("lengths", 3), ca.SX.sym("angles", 4)
     q = tip(lengths, angles)
     return ca.Function("pickup_tip_rates", [lengths, angles], [q, ca.jacobian(q, angles)])

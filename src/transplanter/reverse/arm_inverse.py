@@ -22,11 +22,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from transplanter._generated.planetary import two_link_inverse, two_link_rates
 from transplanter.generated import numpy_twin
 from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, RadialExtreme
 
-_inverse = numpy_twin("planetary", "two_link_inverse")
-_rates = numpy_twin("planetary", "two_link_rates")
+_inverse = numpy_twin(two_link_inverse)
+_rates = numpy_twin(two_link_rates)
 
 #: An extreme of |P| within this fraction of the reach s + l of r = s + l or |s - l| touches the
 #: circle (1e-6 mm on the rice path's 254 mm): relative, so a path in metres or micrometres behaves the same.

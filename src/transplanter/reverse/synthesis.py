@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from transplanter._generated.planetary import arm_lengths_from_extremes
 from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.generated import numpy_twin
 from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, fitted_polygon
@@ -23,7 +24,7 @@ from transplanter.reverse.verification import CarrierGeometry, verify_reverse
 from transplanter.toml_fields import require_problem
 from transplanter.trains.planetary import design_train
 
-_arm_lengths = numpy_twin("planetary", "arm_lengths_from_extremes")
+_arm_lengths = numpy_twin(arm_lengths_from_extremes)
 #: A curve fitted to samples that comes within this fraction of the reach s + l of a reach circle
 #: is taken to touch it (0.025 mm on a 250 mm reach): samples cannot say more.
 SAMPLED_TOUCH = 1e-4

@@ -14,12 +14,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from transplanter._generated.planetary import pickup_tip
 from transplanter.generated import numpy_twin
 from transplanter.reverse.arm_inverse import ArmMotion
 from transplanter.trains.planetary import PlanetaryTrain
 from transplanter.trains.rolling import roll_train
 
-_pickup_tip = numpy_twin("planetary", "pickup_tip")
+_pickup_tip = numpy_twin(pickup_tip)
 #: Carrier turns at which the rebuilt tip is compared (0.1 deg apart).
 CHECK_POINTS = 3600
 

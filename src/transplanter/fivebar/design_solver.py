@@ -1,0 +1,164 @@
+"""The design NLP of one problem as one IPOPT solver, reused for every start and exchange round: the
+refinement of a region candidate, its attempt at convex pitch curves and the move of a return point to
+another pass of P.
+
+Between grid points the quality, rho' and the curvatures may dip: each solve is checked on
+``whole_turn``'s fine grid by independent forward kinematics and the library's quadrature of k, and
+solved again from the last design with the worst carrier turns added to the grid (``solve.exchange``)
+until the fine grid holds (the quality to ``QUALITY_GAP`` of t). The added turns, the start's assembly
+branch and the start itself are inputs of a solve, not of the NLP's expressions, so one solver serves
+every start and round. The turns an exchange added are offered to every later start from its first
+solve: each row holds a condition the whole turn must meet anyway, so they change no solution, and
+starts that end in the same mechanism need one round, not three.
+"""
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from transplanter.errors import SolverError
+from transplanter.fivebar.candidate import Candidate
+from transplanter.fivebar.nlp import (
+    ADDED_CAPACITY,
+    CONCAVITY_LIMIT,
+    CURVATURE_FLOOR,
+    DesignNLP,
+    DesignSolution,
+    build_nlp,
+)
+from transplanter.fivebar.problem import FiveBarProblem
+from transplanter.fivebar.return_stroke import ReturnStroke
+from transplanter.fivebar.whole_turn import CURVES, whole_turn
+from transplanter.solve import Solver, StallRule, exchange, periodic_peaks
+
+EXCHANGE_ROUNDS = 4
+#: The fine check adds carrier turns where the quality falls below t by more than this fraction ...
+QUALITY_GAP = 1e-3
+#: ... or where a kappa falls below the value it is held at by more than this fraction of that value's size.
+CURVATURE_GAP = 1e-3
+#: Iterations each solve of the attempt at convex curves may take, from the design held at -CONCAVITY_LIMIT.
+CONVEX_ATTEMPT_ITERATIONS = 25
+#: A start that fails can crawl for hundreds of iterations with rows off by several percent (steps cut again
+#: and again by the line search); solves that succeed keep their rows within this rule.
+STALL = StallRule(violation=1e-3, iterations=100)
+
+
+class HollowError(SolverError):
+    """A start whose pitch curves cannot be held to hollows a shaper cuts; ``reason`` says with what numbers."""
+
+    def __init__(self, reason: str, status: str):
+        super().__init__(reason, status)
+        self.reason = reason
+
+
+class DesignSolver:
+    """The design NLP of ``problem`` as one solver. ``builds`` counts how often it was built: once, unless
+    the exchange needs more than ``ADDED_CAPACITY`` slots (it is then rebuilt with twice the room)."""
+
+    def __init__(self, problem: FiveBarProblem):
+        self.problem = problem
+        self.builds = 0
+        self.exchange_turns = np.empty(0)     # turns earlier exchanges added (rad), offered to later starts
+        self._build(ADDED_CAPACITY)
+
+    def _build(self, capacity: int) -> None:
+        self.nlp: DesignNLP = build_nlp(self.problem, capacity)
+        self.solver = Solver("fivebar_design", self.nlp.layout, stall=STALL)
+        self.builds += 1
+
+    def solve(self, start: Candidate, added_turns=(), warm: DesignSolution | None = None,
+              curvature_floor: float | None = None, iteration_limit: int | None = None) -> DesignSolution:
+        """Solve with the start's assembly branch and the exchange points ``added_turns`` (rad), from the
+        start's own dimensions or from the design ``warm`` (a previous round's), with the four curves held to
+        a kappa >= ``curvature_floor`` (None: the rows off); ``iteration_limit`` stops IPOPT early."""
+        added_turns = np.asarray(added_turns, float)
+        while len(added_turns) > self.nlp.capacity:
+            self._build(2 * self.nlp.capacity)
+        nlp, branch = self.nlp, float(start.mech.branch)
+        if warm is None:
+            assert start.relative_angle is not None and start.stroke is not None, "a feasible region candidate"
+            values = nlp.start(start.mech, start.relative_angle, start.stroke, self.problem.return_points)
+        else:
+            values = nlp.start(warm.mech, warm.relative_angle, warm.stroke, warm.reached_return_points)
+        solution = self.solver.solve(
+            values, nlp.bounds(len(added_turns), curvature_floor, float(values["least_curvature"])),
+            nlp.parameters(branch, added_turns), iteration_limit,
+            failure=f"{self.problem.source}: the design NLP did not converge from the region candidate")
+        return nlp.design(solution, branch, curvature_floor)
+
+    def refine(self, start: Candidate) -> DesignSolution:
+        """The best transmission quality from ``start`` with every pitch curve a shaper can cut:
+        a kappa >= -``CONCAVITY_LIMIT``. If IPOPT fails there, a ``HollowError`` gives the least a kappa of
+        the design made without the hold (a hollow that only gears many times the mechanism's size could
+        carry)."""
+        try:
+            return self._exchange(start, -CONCAVITY_LIMIT)
+        except SolverError as error:
+            unheld = curvature_text(self._exchange(start, None))
+            raise HollowError(f"IPOPT ended with {error.status} with the pitch curves held to a kappa >= "
+                              f"{-CONCAVITY_LIMIT:g} (hollows a shaper cuts); without that hold: {unheld}",
+                              error.status) from None
+
+    def make_convex(self, start: Candidate, design: DesignSolution) -> DesignSolution:
+        """``design`` (``refine``'s from ``start``) with convex pitch curves (rack-cut), when IPOPT gets
+        there from it within ``CONVEX_ATTEMPT_ITERATIONS`` per solve; else ``design`` itself, its
+        ``convexity_note`` saying why and what the curves are."""
+        if design.curvature_floor is None or min(design.min_curvature) >= CURVATURE_FLOOR:
+            return design
+        try:
+            return self._exchange(start, CURVATURE_FLOOR, warm=design, iteration_limit=CONVEX_ATTEMPT_ITERATIONS)
+        except SolverError as error:
+            failure = f"IPOPT found no convex design within {CONVEX_ATTEMPT_ITERATIONS} iterations ({error.status})"
+        return dataclasses.replace(design, convexity_note=f"{failure}; {concavity_text(design)}")
+
+    def restroke(self, start: Candidate, design: DesignSolution, point: int, turn: float) -> DesignSolution:
+        """``refine`` from ``design`` with return point ``point`` passed at carrier turn ``turn`` (rad, another
+        pass of P by it: ``return_passes.other_passes``) instead of its own."""
+        turns = design.stroke.carrier_turns.copy()
+        turns[point] = turn
+        rho = design.relative_angle.evaluate(turns)
+        state = design.mech.forward(turns, rho)
+        directions, reached = design.stroke.directions.copy(), design.reached_return_points.copy()
+        directions[point], reached[point] = state["direction"][point], state["p"][point]
+        warm = dataclasses.replace(design, stroke=ReturnStroke(turns, rho, directions), reached_return_points=reached)
+        return self._exchange(start, -CONCAVITY_LIMIT, warm=warm)
+
+    def _exchange(self, start: Candidate, curvature_floor: float | None, warm: DesignSolution | None = None,
+                  iteration_limit: int | None = None) -> DesignSolution:
+        """``solve`` with the carrier turns where the fine check finds the quality below t, or rho' or a
+        curvature (below ``curvature_floor``) out of bounds, added to its grid (``solve.exchange``)."""
+        low, high = 1 / self.problem.ratio_bounds[1], 1 / self.problem.ratio_bounds[0]
+        floor = self.problem.min_closure_margin
+
+        def solve(turns: np.ndarray, previous: DesignSolution | None) -> DesignSolution:
+            return self.solve(start, turns, previous, curvature_floor, iteration_limit)
+
+        def worst_turns(solution: DesignSolution) -> np.ndarray:
+            check = whole_turn(solution.mech, solution.relative_angle)
+            slope = check["slope"]
+            shortfall = np.fmax.reduce([
+                (solution.quality - np.fmin(check["ebf"], check["bef"])) / solution.quality - QUALITY_GAP,
+                (floor - check["ebf"]) / floor, (low - slope) / low, (slope - high) / high,
+                *([] if curvature_floor is None else
+                  (curvature_floor - check["curvature"]) / abs(curvature_floor) - CURVATURE_GAP)])
+            return check["turns"][periodic_peaks(shortfall)]
+
+        solution, added = exchange(solve, worst_turns, self.exchange_turns, EXCHANGE_ROUNDS, warm)
+        self.exchange_turns = added[-(self.nlp.capacity // 2):]     # room left for a new start's own rounds
+        return solution
+
+
+def curvature_text(design: DesignSolution) -> str:
+    return "least a kappa " + ", ".join(f"{curve} {value:.3f}"
+                                        for curve, value in zip(CURVES, design.min_curvature, strict=True))
+
+
+def concavity_text(design: DesignSolution) -> str:
+    """The held design's least a kappa per curve, the tightest, and the cutter that follows."""
+    tightest = int(np.argmin(design.min_curvature))
+    stages = sorted({("sun -> first intermediate", "second intermediate -> planet")[k // 2]
+                     for k, value in enumerate(design.min_curvature) if value < 0})
+    return (f"held to a kappa >= {-CONCAVITY_LIMIT:g} (a hollow no tighter than a / {CONCAVITY_LIMIT:g}): "
+            f"{curvature_text(design)}, tightest the {CURVES[tightest]}; concave, so shaper-cut: "
+            + ", ".join(stages))
