@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
+from transplanter.api_arguments import require_result
 from transplanter.burmester.result import Synthesis
 from transplanter.geometry.curve_trace import CurveTrace
-from transplanter.toml_fields import require_result
 from transplanter.trains.figures import LEGEND_BESIDE
 
 #: How many dyads of a 4-pose family are drawn as links (all of them would hide the curves).

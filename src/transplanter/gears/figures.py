@@ -6,12 +6,12 @@ import numpy as np
 from matplotlib.collections import PolyCollection
 from matplotlib.figure import Figure
 
+from transplanter.api_arguments import require_result
 from transplanter.gears.composite_teeth import CompositeTeeth
 from transplanter.gears.drawings import outlines
 from transplanter.gears.rack_teeth import ADDENDUM
 from transplanter.gears.result import GearResult
 from transplanter.geometry.poses import rotate_about
-from transplanter.toml_fields import require_result
 from transplanter.trains.figures import LEGEND_BESIDE
 
 

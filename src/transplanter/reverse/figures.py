@@ -6,10 +6,10 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
+from transplanter.api_arguments import require_result
 from transplanter.geometry.closed_trajectory import TWO_PI
 from transplanter.reverse.idler_train import IdlerTrain
 from transplanter.reverse.result import ReverseResult
-from transplanter.toml_fields import require_result
 from transplanter.trains.figures import LEGEND_BESIDE, draw_four_gear_train
 
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from transplanter.api_arguments import require_problem
 from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.generated import numpy_twin
 from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, fitted_polygon
@@ -20,7 +21,6 @@ from transplanter.reverse.monotonicity import fix_hints, violations
 from transplanter.reverse.problem import ReverseProblem
 from transplanter.reverse.result import ReverseResult
 from transplanter.reverse.verification import CarrierGeometry, verify_reverse
-from transplanter.toml_fields import require_problem
 from transplanter.trains.planetary import design_train
 
 _arm_lengths = numpy_twin("planetary", "arm_lengths_from_extremes")
