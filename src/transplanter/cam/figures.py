@@ -8,8 +8,8 @@ from matplotlib.figure import Figure
 from transplanter.api_arguments import require_result
 from transplanter.cam.kinematics import segment_starts
 from transplanter.cam.result import CamResult
+from transplanter.figure_conventions import LEGEND_BESIDE
 from transplanter.geometry.poses import rotate_about
-from transplanter.trains.figures import LEGEND_BESIDE
 
 
 def _segment_lines(ax, result: CamResult):
