@@ -30,9 +30,9 @@ from transplanter.fivebar.candidate import Candidate, judge_candidates
 from transplanter.fivebar.linkage import from_hinges
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.geometry.dyad import Link
+from transplanter.geometry.planar import TWO_PI
 from transplanter.geometry.poses import carry
 
-TWO_PI = 2 * np.pi
 #: Five-bars judged in one set of arrays (bounds the memory: CHUNK x 720 turns per array).
 CHUNK = 512
 #: Most five-bars the region judges (measured: about 6 s and 300 MB on a loaded 2-core machine).

@@ -23,8 +23,9 @@ import casadi as ca
 import numpy as np
 
 from transplanter.errors import ProblemError
-from transplanter.gears.pitch_curves import TWO_PI, PitchCurve, Shifted, _from_expression, too_small_radius
+from transplanter.gears.pitch_curves import PitchCurve, Shifted, _from_expression, too_small_radius
 from transplanter.generated import numpy_twin
+from transplanter.geometry.planar import TWO_PI
 
 _corner_angles = numpy_twin("cusp", "corner_angles")
 _curvature_center = numpy_twin("cusp", "polar_curvature_center")

@@ -15,9 +15,9 @@ import numpy as np
 
 from transplanter.gears.pitch_curves import denatured_partner
 from transplanter.generated import numpy_twin
+from transplanter.geometry.planar import TWO_PI
 from transplanter.parallelogram.problem import Conventions, ParallelogramProblem
 
-TWO_PI = 2 * np.pi
 _driven = numpy_twin("parallelogram", "limacon_driven_angle")
 _tip = numpy_twin("parallelogram", "parallelogram_tip")
 _position = numpy_twin("parallelogram", "parallelogram_position")

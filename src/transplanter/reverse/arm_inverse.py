@@ -23,7 +23,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from transplanter.generated import numpy_twin
-from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, RadialExtreme
+from transplanter.geometry.closed_trajectory import ClosedTrajectory, RadialExtreme
+from transplanter.geometry.planar import TWO_PI
 
 _inverse = numpy_twin("planetary", "two_link_inverse")
 _rates = numpy_twin("planetary", "two_link_rates")

@@ -8,7 +8,7 @@ from matplotlib.figure import Figure
 
 from transplanter.api_arguments import require_result
 from transplanter.figure_conventions import LEGEND_BESIDE
-from transplanter.geometry.closed_trajectory import TWO_PI
+from transplanter.geometry.planar import TWO_PI
 from transplanter.reverse.idler_train import IdlerTrain
 from transplanter.reverse.result import ReverseResult
 from transplanter.trains.figures import draw_four_gear_train

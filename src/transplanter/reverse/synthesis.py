@@ -13,7 +13,8 @@ import numpy as np
 from transplanter.api_arguments import require_problem
 from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.generated import numpy_twin
-from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, fitted_polygon
+from transplanter.geometry.closed_trajectory import ClosedTrajectory, fitted_polygon
+from transplanter.geometry.planar import TWO_PI
 from transplanter.reverse.arm_inverse import TOUCH_TOLERANCE, ArmMotion, solve_arm
 from transplanter.reverse.carrier_frame_motion import CarrierFrameMotion
 from transplanter.reverse.idler_train import design_idler_train, verify_idler_train
