@@ -15,18 +15,15 @@ from __future__ import annotations
 
 import sympy as sp
 
+from derivations.planar import unit
 from derivations.spec import Derived, symbol_group
-
-
-def _unit(angle):
-    return sp.Matrix([sp.cos(angle), sp.sin(angle)])
 
 
 def closure(lengths, theta1, theta2, theta4, theta5):
     """|OA + AF - OB - BE|^2 - L3^2, expanded (zero when the loop closes)."""
     l1, l2, l3, l4, l5 = lengths
     frame = l5 * sp.Matrix([-sp.cos(theta5), sp.sin(theta5)])
-    gap = l1 * _unit(theta1) + l2 * _unit(theta2) - frame - l4 * _unit(theta4)
+    gap = l1 * unit(theta1) + l2 * unit(theta2) - frame - l4 * unit(theta4)
     return sp.expand(gap.dot(gap) - l3**2)
 
 

@@ -2,6 +2,7 @@
 # stamp sympy: 1.14.0
 # stamp burmester.py: 943c71f5eac2adee91d73dd71c1636d844d6fe6523704db6df91817bdef745b1
 # stamp _printer.py: 054889af3775791a1e36abfba44b241d49ab8337b85f15e030d508264fce5a56
+# stamp planar.py: 42404d8f4abaa834aeaa256d53f4796d45edd45f099cfe18738104033af0e64f
 # stamp spec.py: 70928dfe6fd39238b47828000f5bd2c083dd4b911024b8385a6cf741bc4baacb
 
 

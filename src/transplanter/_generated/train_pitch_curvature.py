@@ -2,6 +2,7 @@
 # stamp sympy: 1.14.0
 # stamp train_pitch_curvature.py: fcec7ea6746ea340a073257caee60103d1b1881b8d766f9ff11578693ba79128
 # stamp _printer.py: 054889af3775791a1e36abfba44b241d49ab8337b85f15e030d508264fce5a56
+# stamp planar.py: 42404d8f4abaa834aeaa256d53f4796d45edd45f099cfe18738104033af0e64f
 # stamp spec.py: 70928dfe6fd39238b47828000f5bd2c083dd4b911024b8385a6cf741bc4baacb
 
 
