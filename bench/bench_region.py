@@ -41,11 +41,11 @@ from transplanter.fivebar.region import chain_families, solution_region
 from transplanter.fivebar.relative_angle import fit_relative_angle, ratio_range
 from transplanter.fivebar.return_stroke import ReturnStroke, _options
 from transplanter.fivebar.synthesis import synthesize
+from transplanter.geometry.planar import TWO_PI
 from transplanter.toml_fields import read_toml
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "vegetable_planting.toml"
-TWO_PI = 2 * np.pi
 SAMPLES = (250, 500, 1000, 2000, 4000, 8000)
 
 

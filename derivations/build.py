@@ -19,8 +19,8 @@ DERIVATIONS = Path(__file__).resolve().parent
 GENERATED = DERIVATIONS.parent / "src" / "transplanter" / "_generated"
 MODULES = ("burmester", "cam", "cam_support", "cusp", "fivebar", "gears", "parallelogram", "planetary",
            "train_pitch_curvature")
-# Files every generated module depends on besides its own derivation.
-SHARED_SOURCES = ("_printer.py", "spec.py")
+# Files the derivations share, besides each module's own derivation: every stamp records them.
+SHARED_SOURCES = ("_printer.py", "planar.py", "spec.py")
 
 
 class BuildError(Exception):

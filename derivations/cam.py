@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import sympy as sp
 
+from derivations.planar import cross
 from derivations.spec import Derived, symbol_group
 
 tau = sp.Symbol("tau", real=True)
@@ -117,10 +118,6 @@ def _quarter_turn(v):
     return sp.Matrix([-v[1], v[0]])
 
 
-def _cross(a, b):
-    return a[0] * b[1] - a[1] * b[0]
-
-
 def translating_center(offset, base_height, s, ds, d2s):
     """Roller centre, its first and second cam-angle derivatives and direction of motion (translating)."""
     return (sp.Matrix([offset, base_height + s]), sp.Matrix([0, ds]), sp.Matrix([0, d2s]), sp.Matrix([0, 1]))
@@ -147,8 +144,8 @@ def pitch_and_profile(theta, sense, roller, center, rate, accel, direction):
     pitch = turn * center
     outward = sense * _quarter_turn(turn * tangent) / speed
     profile = pitch - roller * outward
-    pressure = sp.atan2(tangent.dot(direction), sense * _cross(tangent, direction))
-    radius = -sense * speed**3 / _cross(tangent, bend)
+    pressure = sp.atan2(tangent.dot(direction), sense * cross(tangent, direction))
+    radius = -sense * speed**3 / cross(tangent, bend)
     return pitch, profile, pressure, radius, radius - roller
 
 

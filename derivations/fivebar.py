@@ -15,18 +15,15 @@ from __future__ import annotations
 
 import sympy as sp
 
+from derivations.planar import cross, rotate, unit
 from derivations.spec import Derived, symbol_group
-
-
-def _unit(angle):
-    return sp.Matrix([sp.cos(angle), sp.sin(angle)])
 
 
 def closure(lengths, theta1, theta2, theta4, theta5):
     """|OA + AF - OB - BE|^2 - L3^2, expanded (zero when the loop closes)."""
     l1, l2, l3, l4, l5 = lengths
     frame = l5 * sp.Matrix([-sp.cos(theta5), sp.sin(theta5)])
-    gap = l1 * _unit(theta1) + l2 * _unit(theta2) - frame - l4 * _unit(theta4)
+    gap = l1 * unit(theta1) + l2 * unit(theta2) - frame - l4 * unit(theta4)
     return sp.expand(gap.dot(gap) - l3**2)
 
 
@@ -45,19 +42,11 @@ def half_angle_quadratic(lengths, theta1, theta2, theta5):
     return p - q, 2 * r, p + q
 
 
-def _rotate(angle, vector):
-    return sp.Matrix([[sp.cos(angle), -sp.sin(angle)], [sp.sin(angle), sp.cos(angle)]]) * vector
-
-
-def _cross(u, v):
-    return u[0] * v[1] - u[1] * v[0]
-
-
 def plate_hinges(pose, plate_points):
     """E and F of the plate in pose (x_P, y_P, direction), from their plate-frame coordinates
     (e_x, e_y, f_x, f_y) relative to P."""
     p = sp.Matrix(pose[:2])
-    return (p + _rotate(pose[2], sp.Matrix(plate_points[:2])), p + _rotate(pose[2], sp.Matrix(plate_points[2:])))
+    return (p + rotate(pose[2], sp.Matrix(plate_points[:2])), p + rotate(pose[2], sp.Matrix(plate_points[2:])))
 
 
 def pose_closure(pose, plate_points, hinge_b, lengths, angles):
@@ -68,7 +57,7 @@ def pose_closure(pose, plate_points, hinge_b, lengths, angles):
     b = sp.Matrix(hinge_b)
     l1, l2, l4 = lengths
     theta1, theta2 = angles
-    rod_end = f - l1 * _unit(theta1) - l2 * _unit(theta2)
+    rod_end = f - l1 * unit(theta1) - l2 * unit(theta2)
     return ((e - b).dot(e - b) - l4**2, rod_end[0], rod_end[1])
 
 
@@ -77,7 +66,7 @@ def assembly_sine(pose, plate_points, hinge_b, receiving_length):
     is the assembly branch of the dyad B-E-F, its square the closure margin at the pose."""
     e, f = plate_hinges(pose, plate_points)
     b = sp.Matrix(hinge_b)
-    return _cross(f - b, e - b) / (receiving_length * sp.sqrt((f - b).dot(f - b)))
+    return cross(f - b, e - b) / (receiving_length * sp.sqrt((f - b).dot(f - b)))
 
 
 def transmission_margin(lengths, theta1, theta2, theta5):
@@ -85,7 +74,7 @@ def transmission_margin(lengths, theta1, theta2, theta5):
     sin^2(BEF) = margin |BF|^2 / L3^2 with the closure margin sin^2(EBF) and F - B = OA + AF - OB."""
     l1, l2, l3, _, l5 = lengths
     p, q, r = closure_parts(lengths, theta1, theta2, theta5)
-    bf = l1 * _unit(theta1) + l2 * _unit(theta2) - l5 * sp.Matrix([-sp.cos(theta5), sp.sin(theta5)])
+    bf = l1 * unit(theta1) + l2 * unit(theta2) - l5 * sp.Matrix([-sp.cos(theta5), sp.sin(theta5)])
     return (q**2 + r**2 - p**2) / (q**2 + r**2) * bf.dot(bf) / l3**2
 
 

@@ -24,11 +24,8 @@ from __future__ import annotations
 
 import sympy as sp
 
+from derivations.planar import unit
 from derivations.spec import Derived, symbol_group
-
-
-def _unit(angle):
-    return sp.Matrix([sp.cos(angle), sp.sin(angle)])
 
 
 def inverse_angles(x, y, s, l, branch):
@@ -45,7 +42,7 @@ def path_rates(theta, psi, s, l, path_derivatives, order=3):
     """theta^(k), psi^(k) for k = 1..order from P', P'', P''' by implicit differentiation."""
     u = sp.Symbol("u", real=True)
     th, ps = sp.Function("th")(u), sp.Function("ps")(u)
-    closure = s * _unit(th) + l * _unit(ps)
+    closure = s * unit(th) + l * unit(ps)
     unknowns = [(sp.Symbol(f"dth{k}"), sp.Symbol(f"dps{k}")) for k in range(1, order + 1)]
     known = {}
     for k in range(1, order + 1):
@@ -83,7 +80,7 @@ def idler_total_ratio(sun_radius, planet_radius, center_distance):
 def pickup_tip(first, second, arm, carrier, bend, planet, mounting):
     """Seed 004 eq (15): pivot -> O1 (first, at the carrier angle) -> O2 (second, bent by
     ``bend``) -> needle tip (arm, turned by the planet's relative angle and its mounting)."""
-    return first * _unit(carrier) + second * _unit(carrier + bend) + arm * _unit(carrier + bend + planet + mounting)
+    return first * unit(carrier) + second * unit(carrier + bend) + arm * unit(carrier + bend + planet + mounting)
 
 
 def derive() -> list[Derived]:

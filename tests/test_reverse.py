@@ -16,7 +16,8 @@ from transplanter._generated.planetary import (
 )
 from transplanter.gears.pitch_curves import ellipse
 from transplanter.generated import numpy_twin
-from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, interpolating_polygon
+from transplanter.geometry.closed_trajectory import ClosedTrajectory, interpolating_polygon
+from transplanter.geometry.planar import TWO_PI, unit
 from transplanter.reverse.arm_inverse import solve_arm
 from transplanter.reverse.idler_train import build_idler_train, roll_idler_train
 from transplanter.reverse.monotonicity import stationary_radii, violations
@@ -29,10 +30,6 @@ inverse = numpy_twin(two_link_inverse)
 rates = numpy_twin(two_link_rates)
 slope = numpy_twin(planetary_relative_per_carrier)
 tip_of_eq15 = numpy_twin(pickup_tip)
-
-
-def _unit(angle):
-    return np.array([np.cos(angle), np.sin(angle)])
 
 
 def test_inverse_and_rates_recover_a_constructed_arm_motion(rng):
@@ -48,8 +45,8 @@ def test_inverse_and_rates_recover_a_constructed_arm_motion(rng):
         t = [value(th, k) for k in range(4)]
         p = [value(ps, k) for k in range(4)]
         # P' = s t1 e_perp(theta) + l p1 e_perp(psi), and so on: differentiate s e(theta(u)) symbolically by hand
-        e, n = _unit(t[0]), _unit(t[0] + np.pi / 2)
-        f, m = _unit(p[0]), _unit(p[0] + np.pi / 2)
+        e, n = unit(t[0]), unit(t[0] + np.pi / 2)
+        f, m = unit(p[0]), unit(p[0] + np.pi / 2)
         d1 = s * t[1] * n + l * p[1] * m
         d2 = s * (t[2] * n - t[1] ** 2 * e) + l * (p[2] * m - p[1] ** 2 * f)
         d3 = s * (t[3] * n - 3 * t[1] * t[2] * e - t[1] ** 3 * n) + l * (p[3] * m - 3 * p[1] * p[2] * f - p[1] ** 3 * m)
@@ -93,8 +90,8 @@ def test_pickup_tip_of_eq15_is_the_two_link_arm(rng):
     for _ in range(5):
         carrier, bend, planet, mounting = rng.uniform(-3, 3, size=4)
         tip = tip_of_eq15([L1, L2, S], [carrier, bend, planet, mounting])[0]
-        o2 = L1 * _unit(carrier) + L2 * _unit(carrier + bend)
-        assert tip == pytest.approx(o2 + S * _unit(carrier + bend + planet + mounting), abs=1e-12)
+        o2 = L1 * unit(carrier) + L2 * unit(carrier + bend)
+        assert tip == pytest.approx(o2 + S * unit(carrier + bend + planet + mounting), abs=1e-12)
 
 
 @pytest.fixture(scope="module")

@@ -49,20 +49,6 @@ def warn_if_radians(source: str, field: str, angles_deg: np.ndarray):
                       "is in degrees", TransplanterWarning, stacklevel=3)
 
 
-def require_result(result, kind: type, module: str):
-    """Refuse (ProblemError) a ``result`` that is not a ``kind``, as figures asked of a problem or of None."""
-    if not isinstance(result, kind):
-        raise ProblemError(f"result = {shown(type(result).__name__)}: expected a {kind.__name__} (from "
-                           f"transplanter.{module}.synthesize(problem))")
-
-
-def require_problem(problem, kind: type, module: str):
-    """Refuse (ProblemError) a ``problem`` that is not a ``kind``, as a synthesis given a path or None."""
-    if not isinstance(problem, kind):
-        raise ProblemError(f"problem = {shown(problem)!r}: expected a {kind.__name__} (from transplanter.{module}."
-                           f"load_problem(path) or parse_problem(dict))")
-
-
 def read_toml(path: str | Path) -> dict:
     """The content of the TOML file at ``path``.
 

@@ -2,6 +2,7 @@
 # stamp sympy: 1.14.0
 # stamp cam_support.py: 722d344d1e1216cad73c87cd40ce4b299c8ab199c47f6996a39e891b1acad348
 # stamp _printer.py: 054889af3775791a1e36abfba44b241d49ab8337b85f15e030d508264fce5a56
+# stamp planar.py: 066518895e0c2e37b49b15d95064c0f09f220d96f45a3dfcbae948a4d0ee931f
 # stamp spec.py: 70928dfe6fd39238b47828000f5bd2c083dd4b911024b8385a6cf741bc4baacb
 
 

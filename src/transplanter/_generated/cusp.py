@@ -2,6 +2,7 @@
 # stamp sympy: 1.14.0
 # stamp cusp.py: c9f53fbb4db1d1be3a33ce3ab40387610e358560a0cfa22eef8113d0fb45addb
 # stamp _printer.py: 054889af3775791a1e36abfba44b241d49ab8337b85f15e030d508264fce5a56
+# stamp planar.py: 066518895e0c2e37b49b15d95064c0f09f220d96f45a3dfcbae948a4d0ee931f
 # stamp spec.py: 70928dfe6fd39238b47828000f5bd2c083dd4b911024b8385a6cf741bc4baacb
 
 

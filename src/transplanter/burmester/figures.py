@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
+from transplanter.api_arguments import require_result
 from transplanter.burmester.result import Synthesis
+from transplanter.figure_conventions import LEGEND_BESIDE, PROBLEM_TITLE
 from transplanter.geometry.curve_trace import CurveTrace
-from transplanter.toml_fields import require_result
-from transplanter.trains.figures import LEGEND_BESIDE
 
 #: How many dyads of a 4-pose family are drawn as links (all of them would hide the curves).
 FAMILY_LINKS = 12
@@ -58,7 +58,7 @@ def draw_synthesis(result: Synthesis) -> Figure:
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x / mm")
     ax.set_ylabel("y / mm")
-    ax.set_title(problem.title or problem.source, fontsize=10, parse_math=False)
+    ax.set_title(problem.title or problem.source, **PROBLEM_TITLE)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, **LEGEND_BESIDE)
     return fig

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from transplanter.api_arguments import require_problem
 from transplanter.burmester.five_poses import burmester_points
 from transplanter.burmester.four_poses import dyads_of_circle_curve, trace_center_curve, trace_circle_curve, trace_dyads
 from transplanter.burmester.many_poses import least_squares_dyads
@@ -19,7 +20,6 @@ from transplanter.geometry.curve_trace import CurveTrace
 from transplanter.geometry.dyad import verify_dyads
 from transplanter.geometry.pivot_pairing import centers_for_circles, circles_for_centers
 from transplanter.geometry.poses import Frame, pole, relative_to_link
-from transplanter.toml_fields import require_problem
 
 #: Smallest turn between the extreme pose angles that the Burmester construction accepts (rad).
 MIN_ROTATION = 1e-6

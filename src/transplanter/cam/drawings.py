@@ -13,10 +13,10 @@ from pathlib import Path
 import ezdxf
 import numpy as np
 
+from transplanter.api_arguments import require_result
 from transplanter.cam.result import CamResult
 from transplanter.gears.drawings import default_bore_radius, write_svg
 from transplanter.output_folder import writable_folder
-from transplanter.toml_fields import require_result
 
 LAYERS = ("PROFILE", "PITCH", "BASE_CIRCLE", "BORE")
 

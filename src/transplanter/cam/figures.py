@@ -5,11 +5,11 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
+from transplanter.api_arguments import require_result
 from transplanter.cam.kinematics import segment_starts
 from transplanter.cam.result import CamResult
+from transplanter.figure_conventions import LEGEND_BESIDE
 from transplanter.geometry.poses import rotate_about
-from transplanter.toml_fields import require_result
-from transplanter.trains.figures import LEGEND_BESIDE
 
 
 def _segment_lines(ax, result: CamResult):

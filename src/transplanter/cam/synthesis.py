@@ -3,12 +3,12 @@ from __future__ import annotations
 
 import time
 
+from transplanter.api_arguments import require_problem
 from transplanter.cam.checks import check
 from transplanter.cam.design import smallest_base_radius
 from transplanter.cam.kinematics import evaluate
 from transplanter.cam.problem import CamProblem
 from transplanter.cam.result import CamResult
-from transplanter.toml_fields import require_problem
 
 
 def synthesize(problem: CamProblem) -> CamResult:

@@ -25,6 +25,7 @@ from scipy.optimize import brentq
 
 from transplanter.cam.kinematics import oscillating_start
 from transplanter.cam.support_linkage import ASSEMBLIES, SupportLinkage, support_swing
+from transplanter.geometry.planar import unit
 
 PIVOT_C = np.array([65.40, -80.00])
 CAM_CENTER_D = np.array([143.86, 42.03])
@@ -74,10 +75,6 @@ def datum_for_swing(assembly: int, swing: float = SWING) -> float | None:
     return float(brentq(excess, grid[k], grid[k + 1], xtol=1e-12))
 
 
-def _unit(angle: float) -> np.ndarray:
-    return np.array([np.cos(angle), np.sin(angle)])
-
-
 DIRECTION_CD = (CAM_CENTER_D - PIVOT_C) / np.linalg.norm(CAM_CENTER_D - PIVOT_C)
 
 
@@ -124,7 +121,7 @@ def _side_of(pivot_from_cam: np.ndarray, roller_from_cam: np.ndarray, swing: flo
     """True when the roller at ``roller_from_cam`` is where the cam tool puts a pulled roller."""
     problem = _cam_problem(pivot_from_cam, True, swing)
     start, _ = oscillating_start(problem.follower, BASE_RADIUS + ROLLER_RADIUS, problem.direction)
-    return bool(np.linalg.norm(pivot_from_cam + ARM_LENGTH * _unit(start) - roller_from_cam) < 1e-6 * ARM_LENGTH)
+    return bool(np.linalg.norm(pivot_from_cam + ARM_LENGTH * unit(start) - roller_from_cam) < 1e-6 * ARM_LENGTH)
 
 
 def cam_readings(low_angle: float, high_angle: float, swing: float) -> list[dict]:
@@ -136,11 +133,11 @@ def cam_readings(low_angle: float, high_angle: float, swing: float) -> list[dict
     for beyond in (False, True):
         for side in (1, -1):
             turn = (np.pi if beyond else 0.0) + side * ARM_ANGLE
-            k_low, k_high = (PIVOT_C + ARM_LENGTH * _unit(a + turn) for a in (low_angle, high_angle))
+            k_low, k_high = (PIVOT_C + ARM_LENGTH * unit(a + turn) for a in (low_angle, high_angle))
             reading = {"arm": ("opposite" if beyond else "beside") + " C-G", "kcg_side": side,
                        "k_low": k_low.tolist(), "k_high": k_high.tolist(),
                        "distance_d_to_k_low_mm": float(np.linalg.norm(k_low - CAM_CENTER_D)),
-                       "angle_ck_to_cd_deg": float(np.degrees(np.arccos(np.clip(DIRECTION_CD @ _unit(low_angle + turn),
+                       "angle_ck_to_cd_deg": float(np.degrees(np.arccos(np.clip(DIRECTION_CD @ unit(low_angle + turn),
                                                                                 -1, 1))))}
             t = _cam_center_on_line(k_low)
             reading["cam_center_on_cd"] = None

@@ -37,9 +37,9 @@ from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.relative_angle import ratio_range
 from transplanter.fivebar.return_passes import other_passes
 from transplanter.fivebar.whole_turn import CURVES
+from transplanter.geometry.planar import TWO_PI
 from transplanter.trains.toothed_train import TrainSize, train_size
 
-TWO_PI = 2 * np.pi
 #: Carrier turns of the evaluation (0.1 deg apart).
 TURN_SAMPLES = 3600
 #: A bound is active when the design is within this fraction of the bound's own scale (range width,

@@ -18,14 +18,14 @@ import numpy as np
 from matplotlib.figure import Figure
 from PIL import Image
 
+from transplanter.api_arguments import require_result
+from transplanter.figure_conventions import LEGEND_BESIDE
 from transplanter.fivebar.gears_on_carrier import carrier_to_world, gears_on_carrier
 from transplanter.fivebar.loop_closure import close_loop
 from transplanter.fivebar.result import FiveBarResult
 from transplanter.geometry.poses import rotation
 from transplanter.moving_picture import blitted_frames, write_gif, write_mp4
 from transplanter.output_folder import writable_folder
-from transplanter.toml_fields import require_result
-from transplanter.trains.figures import LEGEND_BESIDE
 
 #: Frames per turn: one turn in 6 s at ``moving_picture.FPS``, written in about 2 s.
 FRAMES = 72

@@ -23,8 +23,8 @@ from transplanter.fivebar.linkage import FiveBar, assembly_branch
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.relative_angle import RelativeAngle, fit_relative_angle, negative_intervals, ratio_range
 from transplanter.fivebar.return_stroke import ReturnStroke, solve_return_strokes
+from transplanter.geometry.planar import TWO_PI
 
-TWO_PI = 2 * np.pi
 #: Carrier turns at which the whole-turn conditions are checked.
 GRID = np.linspace(0, TWO_PI, 720, endpoint=False)
 BRANCH = "branch: the B-E-F assembly differs between key poses"

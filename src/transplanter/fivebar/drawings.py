@@ -23,13 +23,13 @@ from pathlib import Path
 import ezdxf
 import numpy as np
 
+from transplanter.api_arguments import require_result
 from transplanter.cam.drawings import write_drawings as write_cam_drawings
 from transplanter.fivebar.gears_on_carrier import gears_on_carrier, tooth_outlines
 from transplanter.fivebar.result import FiveBarResult
 from transplanter.fivebar.support import SupportDesign
 from transplanter.gears.drawings import GearDrawing, default_bore_radius, write_gear_drawings
 from transplanter.output_folder import writable_folder
-from transplanter.toml_fields import require_result
 
 #: Hinge circle radius and label height as fractions of the largest distance between two hinges in pose 1.
 HINGE_FRACTION = 0.01

@@ -18,13 +18,14 @@ from pathlib import Path
 
 import numpy as np
 
+from transplanter.api_arguments import require_problem
 from transplanter.errors import ProblemError
 from transplanter.fivebar.candidate import Candidate, evaluate_candidate
 from transplanter.fivebar.linkage import FiveBar, circle_intersection, from_hinges
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.result import design_json
 from transplanter.fivebar.support import SupportDesign, design_support
-from transplanter.toml_fields import ClassFields, FieldReader, read_toml, require_problem, shown
+from transplanter.toml_fields import ClassFields, FieldReader, read_toml, shown
 
 _FIELDS = ("carrier_length", "carrier_angle_deg", "rod_length", "rod_angle_deg", "push_plate_length",
            "receiving_plate_length")

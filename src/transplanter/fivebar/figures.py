@@ -9,12 +9,12 @@ import textwrap
 import numpy as np
 from matplotlib.figure import Figure
 
+from transplanter.api_arguments import require_result
 from transplanter.cam.figures import draw_figures as draw_cam_figures
+from transplanter.figure_conventions import LEGEND_BESIDE
 from transplanter.fivebar.gears_on_carrier import gears_on_carrier, tooth_outlines
 from transplanter.fivebar.result import FiveBarResult
 from transplanter.fivebar.support import SupportDesign
-from transplanter.toml_fields import require_result
-from transplanter.trains.figures import LEGEND_BESIDE
 
 
 def draw_region(result: FiveBarResult) -> Figure:

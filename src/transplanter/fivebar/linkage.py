@@ -19,11 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from transplanter.geometry.planar import cross, unit
 from transplanter.geometry.poses import rotation
-
-
-def _cross(u, v):
-    return u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
 
 
 def _angle(v):
@@ -93,7 +90,7 @@ class FiveBar:
 
     def carrier_point(self, c) -> np.ndarray:
         theta1 = self.carrier_angle - np.asarray(c, float)
-        return np.asarray(self.carrier_length)[..., None] * np.stack([np.cos(theta1), np.sin(theta1)], -1)
+        return np.asarray(self.carrier_length)[..., None] * unit(theta1)
 
     def plate_points(self, poses: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """E and F where the plate stands in ``poses`` (rows x, y, plate direction)."""
@@ -111,7 +108,7 @@ class FiveBar:
         """Plate pose and hinges for carrier turns c and relative angles rho (same shape)."""
         a = self.carrier_point(c)
         theta2 = self.carrier_angle - np.asarray(c, float) + rho
-        f = a + np.asarray(self.rod_length)[..., None] * np.stack([np.cos(theta2), np.sin(theta2)], -1)
+        f = a + np.asarray(self.rod_length)[..., None] * unit(theta2)
         e, margin = circle_intersection(self.hinge_b, self.receiving_length, f, self.link_length, self.branch)
         direction = _angle(f - e) - _angle(self.f_local - self.e_local)
         p = e - np.einsum("...ij,...j->...i", rotation(direction), self.e_local)
@@ -126,7 +123,7 @@ class FiveBar:
 
 def assembly_branch(hinge_b, e, f) -> np.ndarray:
     """Sign of cross(F - B, E - B) for hinge positions E and F."""
-    return np.sign(_cross(np.asarray(f) - hinge_b, np.asarray(e) - hinge_b))
+    return np.sign(cross(np.asarray(f) - hinge_b, np.asarray(e) - hinge_b))
 
 
 def from_hinges(pose1: np.ndarray, hinge_b, e1, a1, f1) -> FiveBar:

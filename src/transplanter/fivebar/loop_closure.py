@@ -21,6 +21,7 @@ import numpy as np
 from transplanter._generated.fivebar import fivebar_closure, fivebar_closure_margin, fivebar_half_angle_quadratic
 from transplanter.fivebar.linkage import FiveBar, assembly_branch
 from transplanter.generated import casadi_function, numpy_twin
+from transplanter.geometry.planar import unit
 from transplanter.geometry.poses import rotation
 
 #: Newton steps after the eq (9) start (two suffice at rounding level; the rest guard a poor start).
@@ -37,10 +38,6 @@ def _closure_and_slope() -> ca.Function:
     lengths, angles = ca.SX.sym("lengths", 5), ca.SX.sym("angles", 4)
     residual = closure(lengths, angles)
     return ca.Function("closure_and_slope", [lengths, angles], [residual, ca.jacobian(residual, angles[2])])
-
-
-def _unit(angle) -> np.ndarray:
-    return np.stack([np.cos(angle), np.sin(angle)], -1)
 
 
 def close_loop(mech: FiveBar, carrier_turns, rho) -> dict:
@@ -62,13 +59,13 @@ def close_loop(mech: FiveBar, carrier_turns, rho) -> dict:
     crank = np.array([theta1, theta2, np.full_like(c, np.arctan2(b[1], -b[0]))])
     margin = _closure_margin(lengths, crank)[0][0]
     closes = margin >= 0
-    a = mech.carrier_length * _unit(theta1)
-    f = a + mech.rod_length * _unit(theta2)
+    a = mech.carrier_length * unit(theta1)
+    f = a + mech.rod_length * unit(theta2)
 
     quadratic_a, quadratic_b, quadratic_c = _half_angle_quadratic(lengths, crank)[0]
     root = np.sqrt(np.where(closes, quadratic_b**2 - 4 * quadratic_a * quadratic_c, np.nan))
     roots = 2 * np.arctan2(-quadratic_b[None] + np.array([[1.0], [-1.0]]) * root, 2 * quadratic_a[None])
-    on_branch = assembly_branch(b, b + mech.receiving_length * _unit(roots), f) == mech.branch
+    on_branch = assembly_branch(b, b + mech.receiving_length * unit(roots), f) == mech.branch
     theta4 = np.where(on_branch[0], roots[0], roots[1])
 
     step_function = _closure_and_slope().map(len(c))
@@ -79,7 +76,7 @@ def close_loop(mech: FiveBar, carrier_turns, rho) -> dict:
     residual = np.asarray(step_function(np.repeat(lengths[:, None], len(c), 1), angles)[0]).ravel()
 
     theta4 = np.where(closes, angles[2], np.nan)
-    e = b + mech.receiving_length * _unit(theta4)
+    e = b + mech.receiving_length * unit(theta4)
     plate_axis = np.asarray(mech.f_local) - mech.e_local
     direction = np.arctan2(*(f - e).T[::-1]) - np.arctan2(plate_axis[1], plate_axis[0])
     p = e - np.einsum("...ij,j->...i", rotation(direction), mech.e_local)

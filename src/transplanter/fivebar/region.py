@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from transplanter.api_arguments import require_problem
 from transplanter.burmester.problem import DyadProblem
 from transplanter.burmester.result import Synthesis
 from transplanter.burmester.synthesis import synthesize
@@ -29,10 +30,9 @@ from transplanter.fivebar.candidate import Candidate, judge_candidates
 from transplanter.fivebar.linkage import from_hinges
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.geometry.dyad import Link
+from transplanter.geometry.planar import TWO_PI
 from transplanter.geometry.poses import carry
-from transplanter.toml_fields import require_problem
 
-TWO_PI = 2 * np.pi
 #: Five-bars judged in one set of arrays (bounds the memory: CHUNK x 720 turns per array).
 CHUNK = 512
 #: Most five-bars the region judges (measured: about 6 s and 300 MB on a loaded 2-core machine).

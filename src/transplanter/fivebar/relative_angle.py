@@ -17,7 +17,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from transplanter.errors import InfeasibleError
-from transplanter.geometry.periodic_bspline import TWO_PI, basis_matrix, evaluate, knots
+from transplanter.geometry.periodic_bspline import basis_matrix, evaluate, knots
+from transplanter.geometry.planar import TWO_PI
 
 #: Grid on which the bending energy int S''^2 dc is summed.
 BENDING_SAMPLES = 720

@@ -19,9 +19,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from transplanter.fivebar.linkage import FiveBar, assembly_branch, circle_intersection
+from transplanter.geometry.planar import TWO_PI
 from transplanter.geometry.poses import rotation
 
-TWO_PI = 2 * np.pi
 _SIDES = ((1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0))
 
 

@@ -23,8 +23,8 @@ from transplanter.fivebar.linkage import FiveBar
 from transplanter.fivebar.loop_closure import close_loop
 from transplanter.fivebar.relative_angle import RelativeAngle
 from transplanter.fivebar.support_problem import CAM_DIRECTION, SupportSpec
+from transplanter.geometry.planar import TWO_PI
 
-TWO_PI = 2 * np.pi
 #: Carrier turns at which the plate and hinge E are followed (0.1 deg apart).
 TURN_SAMPLES = 3600
 

@@ -20,10 +20,10 @@ from transplanter.fivebar.loop_closure import close_loop
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.relative_angle import RelativeAngle, ratio_range
 from transplanter.generated import numpy_twin
+from transplanter.geometry.planar import TWO_PI
 from transplanter.trains.planetary import PlanetaryTrain
 from transplanter.trains.rolling import roll_train
 
-TWO_PI = 2 * np.pi
 #: Carrier turns of the whole-turn check (0.1 deg apart).
 TURN_SAMPLES = 3600
 #: Key-pose, round-trip and contact tolerance per mm of the mechanism's reach (largest |OP| at the key

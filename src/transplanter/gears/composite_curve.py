@@ -24,8 +24,9 @@ import numpy as np
 
 from transplanter._generated.cusp import corner_angles, polar_curvature_center
 from transplanter.errors import ProblemError
-from transplanter.gears.pitch_curves import TWO_PI, PitchCurve, Shifted, _from_expression, too_small_radius
+from transplanter.gears.pitch_curves import PitchCurve, Shifted, _from_expression, too_small_radius
 from transplanter.generated import numpy_twin
+from transplanter.geometry.planar import TWO_PI
 
 _corner_angles = numpy_twin(corner_angles)
 _curvature_center = numpy_twin(polar_curvature_center)

@@ -5,12 +5,12 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
+from transplanter.figure_conventions import LEGEND_BESIDE
 from transplanter.gears.composite_teeth import CompositeTeeth
 from transplanter.gears.cycloid_teeth import STRAIGHT_POINTS
 from transplanter.gears.pair import driven_angle
 from transplanter.gears.result import GearResult
 from transplanter.geometry.poses import rotate_about
-from transplanter.trains.figures import LEGEND_BESIDE
 
 
 def draw_cusps(result: GearResult) -> Figure:

@@ -13,10 +13,10 @@ import ezdxf
 import numpy as np
 from ezdxf.entities.lwpolyline import LWPolylinePoints
 
+from transplanter.api_arguments import require_result
 from transplanter.gears.result import GearResult
 from transplanter.gears.teeth import driven_table, driver_table
 from transplanter.output_folder import writable_folder
-from transplanter.toml_fields import require_result
 
 NAMES = ("driver", "driven")
 #: Bore radius of ``default_bore_radius`` as a fraction of the gear's smallest outline radius (its root).

@@ -6,13 +6,13 @@ import numpy as np
 from matplotlib.collections import PolyCollection
 from matplotlib.figure import Figure
 
+from transplanter.api_arguments import require_result
+from transplanter.figure_conventions import LEGEND_BESIDE, PROBLEM_TITLE
 from transplanter.gears.composite_teeth import CompositeTeeth
 from transplanter.gears.drawings import outlines
 from transplanter.gears.rack_teeth import ADDENDUM
 from transplanter.gears.result import GearResult
 from transplanter.geometry.poses import rotate_about
-from transplanter.toml_fields import require_result
-from transplanter.trains.figures import LEGEND_BESIDE
 
 
 def _filled(ax, outline: np.ndarray, color: str):
@@ -37,7 +37,7 @@ def draw_mesh(result: GearResult, positions: int = 4) -> Figure:
         ax.set_aspect("equal")
         ax.set_xlabel("x / mm")
     axes[0].set_ylabel("y / mm")
-    fig.suptitle(result.problem.title or result.problem.source, fontsize=10, parse_math=False)
+    fig.suptitle(result.problem.title or result.problem.source, **PROBLEM_TITLE)
     return fig
 
 

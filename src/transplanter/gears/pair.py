@@ -15,9 +15,10 @@ import numpy as np
 
 from transplanter._generated.gears import conjugate_pitch, pair_kinematics, polar_curvature
 from transplanter.errors import InfeasibleError, ProblemError
-from transplanter.gears.pitch_curves import TWO_PI, PitchCurve, too_small_radius
+from transplanter.gears.pitch_curves import PitchCurve, too_small_radius
 from transplanter.generated import numpy_twin
 from transplanter.geometry.hermite import hermite
+from transplanter.geometry.planar import TWO_PI
 from transplanter.geometry.turn_quadrature import NODES, PANELS, Panels, panels
 
 _conjugate = numpy_twin(conjugate_pitch)

@@ -24,7 +24,8 @@ from dataclasses import dataclass, field
 import casadi as ca
 import numpy as np
 
-TWO_PI = 2 * np.pi
+from transplanter.geometry.planar import TWO_PI
+
 #: The smallest pitch radius, as a fraction of the curve's largest: nearer the centre the transmission ratio leaves
 #: the thousandfold range every family keeps (gears.problem.RATIO_RANGE), and closure loses its digits.
 SMALLEST_RADIUS = 1e-3

@@ -5,6 +5,7 @@ import time
 
 import numpy as np
 
+from transplanter.api_arguments import require_problem
 from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.gears.composite_curve import CompositeCurve, cusps, with_exact_curvature
 from transplanter.gears.composite_teeth import generate_composite_teeth
@@ -14,7 +15,6 @@ from transplanter.gears.problem import MAX_TEETH, GearProblem, ratio_defect
 from transplanter.gears.result import GearResult, ToothCounts
 from transplanter.gears.teeth import generate_teeth
 from transplanter.geometry.turn_quadrature import panels
-from transplanter.toml_fields import require_problem
 
 
 def tooth_counts(design: GearPairDesign, module: float) -> ToothCounts:

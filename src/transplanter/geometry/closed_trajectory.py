@@ -15,7 +15,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from transplanter.geometry import periodic_bspline
-from transplanter.geometry.periodic_bspline import SEGMENT, TWO_PI
+from transplanter.geometry.periodic_bspline import SEGMENT
+from transplanter.geometry.planar import TWO_PI
 
 
 def interpolating_polygon(samples: np.ndarray) -> np.ndarray:

@@ -17,7 +17,7 @@ from types import SimpleNamespace
 import casadi as ca
 import numpy as np
 
-TWO_PI = 2 * np.pi
+from transplanter.geometry.planar import TWO_PI
 
 NUMPY = SimpleNamespace(floor=np.floor, fabs=np.abs, if_else=np.where)
 CASADI = SimpleNamespace(floor=ca.floor, fabs=ca.fabs, if_else=ca.if_else)

@@ -10,6 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from transplanter.geometry.planar import rotate
+
 
 def rotation(angle):
     """2x2 rotation matrices, shape (..., 2, 2)."""
@@ -33,9 +35,7 @@ def pole(first, second) -> np.ndarray:
 def rotate_about(points, pivot, angle) -> np.ndarray:
     """Points (..., 2) turned counterclockwise by ``angle`` (broadcast like points[..., 0]) about ``pivot``."""
     pivot = np.asarray(pivot, float)
-    offset = np.asarray(points, float) - pivot
-    c, s = np.cos(angle), np.sin(angle)
-    return pivot + np.stack([c * offset[..., 0] - s * offset[..., 1], s * offset[..., 0] + c * offset[..., 1]], -1)
+    return pivot + rotate(angle, np.asarray(points, float) - pivot)
 
 
 def relative_to_link(poses: np.ndarray, pivot, phases) -> np.ndarray:

@@ -12,9 +12,9 @@ from __future__ import annotations
 import numpy as np
 from numpy.polynomial import legendre
 
+from transplanter.geometry.planar import TWO_PI
 from transplanter.geometry.turn_quadrature import NODES, panels
 
-TWO_PI = 2 * np.pi
 #: Panels per turn (2 deg wide, plus the breaks).
 PANELS = 180
 

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-TWO_PI = 2 * np.pi
+from transplanter.geometry.planar import TWO_PI
 
 #: Gauss-Legendre nodes per panel and panels per turn of the working quadrature.
 NODES, PANELS = 12, 720

@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
+from transplanter.api_arguments import require_result
 from transplanter.gears.drawings import outlines
 from transplanter.geometry.poses import rotate_about
 from transplanter.moving_picture import blitted_frames, write_gif
@@ -19,7 +20,6 @@ from transplanter.output_folder import writable_folder
 from transplanter.parallelogram.kinematics import mechanisms
 from transplanter.parallelogram.result import ParallelogramResult
 from transplanter.parallelogram.trajectory import measure, sample_path
-from transplanter.toml_fields import require_result
 
 FRAMES = 72
 FIGURE_SIZE = (10.0, 4.8)

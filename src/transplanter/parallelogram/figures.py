@@ -6,12 +6,12 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
+from transplanter.api_arguments import require_result
+from transplanter.figure_conventions import LEGEND_BESIDE
 from transplanter.parallelogram.kinematics import mechanisms
 from transplanter.parallelogram.problem import ParallelogramProblem
 from transplanter.parallelogram.result import ParallelogramResult, objective_values
 from transplanter.parallelogram.trajectory import measure, sample_path
-from transplanter.toml_fields import require_result
-from transplanter.trains.figures import LEGEND_BESIDE
 
 TURNS = 3
 

@@ -17,9 +17,9 @@ from transplanter._generated.gears import limacon_center_distance
 from transplanter._generated.parallelogram import limacon_driven_angle, parallelogram_position, parallelogram_tip
 from transplanter.gears.pitch_curves import denatured_partner
 from transplanter.generated import numpy_twin
+from transplanter.geometry.planar import TWO_PI
 from transplanter.parallelogram.problem import Conventions, ParallelogramProblem
 
-TWO_PI = 2 * np.pi
 _driven = numpy_twin(limacon_driven_angle)
 _tip = numpy_twin(parallelogram_tip)
 _position = numpy_twin(parallelogram_position)

@@ -6,6 +6,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from transplanter.api_arguments import require_problem
 from transplanter.errors import ProblemError, SolverError, TransplanterError
 from transplanter.parallelogram.evaluation import (
     EVALUATION_SAMPLES,
@@ -22,7 +23,7 @@ from transplanter.parallelogram.problem import ParallelogramProblem
 from transplanter.parallelogram.result import DesignReport, ParallelogramResult, Polished, objective_values
 from transplanter.parallelogram.search import SearchResult, nsga2
 from transplanter.parallelogram.trajectory import measure
-from transplanter.toml_fields import require_problem, shown
+from transplanter.toml_fields import shown
 
 #: Agreement asked of the independent evaluation with the search's values, relative to the problem's size.
 AGREEMENT = 1e-6

@@ -6,12 +6,12 @@ from pathlib import Path
 
 import numpy as np
 
+from transplanter.api_arguments import require_result
 from transplanter.output_folder import writable_folder
 from transplanter.parallelogram.kinematics import mechanisms
 from transplanter.parallelogram.objectives import OBJECTIVES
 from transplanter.parallelogram.result import ParallelogramResult
 from transplanter.parallelogram.trajectory import sample_path
-from transplanter.toml_fields import require_result
 
 
 def write_pareto(result: ParallelogramResult, path: Path) -> Path:

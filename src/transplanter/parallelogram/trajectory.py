@@ -18,7 +18,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from transplanter.parallelogram.kinematics import TWO_PI, Mechanisms
+from transplanter.geometry.planar import TWO_PI
+from transplanter.parallelogram.kinematics import Mechanisms
 
 SAMPLES = 1024          # grid points per turn
 NEWTON_STEPS = 60

@@ -9,11 +9,11 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from PIL import Image
 
+from transplanter.api_arguments import require_result
 from transplanter.gears.pair import driven_angle
 from transplanter.geometry.poses import rotation
 from transplanter.output_folder import writable_folder
 from transplanter.pickup.result import PickupResult
-from transplanter.toml_fields import require_result
 
 FRAMES, FPS, DPI = 48, 12, 70
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
+from transplanter.api_arguments import require_result
+from transplanter.figure_conventions import LEGEND_BESIDE, PROBLEM_TITLE
 from transplanter.pickup.result import PickupResult
-from transplanter.toml_fields import require_result
-from transplanter.trains.figures import LEGEND_BESIDE
 
 
 def draw_path(result: PickupResult) -> Figure:
@@ -30,7 +30,7 @@ def draw_path(result: PickupResult) -> Figure:
     ax.set_ylabel("y / mm")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, **LEGEND_BESIDE)
-    ax.set_title(result.problem.title or result.problem.source, fontsize=10, parse_math=False)
+    ax.set_title(result.problem.title or result.problem.source, **PROBLEM_TITLE)
     return fig
 
 

@@ -27,8 +27,9 @@ import numpy as np
 from transplanter._generated.planetary import pickup_tip
 from transplanter.errors import InfeasibleError
 from transplanter.gears.pair import GearPairDesign, design_pair, driven_angle
-from transplanter.gears.pitch_curves import TWO_PI, PitchCurve
+from transplanter.gears.pitch_curves import PitchCurve
 from transplanter.generated import casadi_function
+from transplanter.geometry.planar import TWO_PI
 from transplanter.pickup.problem import PickupProblem
 from transplanter.pickup.result import PickupResult
 

@@ -24,7 +24,8 @@ import numpy as np
 
 from transplanter._generated.planetary import two_link_inverse, two_link_rates
 from transplanter.generated import numpy_twin
-from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, RadialExtreme
+from transplanter.geometry.closed_trajectory import ClosedTrajectory, RadialExtreme
+from transplanter.geometry.planar import TWO_PI
 
 _inverse = numpy_twin(two_link_inverse)
 _rates = numpy_twin(two_link_rates)

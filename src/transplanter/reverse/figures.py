@@ -6,11 +6,12 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
-from transplanter.geometry.closed_trajectory import TWO_PI
+from transplanter.api_arguments import require_result
+from transplanter.figure_conventions import LEGEND_BESIDE
+from transplanter.geometry.planar import TWO_PI
 from transplanter.reverse.idler_train import IdlerTrain
 from transplanter.reverse.result import ReverseResult
-from transplanter.toml_fields import require_result
-from transplanter.trains.figures import LEGEND_BESIDE, draw_four_gear_train
+from transplanter.trains.figures import draw_four_gear_train
 
 
 def draw_path(result: ReverseResult) -> Figure:

@@ -28,13 +28,13 @@ from transplanter._generated.planetary import idler_total_ratio
 from transplanter.gears.pair import GearPairDesign, design_pair
 from transplanter.gears.pitch_curves import PeriodicSpline, PitchCurve, Shifted, spline
 from transplanter.generated import numpy_twin
+from transplanter.geometry.planar import TWO_PI
 from transplanter.reverse.arm_inverse import ArmMotion
 from transplanter.reverse.verification import CHECK_POINTS, ReverseVerification, rebuild_tip
 from transplanter.trains.planetary import RelativeMotion
 from transplanter.trains.rolling import arc_map, conjugate_curve
 
 _total_ratio = numpy_twin(idler_total_ratio)
-TWO_PI = 2 * np.pi
 #: Sun angles sampled by the iteration, iterations allowed, settling tolerance on i12, patience.
 GRID, ITERATIONS, TOLERANCE, STALL = 1440, 500, 1e-12, 20
 

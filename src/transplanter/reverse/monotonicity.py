@@ -13,7 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory
+from transplanter.geometry.closed_trajectory import ClosedTrajectory
+from transplanter.geometry.planar import TWO_PI
 from transplanter.reverse.arm_inverse import BRANCH_NAMES, DIRECTION_NAMES, ArmMotion, solve_arm, touched_circle
 
 

@@ -11,9 +11,11 @@ from __future__ import annotations
 import numpy as np
 
 from transplanter._generated.planetary import arm_lengths_from_extremes
+from transplanter.api_arguments import require_problem
 from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.generated import numpy_twin
-from transplanter.geometry.closed_trajectory import TWO_PI, ClosedTrajectory, fitted_polygon
+from transplanter.geometry.closed_trajectory import ClosedTrajectory, fitted_polygon
+from transplanter.geometry.planar import TWO_PI
 from transplanter.reverse.arm_inverse import TOUCH_TOLERANCE, ArmMotion, solve_arm
 from transplanter.reverse.carrier_frame_motion import CarrierFrameMotion
 from transplanter.reverse.idler_train import design_idler_train, verify_idler_train
@@ -21,7 +23,6 @@ from transplanter.reverse.monotonicity import fix_hints, violations
 from transplanter.reverse.problem import ReverseProblem
 from transplanter.reverse.result import ReverseResult
 from transplanter.reverse.verification import CarrierGeometry, verify_reverse
-from transplanter.toml_fields import require_problem
 from transplanter.trains.planetary import design_train
 
 _arm_lengths = numpy_twin(arm_lengths_from_extremes)

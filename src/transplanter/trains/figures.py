@@ -1,13 +1,10 @@
-"""Pitch curves of a planetary train drawn where they sit on the carrier, and the legend placement
-every figure uses (shared by the figures)."""
+"""Pitch curves of a planetary train drawn where they sit on the carrier."""
 from __future__ import annotations
 
 import numpy as np
 
+from transplanter.figure_conventions import LEGEND_BESIDE
 from transplanter.geometry.poses import rotate_about
-
-#: ``Axes.legend`` keywords that put the legend beside the axes, off the data (constrained layout makes room).
-LEGEND_BESIDE = {"loc": "upper left", "bbox_to_anchor": (1.02, 1), "borderaxespad": 0}
 
 
 def draw_four_gear_train(ax, train, carrier_length: float, bend_side: float = 1.0):

@@ -34,9 +34,8 @@ import numpy as np
 from transplanter.errors import InfeasibleError
 from transplanter.gears.pair import GearPairDesign, design_pair
 from transplanter.gears.pitch_curves import PitchCurve, from_ratio
+from transplanter.geometry.planar import TWO_PI
 from transplanter.geometry.turn_map import TurnMap
-
-TWO_PI = 2 * np.pi
 
 
 class RelativeMotion(Protocol):

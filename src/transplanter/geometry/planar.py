@@ -1,0 +1,42 @@
+"""Plane vectors, in numpy (x, y on the last axis, broadcasting) and as CasADi 2-element columns:
+the unit vector at an angle, a counterclockwise rotation and the scalar cross product (radians)."""
+from __future__ import annotations
+
+import casadi as ca
+import numpy as np
+
+#: One whole turn (rad).
+TWO_PI = 2 * np.pi
+
+
+def unit(angle) -> np.ndarray:
+    """(cos, sin) of ``angle`` on a new last axis: shape angle.shape + (2,)."""
+    return np.stack([np.cos(angle), np.sin(angle)], -1)
+
+
+def rotate(angle, vectors) -> np.ndarray:
+    """``vectors`` (..., 2) turned counterclockwise by ``angle`` (broadcast like vectors[..., 0])."""
+    vectors = np.asarray(vectors, float)
+    c, s = np.cos(angle), np.sin(angle)
+    return np.stack([c * vectors[..., 0] - s * vectors[..., 1], s * vectors[..., 0] + c * vectors[..., 1]], -1)
+
+
+def cross(u, v):
+    """z component of u x v for vectors (..., 2): positive when v points counterclockwise of u."""
+    return u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
+
+
+def casadi_unit(angle):
+    """``unit`` for a CasADi scalar: the column (cos, sin)."""
+    return ca.vertcat(ca.cos(angle), ca.sin(angle))
+
+
+def casadi_rotate(angle, v):
+    """``rotate`` for a CasADi 2-element column ``v``."""
+    c, s = ca.cos(angle), ca.sin(angle)
+    return ca.vertcat(c * v[0] - s * v[1], s * v[0] + c * v[1])
+
+
+def casadi_cross(u, v):
+    """``cross`` for CasADi 2-element columns."""
+    return u[0] * v[1] - u[1] * v[0]
