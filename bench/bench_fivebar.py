@@ -109,7 +109,8 @@ def main():
         begin = time.perf_counter()
         design = solver.solve(candidate)
         ours.append(time.perf_counter() - begin)
-        values = nlp.start(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points)
+        values = nlp.start(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points,
+                           problem.poses, problem.carrier_turns)
         bounds = nlp.bounds(0, None, values["least_curvature"])
         begin = time.perf_counter()
         result, violation = baseline.solve(layout.vector(values),
@@ -122,7 +123,7 @@ def main():
             refined = f"failed ({error.reason[:60]}...)"
         refines.append(time.perf_counter() - begin)
         reached = layout.vector(nlp.start(design.mech, design.relative_angle, design.stroke,
-                                          design.reached_return_points))
+                                          design.reached_return_points, design.poses, design.carrier_turns))
         lengths = slice(0, layout.variables["relative_angle_start"].start)     # lengths and hinges, before rho1
         apart = np.abs(result.x - reached)[lengths].max() * unit
         print(f"  candidate: package {ours[-1]:.3f} s, {design.iterations} iterations, objective "

@@ -79,7 +79,7 @@ def test_designs_reached_from_different_starts_are_merged_and_different_ones_kep
 
 def test_alternatives_are_ranked_by_the_documented_rule(run):
     """Constructed alternatives with known angles, misses and ratio spreads come out in the order the rule gives:
-    the largest smallest angle EBF first; near-equal angles by the smaller miss, equal misses by the gentler ratio;
+    the largest smallest transmission angle at E first; near-equal angles by the smaller miss, equal misses by the gentler ratio;
     an angle just outside the tie tolerance is not a tie even with the smallest miss."""
     result, _ = run
     base = result.alternatives[0]
@@ -112,7 +112,7 @@ def test_pick_2_builds_the_second_alternative(run):
     json.dumps(report, allow_nan=False)
     text = to_markdown(report, result.problem.labels, [])
     table = text[text.index("## Alternatives"):text.index("## Solution region")]
-    assert "| 2 (built) |" in table and "| 1 |" in table and "min EBF (deg)" in table
+    assert "| 2 (built) |" in table and "| 1 |" in table and "min EBF (deg)" in table and "min at E (deg)" in table
 
 
 def test_a_pick_beyond_the_alternatives_is_refused_naming_the_range(run, tmp_path, capsys):
@@ -130,8 +130,9 @@ def test_a_pick_beyond_the_alternatives_is_refused_naming_the_range(run, tmp_pat
 
 
 def test_transmission_angles_match_the_hinge_positions(run):
-    """The angle EBF between BE and BF, and the angle between EF and BE at E, from the forward kinematics'
-    hinges by arccos, folded to [0, 90] deg: their minima and where they occur, and asin of eq 10's margin."""
+    """The transmission angle between EF and BE at E, and the closure angle EBF between BE and BF, from the
+    forward kinematics' hinges by arccos, folded to [0, 90] deg: their minima and where they occur, and asin of
+    eq 10's margin for EBF."""
     result, _ = run
     for alternative in result.alternatives:
         mech, relative = alternative.design.mech, alternative.design.relative_angle
@@ -143,11 +144,11 @@ def test_transmission_angles_match_the_hinge_positions(run):
             return np.minimum(angle, np.pi - angle)
 
         at_b, at_e = folded(e - b, f - b), folded(f - e, b - e)
-        assert alternative.transmission_angle == pytest.approx(at_b.min(), abs=1e-9)
-        assert alternative.transmission_turn == TURNS[at_b.argmin()]
-        assert alternative.angle_at_e == pytest.approx(at_e.min(), abs=1e-9)
-        assert alternative.angle_at_e_turn == TURNS[at_e.argmin()]
-        assert alternative.transmission_angle == pytest.approx(np.arcsin(np.sqrt(state["margin"].min())), abs=1e-9)
+        assert alternative.transmission_angle == pytest.approx(at_e.min(), abs=1e-9)
+        assert alternative.transmission_turn == TURNS[at_e.argmin()]
+        assert alternative.closure_angle == pytest.approx(at_b.min(), abs=1e-9)
+        assert alternative.closure_turn == TURNS[at_b.argmin()]
+        assert alternative.closure_angle == pytest.approx(np.arcsin(np.sqrt(state["margin"].min())), abs=1e-9)
     report = result.to_json()
     assert report["transmission_angle_min_deg"] == pytest.approx(np.degrees(result.alternatives[1].transmission_angle))
 
@@ -188,9 +189,10 @@ def test_a_refined_design_that_breaks_a_condition_fails_with_the_reason(run):
     result, _ = run
     problem, alternative = result.problem, result.alternatives[1]
     margin = alternative.min_closure_margin
-    failure = assess(replace(problem, min_closure_margin=2 * margin), alternative.design, 4)
+    floor = (1 + margin) / 2            # above the design's margin, below 1
+    failure = assess(replace(problem, min_closure_margin=floor), alternative.design, 4)
     assert isinstance(failure, Failure) and failure.start == 4
-    assert failure.reason.startswith(f"closure: min sin^2(EBF) = {margin:.4f} < {2 * margin:g}")
+    assert failure.reason.startswith(f"closure: min sin^2(EBF) = {margin:.4f} < {floor:g}")
     ep = float(alternative.design.mech.ep)
     failure = assess(replace(problem, ranges={"ep": (55.0, ep - 1.0)}), alternative.design, 0)
     assert "ranges.ep" in failure.reason
@@ -245,10 +247,11 @@ def test_a_start_whose_curves_cannot_be_held_to_shaper_hollows_fails_with_the_un
     problem, start = result.problem, result.region.feasible[0]
 
     class HeldFails(DesignSolver):
-        def solve(self, start, added_turns=(), warm=None, curvature_floor=None, iteration_limit=None):
+        def solve(self, start, added_turns=(), warm=None, curvature_floor=None, iteration_limit=None,
+                  closure_in_quality=False):
             if curvature_floor is not None:
                 raise SolverError("held", "Infeasible_Problem_Detected")
-            return super().solve(start, added_turns, warm, curvature_floor, iteration_limit)
+            return super().solve(start, added_turns, warm, curvature_floor, iteration_limit, closure_in_quality)
 
     unheld = DesignSolver(problem)._exchange(start, None)
     with pytest.raises(HollowError) as caught:

@@ -155,7 +155,8 @@ def test_exchange_slots_are_the_closure_margin_and_slope_of_forward_kinematics(r
     nlp = build_nlp(problem, capacity=3)
     layout = nlp.layout
     turns = np.radians([14.2, 123.45])
-    values = nlp.start(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points)
+    values = nlp.start(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points,
+                       problem.poses, problem.carrier_turns)
     g = ca.Function("g", [layout.x, layout.p], [layout.g])(
         layout.vector(values), layout.parameter_vector(nlp.parameters(candidate.mech.branch, turns)))
     g = np.asarray(g).ravel()
@@ -164,7 +165,7 @@ def test_exchange_slots_are_the_closure_margin_and_slope_of_forward_kinematics(r
     margin, slope = layout.rows["closure_quality"].read(g)[slots], layout.rows["slope"].read(g)[slots]
     assert np.abs(margin + values["quality"] - forward).max() < 1e-12
     assert np.abs(slope - candidate.relative_angle.evaluate(turns, 1)).max() < 1e-12
-    bounds = nlp.bounds(len(turns), -CONCAVITY_LIMIT, -CONCAVITY_LIMIT)
+    bounds = nlp.bounds(len(turns), -CONCAVITY_LIMIT, -CONCAVITY_LIMIT, closure_in_quality=True)
     for name in GRID_BLOCKS:
         lower, upper = layout.rows[name].read(bounds.lbg), layout.rows[name].read(bounds.ubg)
         assert np.isfinite(lower[slots]).all() and np.isneginf(lower[nlp.fixed_points + 2])

@@ -3,11 +3,12 @@ the same mechanisms merged, and the alternatives ranked.
 
 The design NLP is a black box here: a refined design is evaluated again on its own by
 ``FiveBar.forward`` over a fine grid of the carrier turn, ``range_values`` and
-``RelativeAngle.evaluate``. That gives the transmission angles, the ratio range, the
-return-point misses and the bounds the design sits on, and it rejects a design that breaks a
-condition (the candidate is then listed as failed, with the reason).
+``RelativeAngle.evaluate``, at the key poses the design chose. That gives the transmission angle at
+E, the closure angle EBF, the ratio range, the return-point misses and the values of the bounds the
+NLP found it on, and it rejects a design that breaks a condition, a band or a requirement (the
+candidate is then listed as failed, with the reason).
 
-Ranking rule (``rank``): the largest smallest transmission angle EBF over the turn first.
+Ranking rule (``rank``): the largest smallest transmission angle at E over the turn first.
 Angles within ``ANGLE_TIE`` (relative) of the first of their group tie; a tie goes to the
 smaller largest return-point miss (misses within ``MISS_TIE`` of the reach tie), then to the
 gentler ratio, i.e. the smaller spread i0_max / i0_min; then to the earlier start candidate.
@@ -57,7 +58,7 @@ ANGLE_TIE = 1e-3
 MISS_TIE = 1e-6
 
 #: The ranking rule in words (the reports state it).
-RANKING_RULE = (f"Ranked by the smallest transmission angle EBF over the turn, largest first; angles within "
+RANKING_RULE = (f"Ranked by the smallest transmission angle at E (between EF and BE) over the turn, largest first; angles within "
                 f"{ANGLE_TIE:.1%} of each other tie, and a tie goes to the smaller largest return-point miss "
                 f"(misses within {MISS_TIE:g} of the reach, the farthest key pose or return point from O, tie), "
                 f"then to the gentler ratio (smaller i0 max / min), then to the earlier start candidate.")
@@ -68,8 +69,10 @@ Progress = Callable[[str, int, int], None]
 
 @dataclass(frozen=True)
 class ActiveBound:
-    """A bound the design sits on: ``name`` (``ranges.ep``, ``min_closure_margin``, ``ratio``),
-    ``side`` (``lower`` or ``upper``), the bound's ``limit`` and the design's ``value``."""
+    """A bound the design sits on: ``name`` as the problem file names it (``ranges.ep``,
+    ``min_closure_margin``, ``ratio``, ``key_poses.P2.angle_deg``, ``requirements.min_stroke_mm``, ...),
+    ``side`` (``lower`` or ``upper``), the bound's ``limit`` and the design's ``value``, both in the
+    file's units (mm, deg; a margin or a ratio as it is)."""
 
     name: str
     side: str
@@ -91,10 +94,11 @@ class Alternative:
     starts : tuple of int
         Indices into ``region.feasible`` of every candidate the NLP took to this mechanism.
     transmission_angle, transmission_turn : float
-        Smallest angle EBF over the turn, folded to [0, pi/2] (asin of the root of eq 10's
-        margin), and the carrier turn where it occurs.
-    angle_at_e, angle_at_e_turn : float
-        Smallest angle between EF and BE at E over the turn (folded likewise), and where.
+        Smallest transmission angle at E over the turn (between EF and BE, folded to [0, pi/2]: the
+        angle that carries the load) and the carrier turn where it occurs.
+    closure_angle, closure_turn : float
+        Smallest angle EBF over the turn (folded likewise; its sin^2 is eq 10's margin without
+        scale: 0 where the chain jams), and where.
     ratio_range : (float, float)
         Smallest and largest total ratio i0 = 1 / rho'.
     return_misses_mm : ndarray, shape (m,)
@@ -114,8 +118,8 @@ class Alternative:
     starts: tuple[int, ...]
     transmission_angle: float
     transmission_turn: float
-    angle_at_e: float
-    angle_at_e_turn: float
+    closure_angle: float
+    closure_turn: float
     ratio_range: tuple[float, float]
     return_misses_mm: np.ndarray
     min_closure_margin: float
@@ -148,19 +152,39 @@ def _folded_angle(u: np.ndarray, v: np.ndarray) -> np.ndarray:
 
 
 def transmission_angles(mech: FiveBar, state: dict) -> tuple[np.ndarray, np.ndarray]:
-    """Angle EBF at B and the angle between EF and BE at E (rad, folded to [0, pi/2]) for the hinge
-    positions of ``FiveBar.forward``'s ``state``."""
+    """The transmission angle at E (between EF and BE) and the closure angle EBF at B (rad, folded to
+    [0, pi/2]) for the hinge positions of ``FiveBar.forward``'s ``state``."""
     e, f = state["e"], state["f"]
-    return _folded_angle(e - mech.hinge_b, f - mech.hinge_b), _folded_angle(f - e, mech.hinge_b - e)
+    return _folded_angle(f - e, mech.hinge_b - e), _folded_angle(e - mech.hinge_b, f - mech.hinge_b)
+
+
+def _requirement_values(problem: FiveBarProblem, poses: np.ndarray):
+    """Per requirement name, ((limit, value) on its lower side, (limit, value) on its upper side): the value
+    nearest that side among the requirement's rows, for the chosen key poses (mm)."""
+    rows = problem.requirements.rows(list(poses[:, 0]), list(poses[:, 1]), problem.stroke_direction)
+    for name in dict.fromkeys(row[0] for row in rows):
+        mine = [row for row in rows if row[0] == name]
+        lower = min(mine, key=lambda row: row[1] - row[2])
+        upper = min(mine, key=lambda row: row[3] - row[1])
+        yield name, ((float(lower[2]), float(lower[1])), (float(upper[3]), float(upper[1])))
 
 
 def active_bounds(problem: FiveBarProblem, design: DesignSolution, min_margin: float,
-                  ratios: tuple[float, float], misses: np.ndarray) -> tuple[ActiveBound, ...]:
+                  ratios: tuple[float, float], misses: np.ndarray,
+                  transmission_angle_deg: float = float("nan")) -> tuple[ActiveBound, ...]:
     """The bounds the design NLP found its solution on (``DesignSolution.active_bounds``, decided by the
     ``solve`` layer), each with the problem's limit and the value of the design's own evaluation (mm,
     margin, ratio, a kappa): ``[ranges]``, the margin floor, the ratio bounds, the return tolerance (with
-    the return points on it; every point when the tolerance is 0) and the pitch curves' curvature floor."""
-    values = range_values(problem, design.mech)
+    the return points on it; every point when the tolerance is 0), the pitch curves' curvature floor, the
+    key poses' band edges, the relative requirements and the transmission angle's floor."""
+    resolved = problem.with_poses(design.poses, design.carrier_turns)
+    values = range_values(resolved, design.mech)
+    chosen = np.c_[design.poses, design.carrier_turns]
+    in_file_units = np.array([1.0, 1.0, 180 / np.pi, 180 / np.pi])
+    bands = problem.pose_bands
+    banded = {} if bands is None else {bands.field(problem.labels, int(i), int(q)): (int(i), int(q))
+                                       for i, q in zip(*np.nonzero(bands.banded), strict=True)}
+    requirement_values = dict(_requirement_values(problem, design.poses))
     found = []
     on_tolerance = [j for j in range(len(problem.return_points)) if problem.return_tolerance_mm == 0] or [
         j for bound in design.active_bounds if bound.name == RETURN_TOLERANCE for j in bound.entries]
@@ -176,11 +200,22 @@ def active_bounds(problem: FiveBarProblem, design: DesignSolution, min_margin: f
         elif bound.name.startswith("a kappa of the"):
             curve = CURVES.index(bound.name.removeprefix("a kappa of the ").removesuffix(" pitch curve"))
             found.append(ActiveBound(bound.name, bound.side, design.curvature_floor, design.min_curvature[curve]))
+        elif bound.name in banded and bands is not None:
+            i, q = banded[bound.name]
+            limit = (bands.low if side == 0 else bands.high)[i, q] * in_file_units[q]
+            found.append(ActiveBound(bound.name, bound.side, float(limit), float(chosen[i, q] * in_file_units[q])))
+        elif bound.name in requirement_values:
+            limit, value = requirement_values[bound.name][side]
+            found.append(ActiveBound(bound.name, bound.side, limit, value))
+        elif bound.name == "conditions.min_transmission_angle_deg" and problem.min_transmission_angle is not None:
+            found.append(ActiveBound(bound.name, bound.side, float(np.degrees(problem.min_transmission_angle)),
+                                     transmission_angle_deg))
     if on_tolerance:
         points = f"return point{'s' * (len(on_tolerance) > 1)} {', '.join(str(j + 1) for j in on_tolerance)}"
         found.append(ActiveBound(f"{RETURN_TOLERANCE} ({points})", "upper", problem.return_tolerance_mm,
                                  float(misses[on_tolerance].max())))
-    order = ("ranges.", "min_closure_margin", "ratio", RETURN_TOLERANCE, "a kappa of the")
+    order = ("key_poses.", "requirements.", "ranges.", "conditions.min_transmission_angle_deg", "min_closure_margin",
+             "ratio", RETURN_TOLERANCE, "a kappa of the")
     return tuple(sorted(found, key=lambda b: next(k for k, head in enumerate(order) if b.name.startswith(head))))
 
 
@@ -212,24 +247,38 @@ def _defects(problem: FiveBarProblem, design: DesignSolution, slope: np.ndarray,
     return defects
 
 
+def _chosen_pose_defects(problem: FiveBarProblem, design: DesignSolution) -> list[str]:
+    """The bands and requirements the design's chosen key poses break beyond ``ACTIVE_TOLERANCE`` (of the band's
+    width, of the reach)."""
+    defects = []
+    bands = problem.pose_bands
+    if bands is not None:
+        chosen = np.c_[design.poses, design.carrier_turns]
+        for i, q in bands.outside(chosen, ACTIVE_TOLERANCE * (bands.high - bands.low)):
+            defects.append(f"{bands.field(problem.labels, i, q)}: chosen outside its band")
+    broken = problem.requirements.broken(design.poses, problem.stroke_direction, ACTIVE_TOLERANCE * reach(problem))
+    return defects + [f"{name}: not met by the chosen key poses" for name in broken]
+
+
 def assess(problem: FiveBarProblem, design: DesignSolution, start: int) -> Alternative | Failure:
-    """The refined design from ``region.feasible[start]`` evaluated on its own: an ``Alternative``,
-    or a ``Failure`` naming every condition it breaks."""
+    """The refined design from ``region.feasible[start]`` evaluated on its own at the key poses it chose: an
+    ``Alternative``, or a ``Failure`` naming every condition, band or requirement it breaks."""
     mech, relative = design.mech, design.relative_angle
+    resolved = problem.with_poses(design.poses, design.carrier_turns)
     turns = np.linspace(0, TWO_PI, TURN_SAMPLES, endpoint=False)
     state = mech.forward(turns, relative.evaluate(turns))
     slope = relative.evaluate(turns, 1)
     ratios = ratio_range(slope)
     min_margin = float(np.min(state["margin"]))
-    defects = _defects(problem, design, slope, ratios, min_margin)
+    defects = _defects(resolved, design, slope, ratios, min_margin) + _chosen_pose_defects(problem, design)
     if defects:
         return Failure(start, "; ".join(defects))
-    at_b, at_e = transmission_angles(mech, state)
+    at_e, at_b = transmission_angles(mech, state)
     returns = mech.forward(design.stroke.carrier_turns, relative.evaluate(design.stroke.carrier_turns))
     misses = np.linalg.norm(returns["p"] - problem.return_points, axis=1)
-    return Alternative(design, (start,), float(at_b.min()), float(turns[at_b.argmin()]), float(at_e.min()),
-                       float(turns[at_e.argmin()]), ratios, misses, min_margin,
-                       active_bounds(problem, design, min_margin, ratios, misses))
+    return Alternative(design, (start,), float(at_e.min()), float(turns[at_e.argmin()]), float(at_b.min()),
+                       float(turns[at_b.argmin()]), ratios, misses, min_margin,
+                       active_bounds(problem, design, min_margin, ratios, misses, float(np.degrees(at_e.min()))))
 
 
 def mechanism_signature(design: DesignSolution, size: float) -> np.ndarray:
@@ -313,7 +362,7 @@ def refine_all(problem: FiveBarProblem, solver: DesignSolver, candidates: list[C
 def _other_strokes(problem: FiveBarProblem, solver: DesignSolver, candidates: list[Candidate],
                    alternative: Alternative) -> Alternative:
     """The alternative, or the best design the solver reaches from it with a return point moved to another
-    pass of P by it (``DesignSolver.restroke``) when that ranks above it (a larger smallest angle EBF,
+    pass of P by it (``DesignSolver.restroke``) when that ranks above it (a larger smallest transmission angle,
     beyond ``ANGLE_TIE``) and passes its checks. Which pass the NLP holds a return point on is fixed by its
     start, and the max-min can have its better optimum on the other pass (on the bundled example P8 at
     carrier turn 219 deg instead of 304 deg: 6.74 deg instead of 6.36)."""
@@ -326,8 +375,8 @@ def _other_strokes(problem: FiveBarProblem, solver: DesignSolver, candidates: li
         if not isinstance(judged, Failure) and judged.transmission_angle > best.transmission_angle * (1 + ANGLE_TIE):
             moved = (f"{problem.return_labels[point]} moved from its pass at carrier turn "
                      f"{np.degrees(alternative.design.stroke.carrier_turns[point]):.1f} deg to the one at "
-                     f"{np.degrees(turn):.1f} deg (smallest EBF {np.degrees(alternative.transmission_angle):.3f} -> "
-                     f"{np.degrees(judged.transmission_angle):.3f} deg)")
+                     f"{np.degrees(turn):.1f} deg (smallest transmission angle at E "
+                     f"{np.degrees(alternative.transmission_angle):.3f} -> {np.degrees(judged.transmission_angle):.3f} deg)")
             best = replace(judged, starts=alternative.starts, restroke=moved)
     return best
 

@@ -41,6 +41,16 @@ class Candidate:
     relative_angle: RelativeAngle | None = None
     min_margin: float = float("nan")
     ratio_range: tuple[float, float] = (float("nan"), float("nan"))
+    #: The key poses (mm, rad) and carrier turns (rad) the candidate was found for, when they are a pose set
+    #: drawn inside the problem's bands rather than the problem's own (None).
+    poses: np.ndarray | None = None
+    carrier_turns: np.ndarray | None = None
+
+    def key_poses(self, problem) -> tuple[np.ndarray, np.ndarray]:
+        """The key poses and carrier turns the candidate meets: its own pose set, or the problem's."""
+        if self.poses is None or self.carrier_turns is None:
+            return problem.poses, problem.carrier_turns
+        return self.poses, self.carrier_turns
 
     @property
     def feasible(self) -> bool:

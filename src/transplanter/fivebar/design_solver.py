@@ -68,7 +68,8 @@ class DesignSolver:
         self.builds += 1
 
     def solve(self, start: Candidate, added_turns=(), warm: DesignSolution | None = None,
-              curvature_floor: float | None = None, iteration_limit: int | None = None) -> DesignSolution:
+              curvature_floor: float | None = None, iteration_limit: int | None = None,
+              closure_in_quality: bool = False) -> DesignSolution:
         """Solve with the start's assembly branch and the exchange points ``added_turns`` (rad), from the
         start's own dimensions or from the design ``warm`` (a previous round's), with the four curves held to
         a kappa >= ``curvature_floor`` (None: the rows off); ``iteration_limit`` stops IPOPT early."""
@@ -78,22 +79,25 @@ class DesignSolver:
         nlp, branch = self.nlp, float(start.mech.branch)
         if warm is None:
             assert start.relative_angle is not None and start.stroke is not None, "a feasible region candidate"
-            values = nlp.start(start.mech, start.relative_angle, start.stroke, self.problem.return_points)
+            poses, turns = start.key_poses(self.problem)
+            values = nlp.start(start.mech, start.relative_angle, start.stroke, self.problem.return_points, poses, turns)
         else:
-            values = nlp.start(warm.mech, warm.relative_angle, warm.stroke, warm.reached_return_points)
+            values = nlp.start(warm.mech, warm.relative_angle, warm.stroke, warm.reached_return_points, warm.poses,
+                               warm.carrier_turns)
         solution = self.solver.solve(
-            values, nlp.bounds(len(added_turns), curvature_floor, float(values["least_curvature"])),
+            values, nlp.bounds(len(added_turns), curvature_floor, float(values["least_curvature"]), closure_in_quality),
             nlp.parameters(branch, added_turns), iteration_limit,
             failure=f"{self.problem.source}: the design NLP did not converge from the region candidate")
         return nlp.design(solution, branch, curvature_floor)
 
     def refine(self, start: Candidate) -> DesignSolution:
-        """The best transmission quality from ``start`` with every pitch curve a shaper can cut:
+        """The largest smallest transmission angle from ``start`` with every pitch curve a shaper can cut:
         a kappa >= -``CONCAVITY_LIMIT``. If IPOPT fails there, a ``HollowError`` gives the least a kappa of
         the design made without the hold (a hollow that only gears many times the mechanism's size could
         carry)."""
         try:
-            return self._exchange(start, -CONCAVITY_LIMIT)
+            both = self._exchange(start, -CONCAVITY_LIMIT, closure_in_quality=True)
+            return self._exchange(start, -CONCAVITY_LIMIT, warm=both)
         except SolverError as error:
             unheld = curvature_text(self._exchange(start, None))
             raise HollowError(f"IPOPT ended with {error.status} with the pitch curves held to a kappa >= "
@@ -125,20 +129,22 @@ class DesignSolver:
         return self._exchange(start, -CONCAVITY_LIMIT, warm=warm)
 
     def _exchange(self, start: Candidate, curvature_floor: float | None, warm: DesignSolution | None = None,
-                  iteration_limit: int | None = None) -> DesignSolution:
-        """``solve`` with the carrier turns where the fine check finds the quality below t, or rho' or a
-        curvature (below ``curvature_floor``) out of bounds, added to its grid (``solve.exchange``)."""
+                  iteration_limit: int | None = None, closure_in_quality: bool = False) -> DesignSolution:
+        """``solve`` with the carrier turns where the fine check finds sin^2 of the transmission angle below t,
+        the closure margin below its floor, or rho' or a curvature (below ``curvature_floor``) out of bounds,
+        added to its grid (``solve.exchange``)."""
         low, high = 1 / self.problem.ratio_bounds[1], 1 / self.problem.ratio_bounds[0]
         floor = self.problem.min_closure_margin
 
         def solve(turns: np.ndarray, previous: DesignSolution | None) -> DesignSolution:
-            return self.solve(start, turns, previous, curvature_floor, iteration_limit)
+            return self.solve(start, turns, previous, curvature_floor, iteration_limit, closure_in_quality)
 
         def worst_turns(solution: DesignSolution) -> np.ndarray:
             check = whole_turn(solution.mech, solution.relative_angle)
             slope = check["slope"]
+            quality = np.fmin(check["bef"], check["ebf"]) if closure_in_quality else check["bef"]
             shortfall = np.fmax.reduce([
-                (solution.quality - np.fmin(check["ebf"], check["bef"])) / solution.quality - QUALITY_GAP,
+                (solution.quality - quality) / max(solution.quality, QUALITY_GAP) - QUALITY_GAP,
                 (floor - check["ebf"]) / floor, (low - slope) / low, (slope - high) / high,
                 *([] if curvature_floor is None else
                   (curvature_floor - check["curvature"]) / abs(curvature_floor) - CURVATURE_GAP)])

@@ -123,7 +123,7 @@ def draw_trajectory(result: FiveBarResult) -> Figure:
 
 
 def draw_tradeoff(result: FiveBarResult) -> Figure:
-    """Largest return-point miss (mm) against the smallest angle EBF (deg) of each refined alternative,
+    """Largest return-point miss (mm) against the smallest transmission angle at E (deg) of each refined alternative,
     labelled with its rank, the picked one ringed, the return tolerance drawn; the bounds the picked one
     sits on are listed under the axes."""
     alternatives = result.alternatives
@@ -141,7 +141,7 @@ def draw_tradeoff(result: FiveBarResult) -> Figure:
     ax.axhline(tolerance, color="gray", ls="--", lw=1, label=f"return tolerance {tolerance:g} mm")
     ax.set_ylim(0, 1.2 * max(tolerance, misses.max()) or 1.0)
     ax.ticklabel_format(useOffset=False)
-    ax.set_xlabel("smallest transmission angle EBF over the turn (deg)")
+    ax.set_xlabel("smallest transmission angle at E over the turn (deg)")
     ax.set_ylabel("largest return-point miss (mm)")
     starts = sum(len(a.starts) for a in alternatives)
     count, failed = len(alternatives), len(result.failed)

@@ -1,32 +1,35 @@
 """The design NLP of the five-bar and its relative angle (``solve`` layer, IPOPT): maximise the smallest
-transmission quality over the whole turn.
+transmission angle at E over the whole turn.
 
 Variables (lengths in units of ``length_unit(problem)`` inside the NLP), each a named block: carrier length
 L1 and its angle at pose 1, rod length L2, hinge B, receiving plate L4, E and F in the plate frame, rho1
 and the spline's control values (q_0 = 0), the return stroke (per return point j its carrier turn c_j,
-the plate direction there and the point P_j' the mechanism actually reaches), then the transmission
-quality t, the train's correction k (eq 12) and the least a kappa u the curvature rows hold.
+the plate direction there and the point P_j' the mechanism actually reaches), the transmission quality t,
+the train's correction k (eq 12), the least a kappa u the curvature rows hold, and each banded key-pose
+quantity, named as the file names it (``key_poses.P2.angle_deg``) and held within its band.
 
-Transmission quality. F is driven (the carrier and the gears place it); the dyad F-E-B then places the
-plate. Two angles of the triangle B-E-F measure how well it does: angle EBF, whose sin^2 is the derived
-closure margin (eq 10 without its scale: where it vanishes the chain jams), and angle BEF, whose sin^2 is
-the derived transmission margin (the rocker BE is a two-force link: the force it takes is the load's
-moment about F over L3 sin(BEF)). Both count: t <= each on the grid, and the NLP maximises t;
-``min_closure_margin`` stays a hard floor (t >= it).
+Transmission quality. F is driven (the carrier and the gears place it); the plate E-F-P is held at E by the
+receiving plate BE, a two-force link, so a load at P is balanced about F by the force in BE, which is the
+load's moment about F over L3 sin(mu), mu the angle between EF and BE at E: the transmission angle that
+carries the load. t <= sin^2(mu) on the grid (the derived transmission margin) and the NLP maximises t;
+``conditions.min_transmission_angle_deg`` is a floor on t. Angle EBF, whose sin^2 is the derived closure
+margin (eq 10 without its scale: where it vanishes the chain jams), is held above ``min_closure_margin``.
 
 Constraints, each a named block (every closure equation from ``derivations/fivebar.py``):
-- ``pose_closure``: at the key poses and the return points (the plate at (P_j', direction_j)) the loop
-  closes at position level: |E - B| = L4 and F = A + L2 e(theta1 + rho);
+- ``pose_closure``: at the key poses (as chosen within their bands) and the return points (the plate at
+  (P_j', direction_j)) the loop closes at position level: |E - B| = L4 and F = A + L2 e(theta1 + rho);
 - ``assembly``: the start's B-E-F assembly branch at every position, with the closure margin there;
 - on the grid (``GRID_POINTS`` carrier turns, the left sides of the spline's knots, where a kappa jumps,
-  and ``capacity`` exchange slots whose turns are parameters): ``closure_quality`` and
-  ``transmission_quality`` (margins >= t), ``slope`` (1/i_max <= rho' <= 1/i_min: the gears never
+  and ``capacity`` exchange slots whose turns are parameters): ``closure_margin`` (>= its floor),
+  ``transmission_quality`` (sin^2 mu >= t), ``slope`` (1/i_max <= rho' <= 1/i_min: the gears never
   reverse) and ``curvature_<curve>`` (a kappa >= u for the four pitch curves, ``train_pitch_curvature``);
 - ``correction_closure``: k int_0^2pi sqrt(rho') dc = 2 pi by ``QUADRATURE_NODES``-point Gauss-Legendre
   per knot span (rho' is a quadratic there: the row agrees with ``trains.planetary.correction_factor``
   to about 1e-13);
 - ``return_order``: c_j increasing between the last key pose and a full turn; ``ranges.<name>``: the
-  ``[ranges]`` limits; ``return_misses``: |P_j' - P_j| within ``return_tolerance_mm`` (0 fixes P_j').
+  ``[ranges]`` limits; ``return_misses``: |P_j' - P_j| within ``return_tolerance_mm`` (0 fixes P_j');
+  ``key_order``: banded carrier turns in order; ``requirements.<name>``: the relative requirements between
+  the chosen key poses (``fivebar.key_pose_bands``).
 
 Concavity. A rack cannot cut a hollow; a shaper can, when its pitch circle (radius m N / 2) fits the
 hollow, whose radius is a / |a kappa|. The solver holds u = -``CONCAVITY_LIMIT`` first, then tries
@@ -75,9 +78,9 @@ MIN_STEP = np.radians(1.0)   # smallest carrier turn between consecutive positio
 #: Exchange slots one NLP holds before it is rebuilt larger.
 ADDED_CAPACITY = 16
 #: The grid blocks each exchange slot adds a row to.
-GRID_BLOCKS = ("closure_quality", "transmission_quality", "slope", *(f"curvature_{c.replace(' ', '_')}"
-                                                                      for c in CURVES))
-CURVATURE_BLOCKS = GRID_BLOCKS[3:]
+GRID_BLOCKS = ("closure_margin", "transmission_quality", "closure_quality", "slope",
+               *(f"curvature_{c.replace(' ', '_')}" for c in CURVES))
+CURVATURE_BLOCKS = GRID_BLOCKS[4:]
 #: Report names of the return tolerance and of the curvature hold (``active_bounds`` groups by them).
 RETURN_TOLERANCE = "conditions.return_tolerance_mm"
 
@@ -97,7 +100,7 @@ class DesignSolution:
     objective, iterations, status
         IPOPT's final objective (-t + bending term), iterations and return status.
     quality : float
-        t, the NLP's smallest min(sin^2 EBF, sin^2 BEF) on its grid.
+        t, the NLP's smallest sin^2 of the transmission angle at E (angle BEF) on its grid.
     min_closure_margin, min_closure_turn : float
         Smallest sin^2(angle EBF) over ``whole_turn.CHECK_POINTS`` carrier turns, and the turn (rad).
     min_angle_ebf, min_angle_bef, min_angle_bef_turn : float
@@ -111,6 +114,9 @@ class DesignSolution:
         (shaper-cut hollows), None (rows off); ``convexity_note`` says why, with the numbers, when not convex.
     active_bounds : tuple of ActiveBound
         Every named bound the NLP's solution sits on (``solve.active``), in the NLP's units.
+    poses, carrier_turns : ndarray, shapes (4, 3) and (4,)
+        The key poses (mm, rad) and carrier turns (rad) the design meets: the problem's, or those it chose
+        inside their bands.
     """
 
     mech: FiveBar
@@ -130,6 +136,8 @@ class DesignSolution:
     correction: float
     min_curvature: tuple
     active_bounds: tuple[ActiveBound, ...]
+    poses: np.ndarray
+    carrier_turns: np.ndarray
     curvature_floor: float | None = None
     convexity_note: str = ""
 
@@ -161,10 +169,15 @@ class DesignNLP:
     capacity: int
     unit: float                  # mm per NLP length unit (``length_unit``)
 
-    def bounds(self, added: int, curvature_floor: float | None, least_curvature: float) -> Bounds:
-        """The bounds of a solve with the first ``added`` exchange slots in use and the curvature rows
-        holding a kappa >= ``curvature_floor`` (None: the rows off, u held at ``least_curvature``)."""
+    def bounds(self, added: int, curvature_floor: float | None, least_curvature: float,
+               closure_in_quality: bool = False) -> Bounds:
+        """The bounds of a solve with the first ``added`` exchange slots in use, the curvature rows holding
+        a kappa >= ``curvature_floor`` (None: the rows off, u held at ``least_curvature``), and t held below
+        sin^2 of the angle EBF too when ``closure_in_quality`` (the max-min of both angles: a start for the
+        max-min of the transmission angle alone)."""
         bounds = self.layout.bounds()
+        if not closure_in_quality:
+            bounds.free_rows("closure_quality")
         for name in GRID_BLOCKS:
             bounds.free_rows(name, slice(self.fixed_points + added, None))
         if curvature_floor is None:
@@ -179,23 +192,43 @@ class DesignNLP:
         return {"branch": branch, "added_turns": turns,
                 **{f"added_basis_{order}": basis_matrix(turns, n, order).T for order in range(4)}}
 
-    def start(self, mech: FiveBar, relative: RelativeAngle, stroke: ReturnStroke, reached: np.ndarray) -> dict:
-        """The variables of a design whose return points stand at ``reached`` (mm); t, k and u start at the
-        design's own quality, correction factor and least a kappa on the NLP's grid."""
+    def start(self, mech: FiveBar, relative: RelativeAngle, stroke: ReturnStroke, reached: np.ndarray,
+              poses: np.ndarray, turns: np.ndarray) -> dict:
+        """The variables of a design whose return points stand at ``reached`` (mm) and whose key poses are
+        ``poses`` (mm, rad) at carrier turns ``turns``; t, k and u start at the design's own transmission
+        quality, correction factor and least a kappa on the NLP's grid."""
         unit = self.unit
         check = whole_turn(mech, relative, np.linspace(0, TWO_PI, GRID_POINTS, endpoint=False))
-        return {"carrier_length": mech.carrier_length / unit, "carrier_angle": mech.carrier_angle,
+        chosen = np.c_[poses[:, :2] / unit, poses[:, 2], turns]
+        return {**{name: chosen[i, q] for name, (i, q) in self.key_blocks().items()},
+                "carrier_length": mech.carrier_length / unit, "carrier_angle": mech.carrier_angle,
                 "rod_length": mech.rod_length / unit, "hinge_b": mech.hinge_b / unit,
                 "receiving_length": mech.receiving_length / unit, "plate_point_e": mech.e_local / unit,
                 "plate_point_f": mech.f_local / unit, "relative_angle_start": relative.rho1,
                 "spline_values": relative.coefficients[1:],
                 "return_stroke": np.stack([stroke.carrier_turns, stroke.directions, *(reached.T / unit)]),
-                "quality": np.nanmin(np.fmin(check["ebf"], check["bef"])), "correction": check["correction"],
+                "quality": np.nanmin(check["bef"]), "correction": check["correction"],
                 "least_curvature": np.nanmin(check["curvature"])}
+
+    def key_blocks(self) -> dict[str, tuple[int, int]]:
+        """Name -> (pose, quantity) of every banded key-pose quantity (``key_pose_entries``)."""
+        bands = self.problem.pose_bands
+        if bands is None:
+            return {}
+        return {bands.field(self.problem.labels, int(i), int(q)): (int(i), int(q))
+                for i, q in zip(*np.nonzero(bands.banded), strict=True)}
+
+    def chosen_poses(self, solution: Solution) -> tuple[np.ndarray, np.ndarray]:
+        """The key poses (mm, rad) and their carrier turns (rad) the solution chose: the problem's where exact."""
+        chosen = np.c_[self.problem.poses, self.problem.carrier_turns]
+        for name, (i, q) in self.key_blocks().items():
+            chosen[i, q] = solution[name][0] * (self.unit if q < 2 else 1.0)
+        return chosen[:, :3], chosen[:, 3]
 
     def design(self, solution: Solution, branch: float, curvature_floor: float | None) -> DesignSolution:
         """The solved design, evaluated again on its own over the whole turn."""
         problem, unit = self.problem, self.unit
+        poses, key_turns = self.chosen_poses(solution)
         mech = FiveBar(carrier_length=float(solution["carrier_length"][0]) * unit,
                        carrier_angle=float(solution["carrier_angle"][0]),
                        rod_length=float(solution["rod_length"][0]) * unit, hinge_b=solution["hinge_b"] * unit,
@@ -218,18 +251,34 @@ class DesignNLP:
             min_angle_bef=float(np.arcsin(np.sqrt(min(check["bef"][bef], 1.0)))),
             min_angle_bef_turn=float(check["turns"][bef]), correction=check["correction"],
             min_curvature=tuple(float(v) for v in np.fmin(check["curvature"].min(axis=1), knot_sides.min(axis=1))),
-            active_bounds=solution.active_bounds(), curvature_floor=curvature_floor,
+            active_bounds=solution.active_bounds(), poses=poses, carrier_turns=key_turns,
+            curvature_floor=curvature_floor,
             convexity_note="" if curvature_floor is not None else "curvature rows off")
+
+
+def key_pose_entries(nlp: NLPBuilder, problem: FiveBarProblem, unit: float) -> np.ndarray:
+    """The key poses' x, y (in ``unit``), plate direction and carrier turn (rad), shape (4, 4): a float where the
+    problem fixes the value, a variable within its band (named as the file names it) where it gives a band."""
+    key = np.empty((4, 4), dtype=object)
+    exact = np.c_[problem.poses[:, :2] / unit, problem.poses[:, 2], problem.carrier_turns]
+    bands = problem.pose_bands
+    to_nlp = np.array([unit, unit, 1.0, 1.0])
+    for i in range(4):
+        for q in range(4):
+            if bands is None or not bands.banded[i, q]:
+                key[i, q] = float(exact[i, q])
+                continue
+            name = bands.field(problem.labels, i, q)
+            low, high = bands.low[i, q] / to_nlp[q], bands.high[i, q] / to_nlp[q]
+            key[i, q] = nlp.variables(name, 1, low, high, high - low, ((name, "lower"), (name, "upper")))
+    return key
 
 
 def build_nlp(problem: FiveBarProblem, capacity: int = ADDED_CAPACITY) -> DesignNLP:
     """The design NLP of ``problem`` with room for ``capacity`` exchange slots."""
     n, m = problem.spline_count, len(problem.return_points)
     unit = length_unit(problem)
-    poses = problem.poses.copy()
-    poses[:, :2] /= unit
     targets = problem.return_points / unit
-    turns = problem.carrier_turns
     nlp = NLPBuilder()
 
     l1 = nlp.variables("carrier_length", lower=1e-3)
@@ -246,11 +295,14 @@ def build_nlp(problem: FiveBarProblem, capacity: int = ADDED_CAPACITY) -> Design
     if exact:
         stroke_low[2:], stroke_high[2:] = targets.T, targets.T
     ret = nlp.variables("return_stroke", (4, m), stroke_low, stroke_high)
-    quality = nlp.variables("quality", lower=problem.min_closure_margin, scale=problem.min_closure_margin,
-                            names=(("min_closure_margin", "lower"), None))
+    floor = 0.0 if problem.min_transmission_angle is None else float(np.sin(problem.min_transmission_angle) ** 2)
+    quality = nlp.variables("quality", lower=floor, scale=max(floor, 1e-2),
+                            names=None if problem.min_transmission_angle is None else
+                            (("conditions.min_transmission_angle_deg", "lower"), None))
     correction = nlp.variables("correction", lower=0.0)
     least_curvature = nlp.variables("least_curvature", lower=-CONCAVITY_LIMIT, upper=-CONCAVITY_LIMIT)
 
+    key = key_pose_entries(nlp, problem, unit)
     branch = nlp.parameters("branch")
     added_turns = nlp.parameters("added_turns", capacity)
     added_basis = [nlp.parameters(f"added_basis_{order}", (n, capacity)) for order in range(4)]
@@ -260,10 +312,15 @@ def build_nlp(problem: FiveBarProblem, capacity: int = ADDED_CAPACITY) -> Design
     def rho(c):
         return rho1 + c + ca.dot(ca.vertcat(*basis(c, n, 0, CASADI)), q) - ca.dot(ca.DM(q0), q)
 
+    def rho_at_key(i: int):
+        turn = key[i, 3]
+        if isinstance(turn, float):          # an exact turn: the basis is a constant row
+            return rho1 + ca.dot(ca.DM(basis_matrix(np.array([turn]), n)[0] - q0), q) + turn
+        return rho(turn)
+
     plate = ca.vertcat(e_local, f_local)
     closure, assembly = casadi_function(fivebar_pose_closure), casadi_function(fivebar_assembly_sine)
-    positions: list[tuple[ca.SX, float | ca.SX, ca.SX]] = [(ca.SX(poses[i]), turns[i], rho1 + ca.dot(ca.DM(basis_matrix(turns[i:i + 1], n)[0] - q0), q)
-                  + turns[i]) for i in range(4)]
+    positions = [(ca.vertcat(*key[i, :3]), key[i, 3], rho_at_key(i)) for i in range(4)]
     positions += [(ca.vertcat(ret[2:4, j], ret[1, j]), ret[0, j], rho(ret[0, j])) for j in range(m)]
     residuals, sides = [], []
     for pose, c, angle in positions:
@@ -291,8 +348,10 @@ def build_nlp(problem: FiveBarProblem, capacity: int = ADDED_CAPACITY) -> Design
     derivatives = ca.horzcat(slope, ca.mtimes(rows[2], q), ca.mtimes(rows[3], q)).T
     curvature = casadi_function(train_pitch_curvature).map(points)(derivatives, ca.repmat(correction, 1, points))[1]
     low_ratio, high_ratio = problem.ratio_bounds
-    nlp.constraints("closure_quality", margin - quality, 0.0, np.inf)
+    nlp.constraints("closure_margin", margin, problem.min_closure_margin, np.inf, problem.min_closure_margin,
+                    (("min_closure_margin", "lower"), None))
     nlp.constraints("transmission_quality", transmission - quality, 0.0, np.inf)
+    nlp.constraints("closure_quality", margin - quality, 0.0, np.inf)
     nlp.constraints("slope", slope, 1 / high_ratio, 1 / low_ratio, 1 / high_ratio,
                     (("ratio", "upper"), ("ratio", "lower")))
     for k, (name, curve) in enumerate(zip(CURVATURE_BLOCKS, CURVES, strict=True)):
@@ -303,17 +362,31 @@ def build_nlp(problem: FiveBarProblem, capacity: int = ADDED_CAPACITY) -> Design
     root_slope = ca.sqrt(1 + ca.mtimes(ca.DM(basis_matrix(spans.nodes.ravel(), n, 1)), q))
     nlp.constraints("correction_closure", correction * ca.dot(ca.DM(spans.weights.ravel()), root_slope) - TWO_PI,
                     0.0, 0.0)
-    nlp.constraints("return_order", ca.vertcat(ret[0, 0] - turns[-1], ca.diff(ret[0, :].T), TWO_PI - ret[0, m - 1]),
+    nlp.constraints("return_order", ca.vertcat(ret[0, 0] - key[-1, 3], ca.diff(ret[0, :].T), TWO_PI - ret[0, m - 1]),
                     MIN_STEP, np.inf, MIN_STEP)
+    banded_turns = [i for i in range(1, 4) if not isinstance(key[i, 3], float)]
+    if banded_turns:        # banded turns keep their order (their bands do not overlap) and a step between poses
+        nlp.constraints("key_order", ca.vertcat(*(key[i, 3] - key[i - 1, 3] for i in banded_turns)), MIN_STEP,
+                        np.inf, MIN_STEP)
+    required = [row for row in problem.requirements.scaled(unit).rows(list(key[:, 0]), list(key[:, 1]),
+                                                                        problem.stroke_direction)
+                if not isinstance(row[1], float)]     # one between exact poses was checked when the file was read
+    for name in dict.fromkeys(row[0] for row in required):
+        rows_of = [row for row in required if row[0] == name]
+        nlp.constraints(name, ca.vertcat(*(row[1] for row in rows_of)), [row[2] for row in rows_of],
+                        [row[3] for row in rows_of], 1.0, ((name, "lower"), (name, "upper")))
 
-    e1, f1 = casadi_function(fivebar_plate_hinges)(ca.DM(poses[0]), plate)
+    e1, f1 = casadi_function(fivebar_plate_hinges)(ca.vertcat(*key[0, :3]), plate)
     ranged = {"ep": ca.norm_2(e_local), "fp": ca.norm_2(f_local), "x_e": e1[0], "x_f": f1[0]}
     for key, (low, high) in problem.ranges.items():
         nlp.constraints(f"ranges.{key}", ranged[key], low / unit, high / unit, max(abs(low), abs(high)) / unit,
                         ((f"ranges.{key}", "lower"), (f"ranges.{key}", "upper")))
-    tolerance = (problem.return_tolerance_mm / unit) ** 2
-    nlp.constraints("return_misses", ca.sum1((ret[2:4, :] - targets.T) ** 2).T, -np.inf,
-                    np.inf if exact else tolerance, tolerance, (None, (RETURN_TOLERANCE, "upper")))
+    # |P_j' - P_j|^2 / (2 tol) <= tol / 2: the row's units are lengths near the bound (a violation of IPOPT's
+    # 1e-12 is 1e-12 of the NLP's unit there, where the squared distance would make it 1e-12 / (2 tol))
+    tolerance = problem.return_tolerance_mm / unit
+    scale = 1.0 if exact else 1 / (2 * tolerance)
+    nlp.constraints("return_misses", scale * ca.sum1((ret[2:4, :] - targets.T) ** 2).T, -np.inf,
+                    np.inf if exact else tolerance / 2, tolerance / 2, (None, (RETURN_TOLERANCE, "upper")))
 
     objective = -quality + BENDING_WEIGHT * ca.mtimes([q.T, ca.DM(bending_matrix(n)), q])
     return DesignNLP(nlp.build(objective), problem, len(fixed), capacity, unit)

@@ -5,10 +5,10 @@ Schema (docs/fivebar.md, "Problem files"); the carrier pivot O is the origin:
     title = "..."
     [[key_poses]]                 # exactly four: P of the push plate and the plate direction
     label = "P1"
-    x = -23.1                     # mm
+    x = -23.1                     # mm; any of x, y, angle_deg, carrier_turn_deg may be a band [low, high]
     y = -309.7
     angle_deg = 113.8             # plate direction, counterclockwise from +x
-    carrier_turn_deg = 0.0        # how far the carrier has turned clockwise since pose 1
+    carrier_turn_deg = 0.0        # how far the carrier has turned clockwise since pose 1 (0 at pose 1)
     [[return_points]]             # positions of P on the return stroke (no angle)
     x = -125.0
     y = -287.0
@@ -21,11 +21,17 @@ Schema (docs/fivebar.md, "Problem files"); the carrier pivot O is the origin:
     min_closure_margin = 0.01     # sin^2(angle EBF) kept above this all round (eq 10 without scale)
     ratio = [0.25, 4.0]           # bounds on the total ratio i0 = dc / drho (eq 11)
     return_tolerance_mm = 1.0     # how far P may pass from each return point (mm, >= 0)
+    min_transmission_angle_deg = 40.0   # optional floor on the transmission angle at E, in (0, 90)
+    [requirements]                # optional, between the poses the design chooses (fivebar/key_pose_bands.py)
+    max_offset_from_first_mm = [130.0, 10.0]
+    min_stroke_mm = 110.0
+    max_last_step_mm = 40.0
     [spline]
     control_points = 12           # periodic cubic B-spline of the relative angle
     [region]
     samples = 1000                # pencil lines per 4-pose curve, 64-8000 (five-bars judged grow as its square)
     radius_mm = 600.0             # hinges within this distance of the poses' centroid
+    band_samples = 16             # pose sets drawn inside the bands when their centres give no five-bar
     [gears]
     module = 1.5                  # mm, 0.2-10: pitch perimeters are pi * module * whole teeth
     pressure_angle_deg = 20.0     # 14.5-30
@@ -38,12 +44,22 @@ Schema (docs/fivebar.md, "Problem files"); the carrier pivot O is the origin:
 """
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from transplanter.burmester.problem import check_distinct
+from transplanter.fivebar.key_pose_bands import (
+    PoseBands,
+    Requirements,
+    as_given,
+    check_bands_meet_requirements,
+    read_key_pose_rows,
+    read_requirements,
+    stroke_direction,
+)
 from transplanter.fivebar.support_problem import SupportSpec, parse_support
 from transplanter.toml_fields import LONGEST_LABEL, LONGEST_TITLE, ClassFields, FieldReader, read_toml, warn_if_radians
 from transplanter.trains.toothed_train import (
@@ -56,7 +72,8 @@ from transplanter.trains.toothed_train import (
 )
 
 RANGE_FIELDS = {"ep": "|EP| (mm)", "fp": "|FP| (mm)", "x_e": "x of E in pose 1 (mm)", "x_f": "x of F in pose 1 (mm)"}
-_TOP_KEYS = {"title", "description", "key_poses", "return_points", "ranges", "conditions", "spline", "region", "gears",
+_TOP_KEYS = {"title", "description", "key_poses", "return_points", "ranges", "conditions", "requirements", "spline",
+             "region", "gears",
              "support"}
 
 
@@ -68,7 +85,7 @@ class FiveBarProblem:
     ----------
     poses : ndarray, shape (4, 3)
         Key poses of the push plate: x, y of P (mm) and the plate direction (rad,
-        counterclockwise from +x, within one turn of zero).
+        counterclockwise from +x, within one turn of zero); the bands' centres where ``pose_bands`` has bands.
     carrier_turns : ndarray, shape (4,)
         Clockwise turn of the carrier since pose 1 (rad): 0 first, strictly increasing, below 2 pi.
     return_points : ndarray, shape (m, 2)
@@ -94,6 +111,14 @@ class FiveBarProblem:
         (``trains.toothed_train``); ``center_distances`` gives its fixed centre distances (mm) or None.
     support : SupportSpec or None
         The seedling support to design with the five-bar (``[support]``); None: none.
+    pose_bands : PoseBands or None
+        Bands of the key poses' x, y, direction and carrier turn (mm, rad), or None when all are exact.
+    requirements : Requirements
+        The relative requirements between the chosen key poses (mm).
+    band_samples : int
+        Pose sets drawn inside the bands when the region at their centres holds no feasible five-bar.
+    min_transmission_angle : float or None
+        Floor on the transmission angle at E over the turn (rad), or None.
     source, title : str
         Where the problem came from (file name or ``"<dict>"``) and its title.
 
@@ -117,6 +142,10 @@ class FiveBarProblem:
     radius_mm: float = 600.0
     gearing: Gearing = field(default_factory=Gearing)
     support: SupportSpec | None = None
+    pose_bands: PoseBands | None = None
+    requirements: Requirements = field(default_factory=Requirements)
+    band_samples: int = 16
+    min_transmission_angle: float | None = None
     source: str = "<dict>"
     title: str = ""
 
@@ -142,6 +171,24 @@ class FiveBarProblem:
             check.fail("gearing", self.gearing, "a trains.toothed_train.Gearing")
         if self.support is not None and not isinstance(self.support, SupportSpec):
             check.fail("support", self.support, "None or a fivebar.support_problem.SupportSpec")
+        if self.pose_bands is not None and not isinstance(self.pose_bands, PoseBands):
+            check.fail("pose_bands", self.pose_bands, "None or a fivebar.key_pose_bands.PoseBands")
+        if not isinstance(self.requirements, Requirements):
+            check.fail("requirements", self.requirements, "a fivebar.key_pose_bands.Requirements")
+        check.whole("band_samples", 0, 10000)
+        if self.min_transmission_angle is not None:
+            check.number("min_transmission_angle", 0.0, np.pi / 2, "None or an angle in [0, pi/2] rad")
+
+    @property
+    def stroke_direction(self) -> float:
+        """+1 when P moves towards -x from the first key pose to the last (``key_pose_bands``), else -1."""
+        return stroke_direction(self.poses)
+
+    def with_poses(self, poses: np.ndarray, carrier_turns: np.ndarray) -> FiveBarProblem:
+        """The problem with exact key poses (mm, rad): the ones a design chose inside the bands, or a pose set
+        drawn from them."""
+        return dataclasses.replace(self, poses=np.array(poses, float), carrier_turns=np.array(carrier_turns, float),
+                                   pose_bands=None)
 
     @property
     def center_distances(self) -> tuple[float, float] | None:
@@ -257,15 +304,22 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
     """
     read = FieldReader(source)
     read.keys(data, _TOP_KEYS, "")
-    rows, labels = _table_rows(read, data, "key_poses", ("x", "y", "angle_deg", "carrier_turn_deg"))
-    if len(rows) != 4:
-        read.fail("key_poses", f"{len(rows)} poses", "exactly 4 key poses (the 4-pose solution region of Wang et al. 2025)")
-    if np.any(np.abs(rows[:, 2]) > 360):
-        read.fail("key_poses[].angle_deg", rows[:, 2], "plate directions within one turn of zero (|angle_deg| <= 360)")
+    low, high, labels = read_key_pose_rows(
+        read, read.tables(data, "key_poses", "an array of tables [[key_poses]] with x, y, angle_deg, carrier_turn_deg"))
+    if len(low) != 4:
+        read.fail("key_poses", f"{len(low)} poses", "exactly 4 key poses (the 4-pose solution region of Wang et al. 2025)")
+    rows = (low + high) / 2
+    if np.any(np.abs(np.r_[low[:, 2], high[:, 2]]) > 360):
+        read.fail("key_poses[].angle_deg", as_given(low[:, 2], high[:, 2]),
+                  "plate directions within one turn of zero (|angle_deg| <= 360)")
     turns = rows[:, 3]
-    if turns[0] != 0 or np.any(np.diff(turns) <= 0) or turns[-1] >= 360:
-        read.fail("key_poses[].carrier_turn_deg", turns.tolist(),
-                  "0 at the first pose, then strictly increasing and below 360 (clockwise turn since pose 1)")
+    if high[0, 3] != 0 or low[0, 3] != 0:
+        read.fail("key_poses[0].carrier_turn_deg", as_given(low[:1, 3], high[:1, 3])[0],
+                  "0: the carrier's turn counts from pose 1")
+    if np.any(low[1:, 3] <= high[:-1, 3]) or high[-1, 3] >= 360:
+        read.fail("key_poses[].carrier_turn_deg", as_given(low[:, 3], high[:, 3]),
+                  "turns (or bands of turns) strictly increasing from 0 and below 360, each band ending before the "
+                  "next pose's begins (overlapping bands would let two poses swap order)")
     check_distinct(read, rows, "key_poses")
     warn_if_radians(source, "key_poses[].angle_deg", rows[:, 2])
     warn_if_radians(source, "key_poses[].carrier_turn_deg", rows[:, 3])
@@ -283,8 +337,18 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
             start = "above" if key == "ep" else "at or above"
             read.fail(f"ranges.{key}", ranges_table[key], f"a length range (mm) that starts {start} zero")
 
+    requirements = read_requirements(read, data.get("requirements", {}))
+    check_bands_meet_requirements(read, low, high, requirements, stroke_direction(rows))
+
     conditions = data.get("conditions", {})
-    read.keys(conditions, {"min_closure_margin", "ratio", "return_tolerance_mm"}, "conditions")
+    read.keys(conditions, {"min_closure_margin", "ratio", "return_tolerance_mm", "min_transmission_angle_deg"},
+              "conditions")
+    transmission = None
+    if "min_transmission_angle_deg" in conditions:
+        transmission = read.number(conditions, "min_transmission_angle_deg", "conditions")
+        if not 0 <= transmission < 90:
+            read.fail("conditions.min_transmission_angle_deg", transmission,
+                      "an angle from 0 to below 90 deg: the least transmission angle at E allowed over the turn")
     margin = read.number(conditions, "min_closure_margin", "conditions") if "min_closure_margin" in conditions else 0.01
     if not 0 < margin < 1:
         read.fail("conditions.min_closure_margin", margin, "a number in (0, 1): sin^2 of the smallest angle EBF")
@@ -300,8 +364,9 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
     count = read.integer(spline, "control_points", "spline", len(points) + 4, 72, default=max(12, len(points) + 4))
 
     region = data.get("region", {})
-    read.keys(region, {"samples", "radius_mm"}, "region")
+    read.keys(region, {"samples", "radius_mm", "band_samples"}, "region")
     samples = read.integer(region, "samples", "region", 64, 8000, default=1000)   # 6000: 48 s, every candidate refined
+    band_samples = read.integer(region, "band_samples", "region", 0, 10000, default=16)
     radius = read.number(region, "radius_mm", "region") if "radius_mm" in region else 600.0
     if radius <= 0:
         read.fail("region.radius_mm", radius, "a positive distance (mm)")
@@ -312,8 +377,12 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
 
     poses = rows[:, :3].copy()
     poses[:, 2] = np.radians(poses[:, 2])
+    to_internal = np.array([1.0, 1.0, np.pi / 180, np.pi / 180])
+    bands = PoseBands(low * to_internal, high * to_internal) if np.any(high > low) else None
     return FiveBarProblem(poses=poses, carrier_turns=np.radians(turns), return_points=points, labels=tuple(labels),
-                          return_tolerance_mm=tolerance,
+                          return_tolerance_mm=tolerance, pose_bands=bands, requirements=requirements,
+                          band_samples=band_samples,
+                          min_transmission_angle=None if transmission is None else float(np.radians(transmission)),
                           return_labels=tuple(return_labels), ranges=ranges, min_closure_margin=margin,
                           ratio_bounds=ratio, spline_count=count, samples=samples, radius_mm=radius,
                           gearing=gearing, support=support, source=source, title=read.text(data, "title", "", LONGEST_TITLE))

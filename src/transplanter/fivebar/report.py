@@ -21,9 +21,9 @@ def to_markdown(report: dict, labels: tuple[str, ...], figures: list[str]) -> st
              "## Design (pose 1)", "", "| quantity | value |", "|---|---|"]
     lines += [f"| {key} | {value if isinstance(value, (str, list)) else round(value, 4)} |" for key, value in d.items()]
     lines += ["", "## Whole turn", "",
-              f"- smallest transmission angle EBF: {report['transmission_angle_min_deg']:.2f} deg at carrier turn "
-              f"{report['transmission_angle_min_at_deg']:.1f} deg; smallest angle between EF and BE at E: "
-              f"{report['angle_at_e_min_deg']:.2f} deg",
+              f"- smallest transmission angle at E (between EF and BE): {report['transmission_angle_min_deg']:.2f} "
+              f"deg at carrier turn {report['transmission_angle_min_at_deg']:.1f} deg; smallest closure angle EBF: "
+              f"{report['closure_angle_min_deg']:.2f} deg",
               f"- smallest closure margin sin²(EBF): {report['min_closure_margin']:.5f} "
               f"(required {report['required_closure_margin']}); eq (10) discriminant ≥ {report['min_discriminant']:.4g} mm⁴",
               "- active bounds: " + (", ".join(_bound(b) for b in report["active_bounds"]) or "none"),
@@ -76,7 +76,7 @@ def _alternatives(report: dict) -> list[str]:
     """The table of the ranked alternatives and the list of the candidates that failed."""
     lines = ["", "## Alternatives", "",
              f"{report['ranking_rule']} Alternative {report['picked']} is built (`--pick N` builds another).", "",
-             "| # | OA | AF | EF | BE | EP | FP | B (mm) | min EBF (deg) at turn | min angle at E (deg) | i0 range | "
+             "| # | OA | AF | EF | BE | EP | FP | B (mm) | min at E (deg) at turn | min EBF (deg) | i0 range | "
              "largest return miss (mm) | gears: teeth, a1 / a2, largest pitch radius (mm) | active bounds | "
              "from candidates |", "|---" * 15 + "|"]
     for alternative in report["alternatives"]:
@@ -87,7 +87,7 @@ def _alternatives(report: dict) -> list[str]:
             f"{d['plate_link_length_EF']:.2f} | {d['receiving_plate_length_BE']:.2f} | {d['push_plate_EP']:.2f} | "
             f"{d['push_plate_FP']:.2f} | ({d['hinge_B'][0]:.1f}, {d['hinge_B'][1]:.1f}) | "
             f"{alternative['transmission_angle_min_deg']:.2f} at {alternative['transmission_angle_min_at_deg']:.1f} | "
-            f"{alternative['angle_at_e_min_deg']:.2f} | {alternative['ratio_range'][0]:.3f}-"
+            f"{alternative['closure_angle_min_deg']:.2f} | {alternative['ratio_range'][0]:.3f}-"
             f"{alternative['ratio_range'][1]:.3f} | {max(alternative['return_point_errors_mm']):.3g} | "
             f"{_gear_sizes(alternative['gears'])} | "
             f"{', '.join(_bound(b) for b in alternative['active_bounds']) or 'none'} | "

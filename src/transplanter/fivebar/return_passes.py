@@ -15,12 +15,12 @@ PASS_POINTS = 3600
 def other_passes(problem: FiveBarProblem, design: DesignSolution) -> list[tuple[int, float]]:
     """(return point index, carrier turn in rad) of every other pass of P by a return point that the
     stroke's order allows: each local minimum of |P(c) - P_j| over ``PASS_POINTS`` carrier turns between
-    the neighbours' turns (``MIN_STEP`` clear of them; the last key pose and a full turn at the ends),
+    the neighbours' turns (``MIN_STEP`` clear of them; the design's last key pose and a full turn at the ends),
     except the one nearest the design's own turn c_j."""
     turns = np.linspace(0, TWO_PI, PASS_POINTS, endpoint=False)
     p = design.mech.forward(turns, design.relative_angle.evaluate(turns))["p"]
     own, found = design.stroke.carrier_turns, []
-    bounds = np.r_[problem.carrier_turns[-1], own, TWO_PI]
+    bounds = np.r_[design.carrier_turns[-1], own, TWO_PI]
     for j, point in enumerate(problem.return_points):
         distance = np.linalg.norm(p - point, axis=1)
         minima = np.flatnonzero((distance <= np.roll(distance, 1)) & (distance < np.roll(distance, -1)))

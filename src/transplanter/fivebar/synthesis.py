@@ -17,9 +17,10 @@ import numpy as np
 
 from transplanter.errors import InfeasibleError, ProblemError, SolverError
 from transplanter.fivebar.alternatives import Alternative, Progress, refine_all, with_gear_sizes
+from transplanter.fivebar.band_search import band_starts
 from transplanter.fivebar.design_solver import DesignSolver
 from transplanter.fivebar.problem import FiveBarProblem
-from transplanter.fivebar.region import ChainFamily, Region, solution_region
+from transplanter.fivebar.region import ChainFamily, Region
 from transplanter.fivebar.relaxation import relaxation_hint
 from transplanter.fivebar.result import FiveBarResult
 from transplanter.fivebar.support import design_support
@@ -119,14 +120,20 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
     pick = _checked_pick(pick)
     timings = {}
     start = _step(progress, "region")
-    region = solution_region(problem)
+    starts = band_starts(problem)
+    region = starts.region
     timings["region"] = _done(progress, "region", start)
+    if not region.feasible and len(starts.trials) > 1:
+        raise InfeasibleError(f"{problem.source}: no pose set inside the key poses' bands gives a feasible five-bar: "
+                              f"{len(starts.trials)} tried (the bands' centres, then region.band_samples = "
+                              f"{problem.band_samples} drawn sets); the condition that binds most often: "
+                              f"{starts.most_binding()}")
     if not region.receiving.kept.any():
-        _empty_family(problem, "2R chain B-E", region.receiving)
+        _empty_family(starts.problem, "2R chain B-E", region.receiving)
     if not region.carrier.kept.any():
-        _empty_family(problem, "3R chain O-A-F", region.carrier)
+        _empty_family(starts.problem, "3R chain O-A-F", region.carrier)
     if not region.feasible:
-        _no_feasible_pair(problem, region)
+        _no_feasible_pair(starts.problem, region)
 
     start = time.perf_counter()
     solver = DesignSolver(problem)
@@ -142,6 +149,7 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
     chosen = pick_alternative(alternatives, pick, problem.source)
     design = chosen.design
 
+    problem = problem.with_poses(design.poses, design.carrier_turns)     # the key poses the design meets
     start = _step(progress, "gears")
     toothed = design_toothed_train(design.relative_angle, design.mech.carrier_length, problem.gearing, problem.source)
     timings["gears"] = _done(progress, "gears", start)
