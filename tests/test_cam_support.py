@@ -1,4 +1,4 @@
-"""The seedling-support rocker-slider (seed 000 eq 14-15) and the evaluation of Table 5."""
+"""The seedling-support rocker-slider (Wang et al. 2025, eq 14-15) and the evaluation of Table 5."""
 import numpy as np
 import pytest
 from scipy.optimize import brentq

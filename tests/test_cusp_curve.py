@@ -1,4 +1,5 @@
-"""Composite pitch curves with corners (seed 004): segments, closure, cusps, driven corners, curvature centres."""
+"""Composite pitch curves with corners (the cusp-pitch-curve paper): segments, closure, cusps, driven corners,
+curvature centres."""
 import numpy as np
 import pytest
 import sympy as sp

@@ -1,4 +1,5 @@
-"""Composite teeth on a pitch curve with corners (seed 004 sec 2-3): cycloid arches, layout, checks."""
+"""Composite teeth on a pitch curve with corners (the cusp-pitch-curve paper, sections 2-3): cycloid arches,
+layout, checks."""
 import dataclasses
 import types
 
@@ -73,10 +74,11 @@ def test_incomplete_arch_goes_on_from_a_straight_flank_leaning_alpha_and_rolls_o
     to_contact = np.c_[contact - x, -height][1:-1]
     assert np.abs(np.sum(tangent * to_contact, axis=1)).max() < 1e-4 * radius ** 2
     if alpha_deg == 0:
-        assert radius == pytest.approx(zone / corner_angle, rel=1e-12)   # seed 004 eq 7: r_gy = S / (2 pi n)
+        # the rolling circle of the cusp-pitch-curve paper's eq 7: r_gy = S / (2 pi n)
+        assert radius == pytest.approx(zone / corner_angle, rel=1e-12)
 
 
-def test_seed_004_elliptic_rolling_starts_along_the_pitch_curve():
+def test_cusp_pitch_curve_papers_elliptic_rolling_starts_along_the_pitch_curve():
     a1, b1 = sp.symbols("a1 b1", positive=True)
     along, normal = derivation.paper_variable_cycloid_start(a1, b1)
     assert sp.simplify(along - (1 - 1 / a1)) == 0 and normal == 0

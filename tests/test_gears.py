@@ -1,4 +1,4 @@
-"""Gear pairs against closed forms derived here, against seed 001, and by independent checks."""
+"""Gear pairs against closed forms derived here, against the onion-transplanter paper, and by independent checks."""
 import functools
 
 import numpy as np
@@ -60,7 +60,7 @@ def test_closed_forms_satisfy_their_closure_equations():
     assert sp.simplify((1 + 1 / q) ** 2 * ((root - b) ** 2 - c**2) - root**2) == 0
 
 
-def test_driver_convexity_criterion_of_seed_001_eq9():
+def test_driver_convexity_criterion_is_the_onion_transplanter_papers_eq9():
     """Derived driver convexity at cos(m phi) = -1 is exactly eq (9); it is the minimum over the curve for
     k < 1 and m >= 1, and its sign matches the curvature of the actual curve."""
     k, m, c = sp.symbols("k m c", real=True)
@@ -84,7 +84,7 @@ def _turns_one_way(points):
     return bool((turns > 0).all() or (turns < 0).all())
 
 
-def test_driven_convexity_criterion_of_seed_001_eq10_disagrees():
+def test_driven_convexity_criterion_of_the_onion_transplanter_papers_eq10_disagrees():
     """Eq (10) has no center distance in it, but the driven curve's convexity depends on it.
 
     For k = 0.5 and m11 = 2.5 (m12 = 0.625 by eq 2), eq (10) for m11 gives
@@ -127,7 +127,7 @@ def test_kinematics_match_finite_differences_of_the_driven_angle():
     assert np.abs(acceleration - d.driven_acceleration)[inner].max() < 1e-3 * np.abs(d.driven_acceleration).max()
 
 
-def test_seed_001_published_gear():
+def test_published_gear_of_the_onion_transplanter_paper():
     """Eq (19): m11 = 1.5 and 0.375 for the second half; Table 2: module 2, 55 teeth, center distance 110."""
     m12 = denatured_partner(1.5)
     assert m12 == pytest.approx(0.75)                    # eq (2): pi/1.5 + pi/m12 = 2 pi
@@ -430,8 +430,8 @@ def test_self_intersections_match_brute_force_on_random_polylines(rng):
 
 
 def test_analytic_ratio_is_corrected_to_close():
-    """i12 = 1 + 0.35 cos(phi) + 0.1 sin(2 phi) does not close; with the constant factor k of seed 000
-    eq (12) the pair does, and its ratio is k times the formula at every sample."""
+    """i12 = 1 + 0.35 cos(phi) + 0.1 sin(2 phi) does not close; with the constant factor k of Wang et al.
+    2025, eq (12), the pair does, and its ratio is k times the formula at every sample."""
     from transplanter.gears.problem import parse_problem
     from transplanter.gears.synthesis import synthesize
     problem = parse_problem({"driver": {"family": "ratio", "expression": "1 + 0.35*cos(phi) + 0.1*sin(2*phi)",

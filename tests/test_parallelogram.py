@@ -1,4 +1,5 @@
-"""Onion transplanter (seed 001), the derived model: gear pair, kinematics, trajectory measures."""
+"""The onion transplanter of the onion-transplanter paper, the derived model: gear pair, kinematics, trajectory
+measures."""
 import dataclasses
 
 import numpy as np

@@ -1,4 +1,5 @@
-"""Onion transplanter (seed 001): the published optimum evaluated (``--design``), the command, bad input."""
+"""The onion transplanter: the published optimum of the onion-transplanter paper evaluated (``--design``), the
+command, bad input."""
 import json
 from pathlib import Path
 

@@ -1,4 +1,5 @@
-"""Onion transplanter (seed 001): objectives and constraints, NSGA-II (small runs), the design command."""
+"""The onion transplanter of the onion-transplanter paper: objectives and constraints, NSGA-II (small runs), the
+design command."""
 import dataclasses
 import json
 from pathlib import Path

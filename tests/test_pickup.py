@@ -1,4 +1,5 @@
-"""The pick-up mechanism forward (seed 004 sec 6, eq 15): circles, rates, closure, bad input, command."""
+"""The pick-up mechanism forward (the cusp-pitch-curve paper, section 6, eq 15): circles, rates, closure, bad
+input, command."""
 import json
 from pathlib import Path
 

@@ -72,7 +72,7 @@ def test_gears_stop_where_the_distance_from_the_pivot_is_stationary():
         assert slope([theta[0], theta[0] + gamma[0]], [100.0, 140.0], d1)[0][0] == pytest.approx(0, abs=1e-9)
 
 
-def test_arm_lengths_from_extremes_match_seed_002():
+def test_arm_lengths_from_extremes_match_the_rice_transplanter_paper():
     """The rice-transplanter paper prints Lmax = 254.3, Lmin = 69.7 -> L1 = 92.3, L2 = 162 (eq 1-2)."""
     lengths = numpy_twin("planetary", "arm_lengths_from_extremes")([254.3, 69.7])[0]
     assert lengths == pytest.approx([92.3, 162.0], abs=1e-12)
@@ -132,7 +132,7 @@ def test_peak_to_valley_as_printed_does_not_close():
     assert np.degrees(result.train.intermediate_turn.total) == pytest.approx(360.0, abs=1e-9)
 
 
-def test_seed_002_idler_iteration_cannot_reproduce_the_hoe(rice):
+def test_rice_transplanter_papers_idler_iteration_cannot_reproduce_the_hoe(rice):
     """Identical sun and planet with one idler realise only ratios with i13(c) i13(c*) = 1: on the
     rice path the rice-transplanter paper's iteration stalls and the train, rolled as built, misses the path by mm."""
     data = load_problem(ROOT / "examples" / "rice_hoe_reverse.toml")

@@ -1,5 +1,5 @@
-"""Seed 004's variable involute (eq 1-6): the closed form re-derived, the pinion cutter, and the shaper path
-measured against the closed form."""
+"""The variable involute of the cusp-pitch-curve paper (eq 1-6): the closed form re-derived, the pinion cutter,
+and the shaper path measured against the closed form."""
 import numpy as np
 import pytest
 import sympy as sp
