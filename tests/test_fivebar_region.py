@@ -1,6 +1,5 @@
 """Issue 17: the five-bar region judged with array operations, its sampling and its limits."""
 import dataclasses
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -10,6 +9,7 @@ from transplanter.errors import ProblemError
 from transplanter.fivebar.candidate import evaluate_candidate, judge_candidates
 from transplanter.fivebar.linkage import FiveBar, from_hinges
 from transplanter.fivebar.problem import load_problem, parse_problem
+from transplanter.fivebar.reference_region import exhaustive_return_stroke, reference_candidate, reference_region
 from transplanter.fivebar.region import PAIR_LIMIT, chain_families, solution_region
 from transplanter.fivebar.relative_angle import RelativeAngle
 from transplanter.fivebar.return_stroke import solve_return_strokes
@@ -17,8 +17,6 @@ from transplanter.toml_fields import read_toml
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples/vegetable_planting.toml"
-sys.path.insert(0, str(ROOT / "bench"))
-from bench_region import baseline_candidate, baseline_region, baseline_return_stroke  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -43,8 +41,8 @@ def _same_candidate(old, new):
 
 def test_region_equals_the_former_loop_for_every_candidate(problem):
     """Every one of the example's 1664 pairs: the same verdict, defect texts, numbers and rank as
-    judging it alone with an exhaustive return-stroke search (the former loop, kept in the bench)."""
-    former = baseline_region(problem)
+    judging it alone with an exhaustive return-stroke search (``fivebar.reference_region``)."""
+    former = reference_region(problem)
     former.sort(key=lambda c: (not c.feasible, -np.nan_to_num(c.min_margin, nan=-np.inf)))
     region = solution_region(problem)
     assert len(region.candidates) == len(former) == 1664
@@ -64,7 +62,7 @@ def test_batch_with_ranges_equals_one_at_a_time(problem, rng):
     assert any(d.startswith("ranges.") for c in judged for d in c.defects)
     assert any(d.startswith("order") for c in judged for d in c.defects)
     for k, new in enumerate(judged):
-        _same_candidate(baseline_candidate(problem, batch[k, 0]), new)
+        _same_candidate(reference_candidate(problem, batch[k, 0]), new)
         _same_candidate(new, evaluate_candidate(problem, batch[k, 0]))
 
 
@@ -88,7 +86,7 @@ def test_return_stroke_by_dynamic_programming_equals_the_exhaustive_search(probl
     strokes = solve_return_strokes(batch, points, key, rho1, last_rho, direction)
     found = 0
     for k, mech in enumerate(mechs):
-        exhaustive = baseline_return_stroke(mech, points, key, rho1[k], last_rho[k], direction)
+        exhaustive = exhaustive_return_stroke(mech, points, key, rho1[k], last_rho[k], direction)
         assert strokes.found[k] == (exhaustive is not None)
         if exhaustive is not None:
             found += 1
