@@ -1,4 +1,5 @@
-"""The command line on the bundled examples: JSON fields, figures, reports."""
+"""The burmester command on the bundled examples: JSON fields checked independently, figures, reports, the
+many-poses table."""
 import json
 import subprocess
 import sys
@@ -75,18 +76,3 @@ def test_many_poses_table():
     run = subprocess.run([sys.executable, "-m", "transplanter", "burmester", "examples/burmester_7poses.toml"],
                          capture_output=True, text=True, cwd=ROOT, check=True)
     assert "least-squares" in run.stdout and "RMS length error" in run.stdout
-
-
-@pytest.mark.parametrize("argv, named", [(["fivebar", "examples/vegetable_planting.toml", "--pick", "two"], "--pick"),
-                                         (["bogus"], "bogus"), (["gear"], "file"),
-                                         (["fivebar", "examples/vegetable_planting.toml", "--design",
-                                           "examples/vegetable_planting_table4.toml", "--pick", "2"], "--pick"),
-                                         (["parallelogram", "examples/onion_transplanter.toml", "--pick", "2",
-                                           "--design", "examples/onion_published.toml"], "--design")])
-def test_bad_command_line_gives_one_line_and_exit_2(argv, named, capsys):
-    from transplanter.cli import main
-
-    with pytest.raises(SystemExit) as stop:
-        main(argv)
-    err = capsys.readouterr().err
-    assert stop.value.code == 2 and err.count("\n") == 1 and named in err and "Traceback" not in err

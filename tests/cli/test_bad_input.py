@@ -1,4 +1,5 @@
-"""Bad input: one clear line naming the field, the value and what was expected; exit 2."""
+"""Bad input, in a problem file or on the command line: one clear line naming the field, the value and what was
+expected; exit 2."""
 import subprocess
 import sys
 from pathlib import Path
@@ -106,3 +107,18 @@ def test_a_warning_of_a_failed_run_is_folded_into_its_one_line(tmp_path):
     assert run.returncode == 1
     assert run.stderr.count("\n") == 1 and run.stderr.startswith("transplanter: failed: ")
     assert "no dyad found" in run.stderr and "; warning: " in run.stderr and "look like radians" in run.stderr
+
+
+@pytest.mark.parametrize("argv, named", [(["fivebar", "examples/vegetable_planting.toml", "--pick", "two"], "--pick"),
+                                         (["bogus"], "bogus"), (["gear"], "file"),
+                                         (["fivebar", "examples/vegetable_planting.toml", "--design",
+                                           "examples/vegetable_planting_table4.toml", "--pick", "2"], "--pick"),
+                                         (["parallelogram", "examples/onion_transplanter.toml", "--pick", "2",
+                                           "--design", "examples/onion_published.toml"], "--design")])
+def test_bad_command_line_gives_one_line_and_exit_2(argv, named, capsys):
+    from transplanter.cli import main
+
+    with pytest.raises(SystemExit) as stop:
+        main(argv)
+    err = capsys.readouterr().err
+    assert stop.value.code == 2 and err.count("\n") == 1 and named in err and "Traceback" not in err

@@ -6,7 +6,6 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 import pytest
-import sympy as sp
 
 from transplanter.cli import main
 from transplanter.errors import InfeasibleError, ProblemError, SolverError
@@ -27,13 +26,9 @@ from transplanter.fivebar.region import ChainFamily
 from transplanter.fivebar.relative_angle import RelativeAngle, fit_relative_angle, negative_intervals
 from transplanter.fivebar.return_stroke import solve_return_stroke
 from transplanter.fivebar.synthesis import _empty_family, synthesize
-from transplanter.gears.pitch_curves import ellipse
 from transplanter.generated import numpy_twin
-from transplanter.geometry.periodic_bspline import basis_matrix, evaluate, kernel
-from transplanter.geometry.turn_map import TurnMap
 from transplanter.toml_fields import read_toml
 from transplanter.trains.planetary import printed_correction
-from transplanter.trains.rolling import conjugate_curve
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "examples/vegetable_planting.toml"
@@ -49,25 +44,6 @@ def result(example_result):
     return example_result
 
 
-def test_kernel_is_the_cox_de_boor_cubic_basis():
-    """Eq (6) on uniform knots: sympy's recursion gives the centered kernel, piece by piece."""
-    x = sp.Symbol("x")
-    recursion = sp.bspline_basis(3, tuple(range(-2, 3)), 0, x)
-    for u in np.linspace(-2.5, 2.5, 41):
-        assert abs(float(recursion.subs(x, u)) - kernel(np.array(u))) < 1e-14
-    for order in (1, 2):
-        derivative = sp.diff(recursion, x, order)
-        for u in (-1.7, -0.3, 0.4, 1.2):
-            assert abs(float(derivative.subs(x, u)) - kernel(np.array(u), order)) < 1e-12
-
-
-def test_segment_form_matches_the_kernel_sum(rng):
-    q = rng.normal(size=12)
-    x = rng.uniform(-1, 8, 200)
-    for order in range(4):
-        assert np.abs(basis_matrix(x, 12, order) @ q - evaluate(x, q, order)).max() < 1e-12
-
-
 def test_fitted_relative_angle_interpolates_and_returns_after_a_turn(rng):
     c = np.sort(np.r_[0.0, rng.uniform(0.1, 6.2, 8)])
     rho = 0.3 + c + 0.2 * np.sin(c)
@@ -81,23 +57,6 @@ def test_negative_intervals_wrap_around_the_turn():
     values = np.ones(360)
     values[350:] = values[:5] = values[100:120] = -1
     assert negative_intervals(turns, values) == [(100.0, 119.0), (350.0, 4.0)]
-
-
-def test_turn_map_inverts_a_known_map():
-    turn = TurnMap(lambda x: 1 + 0.6 * np.cos(x))
-    x = np.linspace(0, 2 * np.pi, 97)
-    assert np.abs(turn(x) - (x + 0.6 * np.sin(x))).max() < 1e-13
-    assert np.abs(turn.inverse(x + 0.6 * np.sin(x)) - x).max() < 1e-12
-
-
-def test_conjugate_of_a_focal_ellipse_is_the_same_ellipse():
-    """At a = 2 x semi-major axis the driven curve is the ellipse turned half a turn: r = p / (1 + e cos psi)."""
-    curve = conjugate_curve(ellipse(30.0, 0.3), 60.0)
-    psi = np.linspace(0, 2 * np.pi, 50)
-    r, slope, _ = curve.evaluate(psi)
-    p = 30 * (1 - 0.09)
-    assert np.abs(r - p / (1 + 0.3 * np.cos(psi))).max() < 1e-10
-    assert np.abs(slope - p * 0.3 * np.sin(psi) / (1 + 0.3 * np.cos(psi))**2).max() < 1e-8
 
 
 def test_derived_closure_margin_is_sin_squared_of_angle_ebf(rng):
