@@ -1,6 +1,6 @@
 """Problem classes built in Python (mm and radians) are checked as the files are: a value in degrees, of the
 wrong type or out of range is refused with one ProblemError naming the class and the field, never a deep
-exception, a hang or a silently different result (a fourth probe, of the Python API, found each case)."""
+exception, a hang or a silently different result."""
 import dataclasses
 import json
 from pathlib import Path
@@ -96,7 +96,7 @@ def test_numpy_scalars_and_paths_give_plain_json_reports():
 
 def test_numpy_integers_are_taken_where_python_ones_are():
     """A choice given as a numpy integer (a direction +-1 out of an array) is the same choice, stored as the plain
-    option: the class checks of this session first refused np.int64(1)."""
+    option (a check of the type alone would refuse np.int64(1))."""
     for problem in (_cam(), reverse.load_problem(EXAMPLES / "rice_hoe_reverse.toml")):
         turned = dataclasses.replace(problem, direction=np.int64(problem.direction))
         assert turned.direction == problem.direction and type(turned.direction) is int

@@ -1,6 +1,6 @@
-"""Issue 15 sections 4-5: a design in micrometres or in metres behaves as in millimetres (every
-tolerance follows the problem's own size), and a closed path given as samples, drawn by an arm
-built here, gives back that arm and a train that closes."""
+"""A design in micrometres or in metres behaves as in millimetres (every tolerance follows the problem's own
+size), and a closed path given as samples, drawn by an arm built here, gives back that arm and a train that
+closes."""
 import json
 from pathlib import Path
 

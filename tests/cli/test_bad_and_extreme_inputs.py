@@ -1,5 +1,5 @@
-"""Issue 15: bad, extreme and transformed inputs. Each class of failure the fuzzing found is pinned
-here: one clear line and exit 2 for bad input, checked before the work; exit 1 and FAILED- files
+"""Bad, extreme and transformed inputs. Each kind of failure that feeding the commands such inputs found is
+pinned here: one clear line and exit 2 for bad input, checked before the work; exit 1 and FAILED- files
 for a result that fails a check; never a traceback, a numpy warning or a report that is not JSON."""
 import json
 import re
@@ -111,7 +111,7 @@ def test_the_api_names_what_it_was_given(job, value):
 
 @pytest.mark.parametrize("job", [cam, parallelogram])
 @pytest.mark.parametrize("value", [None, 42, "", {}, "examples/cam_seedling_support.toml"])
-def test_the_newer_commands_name_what_their_synthesis_was_given(job, value):
+def test_cam_and_parallelogram_synthesis_name_what_they_were_given(job, value):
     with pytest.raises(ProblemError, match=r"problem = .*expected a \w+Problem \(from transplanter\."):
         job.synthesize(value)
 

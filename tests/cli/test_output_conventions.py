@@ -1,5 +1,5 @@
-"""The command line's output conventions (issue 11 section 5): --out written whole or not at all,
-report.json lists its files, progress on stderr unless --quiet or --json, FAILED results exit 1."""
+"""The command line's output conventions: --out written whole or not at all, report.json lists its files,
+progress on stderr unless --quiet or --json, FAILED results exit 1."""
 import io
 import json
 import os

@@ -1,5 +1,4 @@
-"""Issue 11 section 2: every feasible candidate refined, judged on its own, merged, ranked, and the
-one ``--pick`` names built.
+"""Every feasible candidate refined, judged on its own, merged, ranked, and the one ``--pick`` names built.
 
 The module's problem is the vegetable planting example with wider ranges (|EP| to 125 mm, |FP| from
 10 mm, x of E up to 100 mm) and coarse sampling: its 9 feasible candidates lie on both B-E-F

@@ -1,4 +1,4 @@
-"""Issue 11 section 5: what a designer takes to CAD (DXF, SVG, CSV) and the animation, read back."""
+"""What a designer takes to CAD (DXF, SVG, CSV) and the animation, read back."""
 import json
 import os
 import xml.etree.ElementTree as ElementTree

@@ -1,4 +1,4 @@
-"""Issue 3: the five-bar main job, its parts against ground truth, and the published design."""
+"""The five-bar main job, its parts against ground truth, and the published design."""
 import json
 import re
 from pathlib import Path

@@ -1,5 +1,5 @@
-"""Issue 11 section 1: the design NLP maximises the smallest transmission quality; each result is
-checked here by forward kinematics and plain geometry, not by the NLP's own variables."""
+"""The design NLP maximises the smallest transmission quality; each result is checked here by forward kinematics
+and plain geometry, not by the NLP's own variables."""
 from pathlib import Path
 
 import casadi as ca
@@ -26,7 +26,8 @@ from transplanter.trains.planetary import correction_factor, design_train
 from transplanter.trains.toothed_train import Gearing, stage_shape
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples/vegetable_planting.toml"
-#: The former NLP put sin^2(EBF) on the 0.01 floor: angle EBF 5.74 deg.
+#: The angle EBF whose sin^2 is the example's 0.01 closure-margin floor (5.74 deg): where a design that only kept
+#: the floor would leave it.
 FLOOR_ANGLE_DEG = np.degrees(np.arcsin(0.1))
 FINE = np.linspace(0, 2 * np.pi, CHECK_POINTS, endpoint=False)
 
@@ -60,7 +61,7 @@ def _triangle_angles(design):
     return np.fmin(ebf, np.pi - ebf), np.fmin(bef, np.pi - bef)     # distance from B, E, F in line
 
 
-def test_smallest_angle_ebf_is_above_the_old_floor_and_reported_where_it_is(design, problem):
+def test_smallest_angle_ebf_is_above_the_margin_floor_and_reported_where_it_is(design, problem):
     ebf, bef = _triangle_angles(design)
     assert np.degrees(ebf.min()) > FLOOR_ANGLE_DEG + 0.5          # measured 6.36 deg against 5.74
     assert np.sin(ebf.min()) ** 2 >= problem.min_closure_margin

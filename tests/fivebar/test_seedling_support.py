@@ -1,4 +1,4 @@
-"""Issue 13 section 3: the seedling support timed to the five-bar, against ground truth built here.
+"""The seedling support of Wang et al. 2025 (section 4) timed to the five-bar, against ground truth built here.
 
 The five-bar under test is Wang et al. 2025's Table 4 design evaluated with ``--design`` (its motion is the
 relative angle fitted through the key and return points): a real mechanism in milliseconds. The synthesized

@@ -1,4 +1,5 @@
-"""Issue 17: the five-bar region judged with array operations, its sampling and its limits."""
+"""The five-bar solution region judged with array operations (against the one-at-a-time reference), its sampling
+and its limits."""
 import dataclasses
 from pathlib import Path
 
@@ -39,15 +40,15 @@ def _same_candidate(old, new):
     assert np.array_equal([old.min_margin, *old.ratio_range], [new.min_margin, *new.ratio_range], equal_nan=True)
 
 
-def test_region_equals_the_former_loop_for_every_candidate(problem):
+def test_region_equals_the_one_at_a_time_reference_for_every_candidate(problem):
     """Every one of the example's 1664 pairs: the same verdict, defect texts, numbers and rank as
     judging it alone with an exhaustive return-stroke search (``fivebar.reference_region``)."""
-    former = reference_region(problem)
-    former.sort(key=lambda c: (not c.feasible, -np.nan_to_num(c.min_margin, nan=-np.inf)))
+    reference = reference_region(problem)
+    reference.sort(key=lambda c: (not c.feasible, -np.nan_to_num(c.min_margin, nan=-np.inf)))
     region = solution_region(problem)
-    assert len(region.candidates) == len(former) == 1664
-    assert sum(c.stroke is not None for c in former) > 100 and len(region.feasible) == 17
-    for old, new in zip(former, region.candidates):
+    assert len(region.candidates) == len(reference) == 1664
+    assert sum(c.stroke is not None for c in reference) > 100 and len(region.feasible) == 17
+    for old, new in zip(reference, region.candidates):
         _same_candidate(old, new)
 
 

@@ -1,5 +1,5 @@
-"""Issue 11 section 4: the verification closes the loop by its own route (eq 8-9 by Newton) and
-reports a mechanism built wrong."""
+"""The five-bar's verification closes the loop by its own route (Wang et al. 2025 eq 8-9, by Newton) and reports
+a mechanism built wrong."""
 import dataclasses
 
 import numpy as np

@@ -72,8 +72,8 @@ def test_bad_input(change, message):
 
 
 def test_a_stage_whose_radius_nearly_reaches_the_centre_is_refused_naming_it():
-    """e = 0.999: r_min / r_max = (1 - e) / (1 + e) = 5e-4, below the thousandth every pitch curve keeps (it used to
-    fail closure with a message about pair.center_distance, a field a pick-up file does not have)."""
+    """e = 0.999: r_min / r_max = (1 - e) / (1 + e) = 5e-4, below the thousandth every pitch curve keeps (without
+    this check closure fails with a message about pair.center_distance, a field a pick-up file does not have)."""
     data = circles(stage1={"driver": {"family": "ellipse", "semi_major_axis": 20.0, "eccentricity": 0.999}})
     with pytest.raises(ProblemError, match=r"p.toml: stage1.driver: the pitch radius reaches .* expected at least "
                                            r"0.001 of the largest"):
