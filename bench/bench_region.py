@@ -1,4 +1,4 @@
-"""Speed of the five-bar solution region (issue 17): array judgement against the per-candidate loop.
+"""Speed of the five-bar solution region: array judgement against the per-candidate loop.
 
     python bench/bench_region.py
 
