@@ -6,10 +6,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from transplanter.gears.result import GearResult
-from transplanter.parallelogram.evaluation import PUBLISHED_FIELDS, DesignFile, Evaluation, problem_design
+from transplanter.parallelogram.evaluation import DesignFile, Evaluation, problem_design
 from transplanter.parallelogram.gear_pair import gear_json
 from transplanter.parallelogram.objectives import OBJECTIVES
-from transplanter.parallelogram.problem import FILE_NAMES, TRANSLATION_ONLY, ParallelogramProblem
+from transplanter.parallelogram.problem import FILE_NAMES, PUBLISHED_FIELDS, TRANSLATION_ONLY, ParallelogramProblem
 
 
 def variables_json(design: dict) -> dict:
