@@ -80,7 +80,7 @@ def reference_candidate(problem: FiveBarProblem, mech: FiveBar, check_ranges: bo
     if slope.min() <= 0:
         defects.append(monotonic_defect(slope))
     elif ratio[0] < problem.ratio_bounds[0] or ratio[1] > problem.ratio_bounds[1]:
-        defects.append(ratio_defect(*ratio, problem.ratio_bounds))
+        defects.append(ratio_defect(ratio[0], ratio[1], problem.ratio_bounds))
     if not margin >= problem.min_closure_margin:
         defects.append(closure_defect(margin, problem.min_closure_margin))
     return Candidate(mech, rho, defects, stroke, relative, margin, ratio)
