@@ -2,7 +2,7 @@
 
     python bench/bench_burmester.py
 
-Targets (issue 2, 2-core machine, after imports): 5-pose solve under 5 ms, 4-pose trace
+Targets (2-core machine, after imports): 5-pose solve under 5 ms, 4-pose trace
 (2,000 samples) under 20 ms. Baselines:
 - 5 poses: scipy.optimize.least_squares from random starts (what a one-off script does),
   stopping as soon as it has as many distinct solutions as the package found (there are at

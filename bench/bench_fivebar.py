@@ -1,4 +1,4 @@
-"""Speed of the five-bar main job (issue 3), against baselines, in one run.
+"""Speed of the five-bar main job, against baselines, in one run.
 
     python bench/bench_fivebar.py
 
@@ -16,7 +16,7 @@ before numpy loads, for this process and the fresh one of part 4).
    package's whole refinement of the candidate (every exchange round).
 4. The whole main job as the CLI runs it (region, every candidate refined in the two lanes of
    ``fivebar.lanes``, the toothed gears cut and mesh-checked, verification, report, figures,
-   drawings and the animation), in a fresh process including start-up; issue 11's target is
+   drawings and the animation), in a fresh process including start-up; the target is
    under 20 s. From its report: the refinements' wall time per candidate.
 """
 from __future__ import annotations
@@ -146,7 +146,7 @@ def main():
     refined = len(timings["nlp_per_candidate"])
     print(f"main job (fresh process; teeth, figures, drawings and animation included): {seconds:.2f} s "
           f"(target < 20 s); its refinements {timings['nlp']:.2f} s of wall time for {refined} candidates in "
-          f"two lanes, {timings['nlp'] / refined:.3f} s per candidate (issue 17's target < 0.3 s); "
+          f"two lanes, {timings['nlp'] / refined:.3f} s per candidate (target < 0.3 s); "
           f"teeth {timings['gears_teeth']:.2f} s")
 
 if __name__ == "__main__":

@@ -2,9 +2,9 @@
 
     python bench/bench_gears.py
 
-The pair (issue 4): focal ellipses, e = 0.3, 30 teeth of module 2, pressure angle 20 deg. The
+The pair: focal ellipses, e = 0.3, 30 teeth of module 2, pressure angle 20 deg. The
 baseline runs the same ``synthesize`` in the same process with the tooth outlines checked by the
-windowed pairwise segment test the package used before shapely (issue 17), so the ratio is what
+windowed pairwise segment test the package used before shapely, so the ratio is what
 that change (and the profiling after it) bought. Target: under 0.15 s on a quiet machine, center
 distance equal to the closed form (twice the scaled semi-major axis) to 1e-12 mm. With ncgears
 installed (``pip install ncgears``, Apache-2.0) the same pair is also timed with it.

@@ -1,10 +1,10 @@
-"""Speed of the five-bar solution region (issue 17): array judgement against the per-candidate loop.
+"""Speed of the five-bar solution region: array judgement against the per-candidate loop.
 
     python bench/bench_region.py
 
 1. The region at several ``[region] samples``: five-bars judged, seconds, and the exponent
    of time against the number of five-bars (fitted in log-log), for the package and for the
-   former loop that judged one five-bar at a time (``baseline_region``, kept here only).
+   former loop that judged one five-bar at a time (``fivebar.reference_region``).
 2. Whether the sampling changes the answer: the start candidate and the refined design at
    the default sampling against 2000 samples.
 3. The region with ``[ranges]`` left out (every dyad within ``region.radius_mm`` is kept).
@@ -14,99 +14,21 @@ Both run in this one process, so their ratio holds on a loaded machine; absolute
 from __future__ import annotations
 
 import dataclasses
-import itertools
 import time
 from pathlib import Path
 
 import numpy as np
 
 from transplanter.errors import ProblemError
-from transplanter.fivebar.candidate import (
-    BRANCH,
-    CRANK,
-    RETURN,
-    Candidate,
-    closure_defect,
-    crank_exists,
-    monotonic_defect,
-    order_defect,
-    range_defect,
-    range_values,
-    ratio_defect,
-    whole_turn,
-)
-from transplanter.fivebar.linkage import FiveBar, assembly_branch, from_hinges
 from transplanter.fivebar.problem import FiveBarProblem, load_problem, parse_problem
-from transplanter.fivebar.region import chain_families, solution_region
-from transplanter.fivebar.relative_angle import fit_relative_angle, ratio_range
-from transplanter.fivebar.return_stroke import ReturnStroke, _options
+from transplanter.fivebar.reference_region import reference_region
+from transplanter.fivebar.region import solution_region
 from transplanter.fivebar.synthesis import synthesize
-from transplanter.geometry.planar import TWO_PI
 from transplanter.toml_fields import read_toml
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "vegetable_planting.toml"
 SAMPLES = (250, 500, 1000, 2000, 4000, 8000)
-
-
-def baseline_return_stroke(mech: FiveBar, points, last_turn, rho1, last_rho, last_direction):
-    """The former search: every one of the 4^m option sequences of one mechanism."""
-    c, rho, direction, valid = (values[0] for values in _options(mech.as_batch(), points))
-    rho = rho1 + np.mod(rho - rho1, TWO_PI)
-    m = len(points)
-    combos = np.array(list(itertools.product(range(4), repeat=m)))
-    pick = (np.arange(m), combos)
-    cs = np.c_[np.full(len(combos), last_turn), c[pick], np.full(len(combos), TWO_PI)]
-    rs = np.c_[np.full(len(combos), last_rho), rho[pick], np.full(len(combos), rho1 + TWO_PI)]
-    ok = np.all(np.isfinite(valid[pick]) & np.isfinite(cs[:, 1:-1]), axis=1)
-    ok &= np.all(np.diff(cs, axis=1) > 0, axis=1) & np.all(np.diff(rs, axis=1) > 0, axis=1)
-    if not ok.any():
-        return None
-    turn = np.diff(np.c_[np.full(len(combos), last_direction), direction[pick]], axis=1)
-    cost = np.where(ok, np.sum(np.angle(np.exp(1j * turn))**2, axis=1), np.inf)
-    chosen = (np.arange(m), combos[int(np.argmin(cost))])
-    return ReturnStroke(c[chosen], rho[chosen], direction[chosen])
-
-
-def baseline_candidate(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool = True) -> Candidate:
-    """The former ``evaluate_candidate``: one five-bar judged with its own calls, condition after condition."""
-    turns = problem.carrier_turns
-    rho = mech.relative_angle_at(problem.poses, turns)
-    rho = rho[0] + np.mod(rho - rho[0], TWO_PI)
-    values = range_values(problem, mech)
-    defects = [range_defect(key, values[key], bounds) for key, bounds in problem.ranges.items()
-               if not bounds[0] <= values[key] <= bounds[1]] if check_ranges else []
-    if np.any(np.diff(rho) <= 0):
-        defects.append(order_defect(rho))
-    e, f = mech.plate_points(problem.poses)
-    if np.any(assembly_branch(mech.hinge_b, e, f) != mech.branch):
-        defects.append(BRANCH)
-    if not crank_exists(mech):
-        defects.append(CRANK)
-    if defects:
-        return Candidate(mech, rho, defects)
-    stroke = baseline_return_stroke(mech, problem.return_points, turns[-1], rho[0], rho[-1], problem.poses[-1, 2])
-    if stroke is None:
-        return Candidate(mech, rho, [RETURN])
-    relative = fit_relative_angle(np.r_[turns, stroke.carrier_turns], np.r_[rho, stroke.relative_angles],
-                                  problem.spline_count)
-    margin, slope = whole_turn(mech, relative)
-    ratio = ratio_range(slope)
-    if slope.min() <= 0:
-        defects.append(monotonic_defect(slope))
-    elif ratio[0] < problem.ratio_bounds[0] or ratio[1] > problem.ratio_bounds[1]:
-        defects.append(ratio_defect(*ratio, problem.ratio_bounds))
-    if not margin >= problem.min_closure_margin:
-        defects.append(closure_defect(margin, problem.min_closure_margin))
-    return Candidate(mech, rho, defects, stroke, relative, margin, ratio)
-
-
-def baseline_region(problem: FiveBarProblem) -> list[Candidate]:
-    """The former pairing loop: every pair of kept dyads built and judged one at a time, in pair order."""
-    receiving, carrier = chain_families(problem)
-    return [baseline_candidate(problem, from_hinges(problem.poses[0], receiving.fixed[i], receiving.moving[i],
-                                                    carrier.fixed[j], carrier.moving[j]), check_ranges=False)
-            for i in np.flatnonzero(receiving.kept) for j in np.flatnonzero(carrier.kept)]
 
 
 def _seconds(function, *arguments):
@@ -124,7 +46,7 @@ def scaling(problem: FiveBarProblem, baseline_up_to: int = 4000):
     for samples in SAMPLES:
         sampled = dataclasses.replace(problem, samples=samples)
         package, region = _seconds(solution_region, sampled)
-        former = _seconds(baseline_region, sampled)[0] if samples <= baseline_up_to else float("nan")
+        former = _seconds(reference_region, sampled)[0] if samples <= baseline_up_to else float("nan")
         rows.append((samples, len(region.candidates), len(region.feasible), package, former))
         print(f"samples {samples:5d}: {len(region.candidates):7d} five-bars, {len(region.feasible):4d} feasible, "
               f"region {package:7.3f} s, former loop {former:7.3f} s")

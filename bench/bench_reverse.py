@@ -1,4 +1,4 @@
-"""Speed of the reverse design (issue 5) against a scipy baseline, in one run.
+"""Speed of the reverse design against a scipy baseline, in one run.
 
     python bench/bench_reverse.py
 
@@ -15,7 +15,7 @@ verified pitch curves of the four-gear train (square-root split with correction 
   interpolation. (The rice-transplanter paper's point-by-point Newton has the Jacobian determinant s l sin(gamma),
   zero where the arm straightens or folds, which these paths must do: both use the closed form.)
 
-The issue's target is under 2 s for the package. The baseline is run at three sample counts:
+The target is under 2 s for the package. The baseline is run at three sample counts:
 its time, and how far its round trip stays from the path, against the package's.
 """
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Burmester theory of an RR dyad guiding a body through given poses (seed 000, eq 1-2).
+"""Burmester theory of an RR dyad guiding a body through given poses (Wang et al. 2025, eq 1-2).
 
 Notation. Pose i of the body: position d_i = (x_i, y_i) of its reference point and
 orientation angle theta_i. The displacement from pose 1 to pose i maps a point z

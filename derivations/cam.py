@@ -1,5 +1,5 @@
 """Disc cams with a roller follower: motion laws, the roller centre, the pitch curve, the profile,
-the pressure angle and the curvature (seed 000 section 4 uses a swinging roller follower with
+the pressure angle and the curvature (Wang et al. 2025, section 4, uses a swinging roller follower with
 simple harmonic motion).
 
 Frames. The cam turns about the origin by the cam angle theta (rad) in the sense sigma (+1

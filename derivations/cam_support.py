@@ -1,4 +1,4 @@
-"""The rocker-slider of seed 000's seedling-support mechanism (Figure 11, eq 14-15).
+"""The rocker-slider of the seedling-support mechanism of Wang et al. 2025 (Figure 11, eq 14-15).
 
 The oscillating bar turns about C; its arm C-G (length l_CG, angle theta_CG from +x) carries the
 rod G-H (length l_GH) whose end H is the top of the support plate H-Z, which slides vertically at

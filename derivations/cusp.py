@@ -1,9 +1,9 @@
-"""Pitch curves with corners (seed 004): curvature centres, corners seen by the driven gear.
+"""Pitch curves with corners (the cusp-pitch-curve paper): curvature centres, corners seen by the driven gear.
 
 Notation. A polar pitch curve r(phi) about the gear centre, point P = r u(phi) with
 u = (cos phi, sin phi); slope r' and bend r'' are derivatives with respect to phi.
 
-- Curvature centre (seed 004 eq 1, there written with y(x)): with P' and P'' the phi-derivatives,
+- Curvature centre (eq 1 of the cusp-pitch-curve paper, written there with y(x)): with P' and P'' the phi-derivatives,
   K = P + |P'|^2 / (P' x P'') * k x P' (k the unit normal to the plane). The cross product
   P' x P'' = r^2 + 2 r'^2 - r r'' is the convexity of ``gears.polar_convexity``: a straight
   segment has it identically zero, so the package marks straight segments and gives them an
@@ -19,17 +19,17 @@ u = (cos phi, sin phi); slope r' and bend r'' are derivatives with respect to ph
   curve turns by -(the driver's turn): a convex corner of the driver meets a concave corner
   of the same angle on the driven gear, at the same place on the line of centres.
 
-Incomplete cycloid flanks near a corner (seed 004 eq 7-12, re-derived):
+Incomplete cycloid flanks near a corner (the cusp-pitch-curve paper, eq 7-12, re-derived):
 
 - A circle of radius r rolling outside a base line (contact at arc sigma, frame T, outward n)
   carries the point P = B(sigma) + r n - r (cos(theta) n + side sin(theta) T), theta = sigma / r
   (side +1 rolling towards +T, -1 towards -T): at theta = 0 the point touches the base, at
   theta = pi it is at the top, 2 r above the contact (``cycloid_trace``). On a curved base with
-  the same (B, T, n) at each contact this is the roulette of seed 004 eq (9-12) with a1 = b1 = 1,
+  the same (B, T, n) at each contact this is the roulette of eq (9-12) with a1 = b1 = 1,
   and the rolling circle of eq (7) is r_gy = S / (2 pi n) for S rolled in n turns.
 - The arch leans theta/2 off the normal at theta (dP/dtheta ~ (sin(theta/2), cos(theta/2)) in
   (T, n)), so it starts normal to the pitch curve: a pressure angle of 0 against the involute's
-  alpha, the kink of seed 004 Figure 8. The package's incomplete cycloid keeps the rolling on the
+  alpha, the kink of the paper's Figure 8. The package's incomplete cycloid keeps the rolling on the
   pitch curve itself, so that its normal at theta, through the rolling contact, meets the pitch
   curve there and the arch is conjugate to its envelope; it joins the flank where the arch leans
   alpha as the involute does (theta0 = 2 alpha). From the pitch point A the flank goes on
@@ -42,14 +42,14 @@ Incomplete cycloid flanks near a corner (seed 004 eq 7-12, re-derived):
   theta / 2: alpha at the joint, theta_J / 2 as the corner passes the line of centres. A lowered
   rolling base (an earlier version) put the joint on the pitch curve but its normals missed the
   pitch point, and the pair lost 0.02 mm of transmission at the corners.
-- Seed 004's elliptic rolling curve, eq (7) r(theta) = r_gy / sqrt((a1 cos theta)^2 + (b1 sin theta)^2)
+- The paper's elliptic rolling curve, eq (7) r(theta) = r_gy / sqrt((a1 cos theta)^2 + (b1 sin theta)^2)
   put into eq (12), starts (theta = 0) with the velocity (1 - 1/a1) T per unit rolled arc
   (``paper_variable_cycloid_start``): along the pitch curve, a pressure angle of 90 deg, for any
   a1 != 1; for a1 = 1 it starts along the normal like the circle (pressure angle 0) whatever b1.
   No eccentricity gives an intermediate starting pressure angle, so the package joins the flanks
   with the incomplete arch above instead.
 
-Variable involute (seed 004 eq 1-6, re-derived):
+Variable involute (the cusp-pitch-curve paper, eq 1-6, re-derived):
 
 - A pinion cutter of pitch radius r_j and base radius r_b = r_j cos(alpha) rolls outside the pitch curve.
   In the frame of the current contact M2 (tangent T, outward normal n) its centre is I = r_j n, and
@@ -87,7 +87,8 @@ def polar_point(r):
 
 
 def curvature_center(r_of_phi):
-    """Curvature centre K = P + |P'|^2 / (P' x P'') k x P' of the polar curve r(phi) (seed 004 eq 1)."""
+    """Curvature centre K = P + |P'|^2 / (P' x P'') k x P' of the polar curve r(phi) (the cusp-pitch-curve paper,
+    eq 1)."""
     point = polar_point(r_of_phi)
     d1, d2 = point.diff(phi), point.diff(phi, 2)
     cross = d1[0] * d2[1] - d1[1] * d2[0]
@@ -109,7 +110,8 @@ def _curvature_center() -> Derived:
     center = [sp.simplify(_replace_derivatives(c, f, r, slope, bend)).subs(phi, angle) for c in center]
     return Derived(
         name="polar_curvature_center",
-        doc="Curvature centre (seed 004 eq 1) of a polar pitch curve from r, r', r'' at phi, and P' x P'' (zero on a line).",
+        doc=("Curvature centre (the cusp-pitch-curve paper, eq 1) of a polar pitch curve from r, r', r'' at phi, "
+             "and P' x P'' (zero on a line)."),
         inputs=(("radius", (r,)), ("slope", (slope,)), ("bend", (bend,)), ("phi", (angle,))),
         outputs=(("center", tuple(center)), ("cross", (sp.simplify(_replace_derivatives(cross, f, r, slope, bend)),))),
     )
@@ -131,7 +133,7 @@ def _corner_angles() -> Derived:
 
 def cycloid_trace(base_x, base_y, tangent_angle, radius, theta, side):
     """Point carried by a circle of ``radius`` rolling outside the base at (base_x, base_y) with tangent
-    direction ``tangent_angle`` after turning ``theta`` (seed 004 eq 9-12 with a circle)."""
+    direction ``tangent_angle`` after turning ``theta`` (the cusp-pitch-curve paper, eq 9-12 with a circle)."""
     t = sp.Matrix([sp.cos(tangent_angle), sp.sin(tangent_angle)])
     n = sp.Matrix([sp.sin(tangent_angle), -sp.cos(tangent_angle)])     # outward on a counterclockwise curve
     return sp.Matrix([base_x, base_y]) + radius * n - radius * (sp.cos(theta) * n + side * sp.sin(theta) * t)
@@ -159,7 +161,8 @@ def incomplete_cycloid(alpha, zone, corner_angle):
 
 
 def paper_variable_cycloid_start(a1, b1):
-    """Velocity per unit rolled arc at theta = 0 of seed 004 eq (7) + (12) on a straight base (components along T, n)."""
+    """Velocity per unit rolled arc at theta = 0 of the cusp-pitch-curve paper's eq (7) + (12) on a straight base
+    (components along T, n)."""
     s, r_gy = sp.symbols("s r_gy", positive=True)
     theta = s / r_gy
     radius = r_gy / sp.sqrt((a1 * sp.cos(theta)) ** 2 + (b1 * sp.sin(theta)) ** 2)
@@ -205,8 +208,9 @@ def _variable_involute() -> list[Derived]:
     along, normal = point                           # side -1; the side +1 flank is its mirror image in n
     return [
         Derived(name="variable_involute",
-                doc=("Flank point minus the contact point, in the contact's (T, n), of the variable involute (seed 004 "
-                     "eq 1-6) whose pitch point lies rolled = s_f - s ahead; side +1 on a tooth's low-arc side."),
+                doc=("Flank point minus the contact point, in the contact's (T, n), of the variable involute "
+                     "(the cusp-pitch-curve paper, eq 1-6) whose pitch point lies rolled = s_f - s ahead; side +1 on a "
+                     "tooth's low-arc side."),
                 inputs=(("pressure_angle", (alpha,)), ("rolled", (rolled,)), ("side", (side,))),
                 outputs=(("offset", (along, -side * normal)),)),
         Derived(name="shaper_reach",
@@ -225,7 +229,8 @@ def _cycloid() -> Derived:
     theta0, r, cusp, joint, over_corner = incomplete_cycloid(alpha, zone, corner)
     return [
         Derived(name="cycloid_trace",
-                doc="Point of a circle rolling outside the pitch curve (seed 004 eq 9-12, a1 = b1 = 1) at a base point and tangent angle.",
+                doc=("Point of a circle rolling outside the pitch curve (the cusp-pitch-curve paper, eq 9-12, "
+                     "a1 = b1 = 1) at a base point and tangent angle."),
                 inputs=(("base", base), ("tangent_angle", (angle,)), ("radius", (radius,)), ("theta", (theta,)),
                         ("side", (side,))),
                 outputs=(("point", tuple(cycloid_trace(*base, angle, radius, theta, side))),)),

@@ -1,4 +1,4 @@
-"""Closure of the five-bar O-A-F-E-B of seed 000 (Figure 8, eq 7-10).
+"""Closure of the five-bar O-A-F-E-B of Wang et al. 2025 (Figure 8, eq 7-10).
 
 Vectors: OA = L1 e(theta1) (carrier), AF = L2 e(theta2) (connecting rod I), EF = L3 e(theta3),
 BE = L4 e(theta4) (receiving plate), and the frame OB = L5 (-cos theta5, sin theta5), the

@@ -1,17 +1,18 @@
 """A pair of external non-circular gears: conjugate pitch curves, curvature, kinematics, closure.
 
 Notation. Driver pitch curve r1(phi1) about its center, driven r2(phi2), center distance a.
-Pure rolling at the contact point on the line of centers gives (seed 001 eq 4)
+Pure rolling at the contact point on the line of centers gives (the onion-transplanter paper, eq 4)
     r2 = a - r1,   dphi2/dphi1 = r1 / (a - r1),
-and the transmission ratio i12 = omega1 / omega2 = (a - r1) / r1 (seed 001 eq 13).
+and the transmission ratio i12 = omega1 / omega2 = (a - r1) / r1 (the onion-transplanter paper, eq 13).
 
-- Curvature radius of a polar curve (seed 001 eq 8):
+- Curvature radius of a polar curve (the onion-transplanter paper, eq 8):
     rho = (r^2 + r'^2)^(3/2) / (r^2 + 2 r'^2 - r r''); the curve is convex where the
     denominator (``convexity``) is positive.
 - The driven curve's r2, dr2/dphi2, d2r2/dphi2^2 follow from r1 and its phi1-derivatives by
   the chain rule with dphi2/dphi1 = r1 / r2 (``conjugate_pitch``).
 - Driven speed omega2 = omega1 r1 / (a - r1); acceleration (constant omega1)
-  omega1^2 d/dphi1 [r1 / (a - r1)] = omega1^2 a r1' / (a - r1)^2 (seed 001 eq 14-15).
+  omega1^2 d/dphi1 [r1 / (a - r1)] = omega1^2 a r1' / (a - r1)^2
+  (the onion-transplanter paper, eq 14-15).
 - Closure with orders (n1, n2): int_0^2pi r1 / (a - r1) dphi1 = 2 pi n1 / n2. For the
   ellipse family r1 = p / (1 - e cos(n phi)), p = A (1 - e^2), and the limacon family
   r1 = b + c cos(n phi), the integral is elementary (int dphi / (u - v cos(n phi)) =
@@ -21,7 +22,7 @@ and the transmission ratio i12 = omega1 / omega2 = (a - r1) / r1 (seed 001 eq 13
   i12 = (a - r1) / r1, and pure rolling then turns the driven gear by dphi2/dphi1 = 1 / i12
   (``ratio_pair_pitch``). Eq (13) prints phi2 = int I1 dphi1, the ratio itself, which
   contradicts its own first line; ``driven_rate_for_ratio`` shows the reciprocal.
-- Limacon convexity (seed 001 eq 9-10): with r1 = l (1 + k cos(m phi)) and C = cos(m phi),
+- Limacon convexity (the onion-transplanter paper, eq 9-10): with r1 = l (1 + k cos(m phi)) and C = cos(m phi),
   the driver's and the driven curve's convexity as polynomials in C (``limacon_*_convexity``).
 """
 from __future__ import annotations

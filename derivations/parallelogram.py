@@ -1,4 +1,5 @@
-"""The onion transplanter of seed 001: denatured limacon gear pair driving a parallelogram (eq 3-4, 16-18).
+"""The onion transplanter of the onion-transplanter paper: denatured limacon gear pair driving a parallelogram
+(eq 3-4, 16-18).
 
 Gear pair. Driver r1(phi1) = l + b cos(u), with u = m11 phi1 on 0 <= phi1 <= pi/m11 and
 u = m12 (2 pi - phi1) beyond (eq 3). Pure rolling at center distance a gives

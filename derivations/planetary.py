@@ -1,23 +1,24 @@
 """Reverse design of a planetary arm: two-link inverse kinematics and the monotonicity criterion
-(seeds 002 and 003), the idler train's ratio (seed 002 eq 5-9), the pick-up tip (seed 004 eq 15).
+(the rice-transplanter and reverse-gear-design papers), the idler train's ratio (the rice-transplanter paper,
+eq 5-9), the pick-up tip (the cusp-pitch-curve paper, eq 15).
 
 The arm tip is P = s e(theta) + l e(psi) about the carrier pivot: theta the carrier's direction
 (pivot -> planet center), psi the arm's, gamma = psi - theta the arm relative to the carrier.
 
-- Inverse kinematics (seed 003): with r = |P| and phi3 = atan2(y, x), the elbow angle
+- Inverse kinematics (the reverse-gear-design paper): with r = |P| and phi3 = atan2(y, x), the elbow angle
   phi4 in [0, pi] has cos phi4 = (s^2 + r^2 - l^2) / (2 s r); its sine comes from the
   factored product (l - s + r)(l + s - r)(r + s - l)(r + s + l) / (2 s r)^2, which keeps its
   digits where the arm straightens or folds. theta = phi3 + branch * phi4 (branch +1:
   approach, -1: retraction).
-- Rates along a path parameter u (seed 002 eq 3-4 is the first-order step of the same
+- Rates along a path parameter u (the rice-transplanter paper's eq 3-4 is the first-order step of the same
   system): differentiating P(u) = s e(theta) + l e(psi) k times gives
   s theta^(k) e_perp(theta) + l psi^(k) e_perp(psi) = known terms, solved here in closed form.
-- Monotonicity (seed 003): the carrier turns uniformly, so theta(u) must be monotonic, and
+- Monotonicity (the reverse-gear-design paper): the carrier turns uniformly, so theta(u) must be monotonic, and
   the gears never reverse, so gamma must be strictly monotonic in theta. The derivation
   gives d gamma / d theta = -(P . P') / (l P' . e(psi)): the planet stops against the carrier
   wherever the distance |P| from the pivot is stationary unless the arm is straight or
   folded there (then P' . e(psi) vanishes too).
-- Arm lengths (seed 002 eq 1-2): the reachable annulus |s - l| <= r <= s + l fitted to the
+- Arm lengths (the rice-transplanter paper, eq 1-2): the reachable annulus |s - l| <= r <= s + l fitted to the
   path's farthest and nearest points.
 """
 from __future__ import annotations
@@ -62,7 +63,7 @@ def relative_per_carrier(theta, psi, s, l, dx, dy):
 
 
 def arm_lengths(farthest, nearest):
-    """(s, l) with s + l = Lmax and l - s = Lmin (the arm the longer link, as seed 002 takes it)."""
+    """(s, l) with s + l = Lmax and l - s = Lmin (the arm the longer link, as the rice-transplanter paper takes it)."""
     s, l = sp.symbols("s l", positive=True)
     solution = sp.solve([s + l - farthest, l - s - nearest], [s, l], dict=True)[0]
     return solution[s], solution[l]
@@ -78,7 +79,7 @@ def idler_total_ratio(sun_radius, planet_radius, center_distance):
 
 
 def pickup_tip(first, second, arm, carrier, bend, planet, mounting):
-    """Seed 004 eq (15): pivot -> O1 (first, at the carrier angle) -> O2 (second, bent by
+    """The cusp-pitch-curve paper's eq (15): pivot -> O1 (first, at the carrier angle) -> O2 (second, bent by
     ``bend``) -> needle tip (arm, turned by the planet's relative angle and its mounting)."""
     return first * unit(carrier) + second * unit(carrier + bend) + arm * unit(carrier + bend + planet + mounting)
 
@@ -107,15 +108,18 @@ def derive() -> list[Derived]:
                 inputs=(("angles", angles), ("lengths", lengths), ("path", path[:2])),
                 outputs=(("slope", (relative_per_carrier(*angles, s, l, *path[:2]),)),)),
         Derived(name="arm_lengths_from_extremes",
-                doc="Seed 002 eq (1-2): carrier s and arm l from the farthest and nearest path points (Lmax, Lmin).",
+                doc=("The rice-transplanter paper's eq (1-2): carrier s and arm l from the farthest and nearest path "
+                     "points (Lmax, Lmin)."),
                 inputs=(("extremes", extremes),),
                 outputs=(("lengths", arm_lengths(*extremes)),)),
         Derived(name="idler_total_ratio",
-                doc="Seed 002 eq (5-9): i13 of sun-idler-planet from the sun's and the planet's contact radii and the center distance.",
+                doc=("The rice-transplanter paper's eq (5-9): i13 of sun-idler-planet from the sun's and the planet's "
+                     "contact radii and the center distance."),
                 inputs=(("radii", radii), ("center_distance", (center,))),
                 outputs=(("ratio", (idler_total_ratio(*radii, center),)),)),
         Derived(name="pickup_tip",
-                doc="Seed 004 eq (15): needle tip from L1, L2, S and the carrier angle, bend delta0, planet turn, mounting alpha0.",
+                doc=("The cusp-pitch-curve paper's eq (15): needle tip from L1, L2, S and the carrier angle, bend "
+                     "delta0, planet turn, mounting alpha0."),
                 inputs=(("pickup_lengths", pickup_lengths), ("pickup_angles", pickup_angles)),
                 outputs=(("tip", tuple(pickup_tip(*pickup_lengths, *pickup_angles))),)),
     ]

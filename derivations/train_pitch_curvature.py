@@ -9,7 +9,7 @@ k = 2 pi / int_0^2pi sqrt(s) dc (eq 12, over the sun's angle). With center dista
 - second intermediate:  r = a2 / (1 + I2)   in psi;
 - planet:               r = a2 - r          in its own angle chi, dchi/dpsi = 1 / I2.
 
-Each curve is r = a f(theta) with f free of a, so its polar convexity (seed 001 eq 8)
+Each curve is r = a f(theta) with f free of a, so its polar convexity (the onion-transplanter paper, eq 8)
 r^2 + 2 r_theta^2 - r r_theta_theta is a^2 times that of f, and its curvature radius
 (r^2 + r_theta^2)^(3/2) / (r^2 + 2 r_theta^2 - r r_theta_theta) is a times that of f:
 ``derive`` checks that a drops out of both before dividing it away. Derivatives in a curve's

@@ -5,7 +5,7 @@
 Each function below computes the findings on one paper (docs/references.md names the papers)
 from the derivations, the bundled examples and the fixed relative angle of
 ``examples/published/relative_angle_wang2025.toml``; nothing is read from an earlier run.
-``tests/test_published.py`` pins every number to the precision the docs state it with. The
+``tests/docs/test_published_findings.py`` pins every number to the precision the docs state it with. The
 whole run takes 7-25 s on the 2-core development machine, most of it the rice-transplanter train.
 """
 from __future__ import annotations

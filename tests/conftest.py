@@ -39,11 +39,12 @@ def pytest_xdist_make_scheduler(config, log):
 
     from xdist.scheduler import LoadFileScheduling
 
-    readers = {path.name for path in Path(__file__).parent.glob("test_*.py") if "example_result" in path.read_text()}
+    readers = {path.relative_to(config.rootpath).as_posix() for path in Path(__file__).parent.rglob("test_*.py")
+               if "example_result" in path.read_text()}
 
     class ExampleReadersTogether(LoadFileScheduling):
         def _split_scope(self, nodeid: str) -> str:
             file = super()._split_scope(nodeid)
-            return "example_result readers" if Path(file).name in readers else file
+            return "example_result readers" if file in readers else file
 
     return ExampleReadersTogether(config, log)

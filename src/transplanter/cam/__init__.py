@@ -2,7 +2,7 @@
 follower: motion programs of rise, dwell and return segments (harmonic, cycloidal, 3-4-5
 polynomial, modified trapezoid), the pitch curve and profile, pressure angle, curvature, undercut
 and interference checks, the smallest base circle for a pressure-angle limit, drawings; and the
-seedling-support rocker-slider of seed 000 (eq 14-15, Table 5).
+seedling-support rocker-slider of Wang et al. 2025 (eq 14-15, Table 5).
 
 Public API: ``load_problem`` / ``parse_problem`` (TOML file or dict, mm and degrees) -> ``CamProblem``
 (mm, radians); ``synthesize(problem)`` -> ``CamResult`` (``to_json()``); ``draw_figures(result)`` ->

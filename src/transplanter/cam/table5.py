@@ -1,4 +1,4 @@
-"""Seed 000's Table 5 (the seedling-support mechanism) evaluated as printed, and the nearest readings
+"""Table 5 of Wang et al. 2025 (the seedling-support mechanism) evaluated as printed, and the nearest readings
 that are consistent.
 
 As printed: l_HZ = 116, l_GH = 30, l_CG = 200, l_CK = 58 mm, angle KCG = 30 deg, C = (65.40, -80.00),
@@ -182,7 +182,7 @@ class Table5Evaluation:
 
 
 def evaluate_table5() -> Table5Evaluation:
-    """Evaluate seed 000's Table 5 (see the module docstring): linkage as printed, readings, cam."""
+    """Evaluate Table 5 of Wang et al. 2025 (see the module docstring): linkage as printed, readings, cam."""
     printed = printed_linkage()
     reach = printed.reach()
     distances = [float(np.linalg.norm(printed.slider_point(h) - PIVOT_C)) for h in (LOW_HEIGHT, HIGH_HEIGHT)]

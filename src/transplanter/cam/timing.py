@@ -1,4 +1,4 @@
-"""The support cam timed to the pushing mechanism (issue 13 section 3, for the five-bar to call).
+"""The support cam timed to the pushing mechanism (used by ``fivebar.support``, the five-bar's ``[support]`` table).
 
 The cam turns with the carrier through a drive of ratio ``drive_ratio`` (cam turns per carrier turn;
 the paper's chain drive, 1). The five-bar's stages, as carrier angles from the start of the push, give

@@ -137,7 +137,7 @@ def support_markdown(report: dict) -> list[str]:
 
 
 def table5_line(table5: dict) -> str:
-    """One sentence on the published support (seed 000 Table 5) as ``cam.table5`` evaluates it."""
+    """One sentence on the published support (Wang et al. 2025, Table 5) as ``cam.table5`` evaluates it."""
     printed, datum = table5["printed"], table5["heights_from_datum"][0]
     lifting = next(c for c in table5["perpendicular_layout"]["cams"] if c["lifts_plate"])
     worst = max(lifting["max_pressure_angle_deg"][k] for k in ("rise", "return"))

@@ -1,4 +1,5 @@
-"""The seedling support designed with the five-bar (issue 13 section 3).
+"""The seedling support of Wang et al. 2025 (section 4: a cam and the rocker-slider of eq 14-15), designed with the
+five-bar it serves.
 
 The cam turns with the carrier (``drive_ratio`` cam turns per carrier turn, clockwise), its cam angle 0 at pose 1.
 Its segments come from the designed motion's own stages (``design_stages``), or are typed; the cam is designed and

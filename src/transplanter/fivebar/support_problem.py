@@ -1,6 +1,6 @@
-"""The optional ``[support]`` table of a five-bar problem: the seedling support of seed 000 section 4 (a disc cam
-with an oscillating roller follower driving the rocker-slider C-G-H-Z of eq 14-15), designed with the pushing
-mechanism. Everything that does not depend on the five-bar is checked here, before the synthesis.
+"""The optional ``[support]`` table of a five-bar problem: the seedling support of Wang et al. 2025 section 4
+(a disc cam with an oscillating roller follower driving the rocker-slider C-G-H-Z of eq 14-15), designed with the
+pushing mechanism. Everything that does not depend on the five-bar is checked here, before the synthesis.
 
 Schema (docs/fivebar.md, "Seedling support"), mm and degrees:
 

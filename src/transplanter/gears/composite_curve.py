@@ -1,4 +1,5 @@
-"""Closed pitch curves made of segments joined in position, with corners (seed 004 sec 2, Figure 2).
+"""Closed pitch curves made of segments joined in position, with corners (the cusp-pitch-curve
+paper, section 2, Figure 2).
 
 Each segment is a polar curve r(phi) about the gear centre on its own angle range; the ranges
 follow one another round the turn. A segment is
@@ -181,7 +182,8 @@ def cusps(curve: CompositeCurve, center_distance: float | None = None) -> list[d
 
 def curvature(curve: PitchCurve, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Curvature radius (mm, inf on straight segments), convexity (r^2 + 2 r'^2 - r r''; 0 on straight
-    segments) and curvature centre (N, 2) (NaN on straight segments) at the angles ``phi`` (seed 004 eq 1)."""
+    segments) and curvature centre (N, 2) (NaN on straight segments) at the angles ``phi`` (the cusp-pitch-curve
+    paper, eq 1)."""
     r, slope, bend = curve.evaluate(phi)
     straight = curve.straight(phi) if isinstance(curve, CompositeCurve) else np.zeros(phi.shape, bool)
     with np.errstate(divide="ignore", invalid="ignore"):

@@ -1,17 +1,17 @@
-"""Composite teeth of a pitch curve with corners (seed 004 sec 2-3): variable involute on the smooth
-stretches, incomplete cycloids on the tooth that stands on each corner, the driven gear by envelope.
+"""Composite teeth of a pitch curve with corners (the cusp-pitch-curve paper, sections 2-3): variable involute
+on the smooth stretches, incomplete cycloids on the tooth that stands on each corner, the driven gear by envelope.
 
 Layout. No cutter can roll round a corner, so a tooth straddles each (convex) corner J: its
 flanks cross the pitch curve at A = J - u and D = J + w, and between corners the regular teeth and
 spaces keep the pitch p = pi m. Going round from corner j to corner j + 1 (arc L_j) there is a
 space, k_j regular teeth and spaces, so w_j + u_(j+1) = L_j - p/2 - k_j p; k_j is the count that
 leaves about one pitch and the remainder is split evenly, so the corner tooth is about a pitch
-thick (seed 004 sec 2.3 asks h_vc in [0.8, 1.2] of the involute pitch h; the package refuses a
-tooth count that leaves a corner tooth outside, naming counts that fit).
+thick (the cusp-pitch-curve paper, section 2.3, asks h_vc in [0.8, 1.2] of the involute pitch h; the
+package refuses a tooth count that leaves a corner tooth outside, naming counts that fit).
 
 Flanks. Each smooth stretch is cut by the library's shaper (``swept_teeth.shaper_profile``: a
-pinion cutter rolling on the pitch curve, the variable involute of seed 004 eq 1-6) with its teeth
-on that stretch's grid; the corner tooth keeps the shaper's flanks below the pitch curve and
+pinion cutter rolling on the pitch curve, the variable involute of the cusp-pitch-curve paper, eq 1-6) with
+its teeth on that stretch's grid; the corner tooth keeps the shaper's flanks below the pitch curve and
 rises from A and D on incomplete cycloids (``cycloid_teeth``) to the tip, one module above the
 pitch curve. The driven gear is cut by the driver's outline in the pair's motion
 (``swept_teeth.mate_profile``), so the pair is conjugate wherever the driver is.
@@ -58,7 +58,8 @@ MESH_SAMPLES_PER_TOOTH = 32
 #: 32; at 31-deg corners 22 fails just before the corner and 26 passes; at 39-deg corners with 28 and 29 teeth only 38
 #: passes. An angle whose arch would stand above the tip is refused before any cutting, so trying it costs nothing.
 CORNER_PRESSURE_TRIALS_DEG = (22.0, 26.0, 30.0, 34.0, 38.0)
-#: The corner tooth's thickness at the pitch curve, as a fraction of the pitch (seed 004 sec 2.3).
+#: The corner tooth's thickness at the pitch curve, as a fraction of the pitch (the cusp-pitch-curve paper,
+#: section 2.3).
 THICKNESS_BAND = (0.8, 1.2)
 
 
@@ -119,9 +120,9 @@ def _check_layout(plan: Layout, teeth: int, segment_arcs: list[tuple[float, floa
         fits = [z for z in range(max(3, teeth - 12), teeth + 13) if _fits(plan, teeth, z)]
         raise InfeasibleError(
             f"{source}: pair.teeth = {teeth}: the tooth on the corner at pitch arc {plan.corners[k]:.3f} mm would be "
-            f"{ratios[k]:.3f} pitches thick, outside [{low}, {high}] (seed 004 sec 2.3); tooth counts that keep every "
-            f"corner tooth in the band: {', '.join(map(str, fits)) or 'none within 12 of it'} (whether they mesh is "
-            f"checked when they are cut)")
+            f"{ratios[k]:.3f} pitches thick, outside [{low}, {high}] (the cusp-pitch-curve paper, section 2.3); tooth "
+            f"counts that keep every corner tooth in the band: {', '.join(map(str, fits)) or 'none within 12 of it'} "
+            f"(whether they mesh is checked when they are cut)")
     for k, (corner, (before, after)) in enumerate(zip(plan.corners, segment_arcs)):
         for zone, room, name in ((plan.before[k], before, "before"), (plan.after[k], after, "after")):
             if zone >= room:

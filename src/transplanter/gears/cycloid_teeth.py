@@ -1,4 +1,5 @@
-"""Incomplete cycloid flanks of the tooth that stands on a corner of the pitch curve (seed 004 sec 2.2).
+"""Incomplete cycloid flanks of the tooth that stands on a corner of the pitch curve (the cusp-pitch-curve
+paper, section 2.2).
 
 From the pitch point A of a flank the tooth rises straight, leaning alpha as a rack's flank does, to
 the joint where a circle rolling outside the pitch curve carries a point that leans alpha too

@@ -1,6 +1,6 @@
 """One pair of external non-circular gears from a driver pitch curve.
 
-Closure (seed 001 eq 5): the driven gear turns 2 pi n1 / n2 per driver turn,
+Closure (the onion-transplanter paper, eq 5): the driven gear turns 2 pi n1 / n2 per driver turn,
     int_0^2pi r1 / (a - r1) dphi1 = 2 pi n1 / n2,
 solved for the center distance a (the left side falls monotonically from +inf at
 a = max r1 to 0). The driven curve, curvature (eq 8), ratio and kinematics (eq 13-15) come

@@ -1,4 +1,5 @@
-"""Tooth outlines by numerical envelope: what a moving cutter leaves of a gear blank (seed 004, seed 001).
+"""Tooth outlines by numerical envelope: what a moving cutter leaves of a gear blank (the cusp-pitch-curve
+and onion-transplanter papers).
 
 The gear blank reaches one module above the pitch curve. A cutter outline is carried through
 its rolling positions; along every normal of the pitch curve the gear keeps material only below

@@ -7,7 +7,7 @@ gear's frame; a point within ``TOUCH_MODULES`` of the driven outline touches. Ti
 whatever the flanks do. Each touching point
 belongs to a driver tooth (the tooth whose pitch-curve span, from one space centre to the next,
 holds the foot of the point on the pitch curve) and to its low-arc or high-arc flank; one flank
-side drives when the driver turns one way, the other when it turns back (seed 004 sec 3.2: the
+side drives when the driver turns one way, the other when it turns back (the cusp-pitch-curve paper, section 3.2: the
 contact ratio of a cusp gear depends on the direction). A tooth's contact ratio on a side is the
 pitch arc rolled while that flank touches over the tooth's own pitch (the mean spacing to its neighbours' centres); positions where no
 flank of a side touches are listed too (there the next pair has not taken over).

@@ -1,4 +1,5 @@
-"""How far a shaper-cut outline lies from the closed form of seed 004's variable involute (eq 1-6).
+"""How far a shaper-cut outline lies from the closed form of the variable involute of the cusp-pitch-curve
+paper (eq 1-6).
 
 ``derivations/cusp.py`` re-derives the paper's construction: the flank point a pinion cutter generates
 does not depend on the cutter's size, so every pinion cutter, and a rack, generates the same curve

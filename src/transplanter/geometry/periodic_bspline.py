@@ -8,7 +8,7 @@ recursion of eq (6) gives the same cubic basis function shifted to every knot, s
 beta being the centered cubic B-spline (support [-2, 2], C2), taken periodically. Written
 with a backend ``lib`` (numpy or casadi: ``floor``, ``fabs``, ``if_else``) so the same
 formula serves the sweeps and the design NLP, where knots may be evaluated at decision
-variables. ``tests/test_relative_angle.py`` checks beta against sympy's Cox-de Boor basis.
+variables. ``tests/geometry/test_periodic_bspline.py`` checks beta against sympy's Cox-de Boor basis.
 """
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The onion transplanter of seed 001: a parallelogram planting mechanism driven by a pair of
+"""The onion transplanter of the onion-transplanter paper: a parallelogram planting mechanism driven by a pair of
 denatured Pascal limacon gears, designed by NSGA-II and polished by an NLP.
 
 Public API: ``load_problem`` / ``parse_problem`` (TOML file or dict, mm and degrees) ->

@@ -1,4 +1,4 @@
-"""One design evaluated (``--design``), and seed 001's published optimum evaluated both ways.
+"""One design evaluated (``--design``), and the onion-transplanter paper's published optimum evaluated both ways.
 
 A design file holds the eight variables ([design], as in a problem file), optionally the values
 the paper printed for its gear ([printed]: m12, center_distance, teeth) and the figures it

@@ -2,7 +2,7 @@
 
 - Closure: the center distance is solved (``kinematics.closing_center_distance``), never free.
 - Convexity of both pitch curves: the gear library's derived polynomials in C = cos(m phi)
-  (``limacon_driver_convexity``, ``limacon_driven_convexity``, seed 001 eq 9-10 done right), for
+  (``limacon_driver_convexity``, ``limacon_driven_convexity``, the onion-transplanter paper's eq 9-10 done right), for
   each half (m11, m12) on a grid of C in [-1, 1]; convex where positive.
 - Undercut at the module: the curvature radius (eq 8, ``polar_curvature``) of both curves, the
   driven one through ``conjugate_pitch``, at least addendum * m / sin^2(pressure angle), the

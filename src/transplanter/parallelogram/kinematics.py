@@ -1,4 +1,4 @@
-"""The mechanism of seed 001 as numpy arrays over many designs at once: gear pair, crank phase,
+"""The mechanism of the onion-transplanter paper as numpy arrays over many designs at once: gear pair, crank phase,
 crank pin and planting point with exact velocity and acceleration (generated ``parallelogram``).
 
 Every parameter is an array of one value per design (shape (P,)); angles are evaluated on

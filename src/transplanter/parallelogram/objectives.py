@@ -1,4 +1,5 @@
-"""Objectives and constraints of the design (seed 001 section 3.1.1), for a whole population at once.
+"""Objectives and constraints of the design (the onion-transplanter paper, section 3.1.1), for a whole population
+at once.
 
 - f1 = |Vx(t_E)| (mm/s), f2 = |H - H_target| (mm), f3 = |Y - Y_target| (mm). The printed f3,
   "|Y(X-300}", is garbled; 300 mm is the paper's plant spacing, which none of the eight

@@ -3,7 +3,7 @@
 Schema (docs/parallelogram.md, "Problem files"); the driver gear's center O1 is the origin:
 
     title = "..."
-    [design]                      # the eight variables of seed 001 (start values; fixed unless bounded)
+    [design]                      # the onion-transplanter paper's eight variables (start values; fixed unless bounded)
     m11 = 1.5                     # denaturation coefficient of the first half (eq 2-3); m12 from eq (2)
     b = 13.0                      # limacon amplitude (mm), eq (1)
     l = 53.0                      # limacon base (mm)
@@ -60,7 +60,8 @@ from transplanter.toml_fields import (
     read_toml,
 )
 
-#: The eight design variables of seed 001 in file order (mm; alpha in degrees in files, radians inside).
+#: The eight design variables of the onion-transplanter paper in file order (mm; alpha in degrees in files,
+#: radians inside).
 VARIABLES = ("m11", "b", "l", "l1", "l2", "l5", "l6", "alpha")
 #: Variables that only translate the path (zero derivatives of every objective): never searched.
 TRANSLATION_ONLY = ("l2", "l5", "l6")

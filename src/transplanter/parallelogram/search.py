@@ -1,6 +1,6 @@
 """NSGA-II over the variables that change an objective (pymoo), the whole population per call.
 
-Settings as in seed 001 section 3.1.2: simulated binary crossover with probability 0.8 and
+Settings as in the onion-transplanter paper, section 3.1.2: simulated binary crossover with probability 0.8 and
 distribution index 10, polynomial mutation with index 20; population and generations from the
 file (the paper: 100 and 200). The first individual is the file's [design] (the start values),
 the others uniform in the bounds, all from the file's seed, so a run is reproducible.

@@ -1,4 +1,5 @@
-"""What the field trajectory of the planting point gives (seed 001 section 3.1.1), for many designs at once.
+"""What the field trajectory of the planting point gives (the onion-transplanter paper, section 3.1.1), for many
+designs at once.
 
 - Planting instant t_E: the lowest point of E over one driver turn. Found on a grid of the turn,
   then refined by Newton steps (kept in the bracket) on the exact vertical velocity.

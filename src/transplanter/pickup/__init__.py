@@ -1,4 +1,4 @@
-"""The seedling pick-up mechanism of the cusp-pitch-curve paper (seed 004 sec 6, eq 15), forward:
+"""The seedling pick-up mechanism of the cusp-pitch-curve paper (section 6, eq 15), forward:
 a bent carrier (L1, L2, delta0) carrying two non-circular gear stages (any gear family, composite
 included) and the picking arm (S, alpha0); its tip path, picking and pushing angles, tip speed.
 

@@ -2,8 +2,8 @@
 
 Picking and pushing angles: the acute angle (deg) between the needle, the line O2 -> Q of the arm,
 and the horizontal, where the needle picks (by default the tip's farthest point from O, where it
-reaches into the tray) and where it pushes (by default the tip's lowest point). Seed 004 measures
-them on its Figure 18 (44.7 and 70.2 deg on its prototype) without printing how or its Table 1
+reaches into the tray) and where it pushes (by default the tip's lowest point). The cusp-pitch-curve
+paper measures them on its Figure 18 (44.7 and 70.2 deg on its prototype) without printing how or its Table 1
 values, so its numbers cannot be recomputed; this reading is the package's.
 """
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Forward kinematics of the pick-up mechanism (seed 004 sec 6.1, eq 15).
+"""Forward kinematics of the pick-up mechanism (the cusp-pitch-curve paper, section 6.1, eq 15).
 
 Stage 1: the fixed sun (gear 1) at O meshes with gear 2 at O1; stage 2: gear 3, fixed to gear 2,
 meshes with the planet (gear 4) at O2, which carries the arm. Each stage's pitch curve is scaled

@@ -1,0 +1,30 @@
+"""Every third-party module the installed package imports is a runtime dependency in pyproject.toml, so the
+README's main-job command (``pip install -e .``, no dev extra) can run: a module only the dev extra brings
+(sympy, scipy before it was declared) fails there."""
+import ast
+import sys
+import tomllib
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+#: import name -> distribution that provides it (Pillow is a dependency of matplotlib)
+PROVIDED_BY = {"PIL": "matplotlib"}
+
+
+def _imported_top_level_modules() -> set[str]:
+    names = set()
+    for path in (ROOT / "src/transplanter").rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Import):
+                names |= {alias.name.split(".")[0] for alias in node.names}
+            elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+                names.add(node.module.split(".")[0])
+    return names
+
+
+def test_every_imported_third_party_module_is_a_runtime_dependency():
+    declared = {entry.split(">")[0].split("=")[0].split("<")[0].strip().lower()
+                for entry in tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["dependencies"]}
+    third_party = _imported_top_level_modules() - set(sys.stdlib_module_names) - {"transplanter", "__future__"}
+    missing = {name for name in third_party if PROVIDED_BY.get(name, name).lower() not in declared}
+    assert not missing, f"imported by src/transplanter but not in [project] dependencies: {sorted(missing)}"
