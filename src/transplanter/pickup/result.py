@@ -10,7 +10,7 @@ Checks (``failures``), each relative to the mechanism's reach L1 + L2 + S: both 
 driven gear's miss after one driver turn, as arc at the stage's centre distance, within
 ``CLOSURE_TOLERANCE`` of the reach), and the tip path is reached over the whole turn (tip and velocity
 finite at every carrier position, and the planet back at its start after one carrier turn, one turn
-against the carrier as the train demands, the tip within ``CLOSURE_TOLERANCE`` of the reach).
+against the carrier as the train demands, within ``CLOSURE_TOLERANCE`` of the reach as arc at the tip).
 """
 from __future__ import annotations
 
@@ -119,10 +119,11 @@ class PickupResult(CommandResult):
         if lost.any():
             found.append(f"the tip path is not reached at {int(lost.sum())} of {lost.size} carrier positions, first at "
                          f"carrier turn {np.degrees(self.carrier_turns[lost][0]):.2f} deg (tip or velocity not finite)")
-        miss = self.problem.arm_length * abs(self.planet_turn_per_turn + 2 * np.pi)
-        if not miss <= tolerance:
+        off = self.planet_turn_per_turn + 2 * np.pi
+        if not self.problem.arm_length * abs(off) <= tolerance:
             found.append(f"the planet turns {np.degrees(self.planet_turn_per_turn):.6g} deg against the carrier per "
-                         f"carrier turn, not -360: the tip misses its start by {miss:.3g} mm after a turn (more than "
+                         f"carrier turn, not -360: after a turn the needle is {np.degrees(off):+.3g} deg off its "
+                         f"start, {self.problem.arm_length * abs(off):.3g} mm of arc at the tip (more than "
                          f"{CLOSURE_TOLERANCE:g} of the reach L1 + L2 + S = {self.reach:.6g} mm)")
         return found
 
