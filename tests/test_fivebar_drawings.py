@@ -231,14 +231,14 @@ def test_thinning_keeps_an_outline_simple_where_plain_douglas_peucker_would_cros
 def quick_command(result, monkeypatch):
     """The fivebar command on the module's result with one small figure and a stand-in animation (both are
     tested above or elsewhere; here only what the command writes and lists)."""
-    from transplanter.fivebar import animation
+    from transplanter.fivebar import output_files
 
     def stand_in(result, folder, teeth=None):
         (folder / "animation.gif").write_bytes(b"GIF89a")
         return [folder / "animation.gif"]
     monkeypatch.setattr(fivebar, "synthesize", lambda problem, **options: result)
-    monkeypatch.setattr(fivebar, "draw_figures", lambda result: {"trajectory": Figure(figsize=(1, 1))})
-    monkeypatch.setattr(animation, "write_animation", stand_in)
+    monkeypatch.setattr(fivebar.FiveBarResult, "draw_figures", lambda result: {"trajectory": Figure(figsize=(1, 1))})
+    monkeypatch.setattr(output_files, "write_animation", stand_in)
 
 
 @pytest.mark.parametrize("animation", [True, False])
