@@ -55,8 +55,8 @@ def _face_offsets(result: CamResult) -> list[float]:
 def _laws_with_jumps(result: CamResult) -> list[str]:
     """The laws of the segments on either side of an acceleration jump."""
     segments = result.problem.segments
-    return sorted({segments[k].law for j in result.checks.acceleration_jumps for k in (j.before, j.after)
-                   if segments[k].law})
+    return sorted({law for j in result.checks.acceleration_jumps for k in (j.before, j.after)
+                   if (law := segments[k].law)})
 
 
 def cam_result_json(result: CamResult) -> dict:

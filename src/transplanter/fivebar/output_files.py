@@ -21,6 +21,6 @@ def write_files(result: FiveBarResult, folder: str | Path, animation: bool = Tru
         written = write_drawings(result, folder)
     if animation:
         with progress.step("animation"):
-            teeth = teeth_on_carrier(result.toothed, result.design.mech.carrier_length)
+            teeth = teeth_on_carrier(result.toothed, float(result.design.mech.carrier_length))
             written += write_animation(result, folder, teeth)
     return written

@@ -96,7 +96,7 @@ def gear_json(gear: GearResult) -> dict:
 def polished_json(polished: Polished, problem: ParallelogramProblem) -> dict:
     out = {"status": polished.status, "iterations": polished.iterations, "solve_seconds": polished.solve_seconds,
            "dominates_start": polished.dominates_start, "variables": None, "objectives": None, "evaluation": None}
-    if polished.variables is not None:
+    if polished.variables is not None and polished.evaluation is not None:      # None both when IPOPT failed
         out["variables"] = variables_json(polished.variables)
         out["objectives"] = objectives_json(objective_values(problem, polished.evaluation))
         out["evaluation"] = evaluation_json(polished.evaluation)
@@ -232,7 +232,7 @@ def to_markdown(result: ParallelogramResult, files: Sequence[str] = ()) -> str:
         lines.append(f"| {k + 1} | " + " | ".join(_fmt(v, 5) for v in pareto_variables(result, k + 1).values())
                      + " | " + " | ".join(_fmt(float(v), 3) for v in search.objectives[k]) + " |")
     p = result.polished
-    if p is not None and p.variables:
+    if p is not None and p.variables and p.evaluation is not None:
         lines += ["", "## NLP polish (IPOPT, exact derivatives) of the chosen design", "", *_variables(p.variables), "",
                   f"IPOPT: {p.status}, {p.iterations} iterations, {p.solve_seconds:.3f} s. Objectives on the "
                   "fine grid: " + _objectives(objective_values(problem, p.evaluation), 3)

@@ -16,6 +16,7 @@ from transplanter.trains.planetary import printed_peak_to_valley_turn
 if TYPE_CHECKING:
     from transplanter.reverse.monotonicity import Violation
     from transplanter.reverse.result import ReverseResult
+    from transplanter.trains.planetary import PlanetaryTrain
 
 
 @dataclass(frozen=True)
@@ -34,9 +35,8 @@ def _gear(name: str, radius: np.ndarray, convexity: np.ndarray, perimeter: float
                    perimeter / (np.pi * module))
 
 
-def gear_rows(result: ReverseResult) -> list[GearRow]:
+def gear_rows(train: PlanetaryTrain | IdlerTrain, module: float) -> list[GearRow]:
     """Sun to planet: a sun-idler-planet train has three gears, a planetary train four."""
-    train, module = result.train, result.problem.module
     one, two = train.stage_one, train.stage_two
     rows = [_gear("sun", one.radius[0], one.convexity[0], one.perimeters[0], module)]
     if isinstance(train, IdlerTrain):
@@ -70,12 +70,15 @@ def _ratio_range(result: ReverseResult) -> tuple[float, float]:
     return float(ratio.min()), float(ratio.max())
 
 
-def _closure_errors(result: ReverseResult) -> list[float]:
-    return [result.train.stage_one.closure_error, result.train.stage_two.closure_error]
+def _closure_errors(train: PlanetaryTrain | IdlerTrain) -> list[float]:
+    return [train.stage_one.closure_error, train.stage_two.closure_error]
 
 
-def _printed_turn_deg(result: ReverseResult) -> float:
-    """The intermediate gear's turn per cycle with the reverse-gear-design paper's split as printed (deg)."""
+def _printed_turn_deg(result: ReverseResult) -> float | None:
+    """The intermediate gear's turn per cycle with the reverse-gear-design paper's split as printed (deg); None
+    unless a planetary train splits the ratio peak to valley."""
+    if result.problem.split != "peak_to_valley" or result.relative is None or isinstance(result.train, IdlerTrain):
+        return None
     return float(np.degrees(printed_peak_to_valley_turn(result.relative, result.problem.peak_to_valley)))
 
 
@@ -103,17 +106,18 @@ def reverse_result_json(result: ReverseResult) -> dict:
         "fix_hints": result.hints,
         "topology": problem.topology, "split": problem.split,
     }
-    if not result.monotonic:
+    train, verification = result.train, result.verification
+    if train is None or verification is None:          # no train: the path fails the monotonicity criterion
         return report
     report.update({
         "ratio_range": list(_ratio_range(result)),
         "gears": [{"gear": g.name, "radius_range_mm": list(g.radius_range), "convex": g.convex,
-                   "perimeter_mm": g.perimeter, "teeth_at_module": g.teeth_at_module} for g in gear_rows(result)],
-        "gear_closure_errors": _closure_errors(result),
-        "roundtrip_max_error_mm": result.verification.max_error_mm,
-        "contact_gap_max_mm": max(float(np.abs(g).max()) for g in result.verification.contact_gaps_mm),
+                   "perimeter_mm": g.perimeter, "teeth_at_module": g.teeth_at_module}
+                  for g in gear_rows(train, problem.module)],
+        "gear_closure_errors": _closure_errors(train),
+        "roundtrip_max_error_mm": verification.max_error_mm,
+        "contact_gap_max_mm": max(float(np.abs(g).max()) for g in verification.contact_gaps_mm),
     })
-    train = result.train
     if isinstance(train, IdlerTrain):
         report["idler_iteration"] = {"iterations": train.iterations, "settled": bool(train.converged),
                                      "eq5_model_residual": train.model_residual, "correction_x": train.correction,
@@ -146,23 +150,24 @@ def to_markdown(result: ReverseResult, files: Sequence[str] = ()) -> str:
              f"- Monotonicity criterion (the reverse-gear-design paper): {'met' if result.monotonic else 'NOT met'}"]
     lines += [f"  - {violation.condition}: {violation.message}" for violation in result.violations]
     lines += [f"  - would pass with: {hint}" for hint in result.hints]
-    if result.monotonic:
+    train, verification = result.train, result.verification
+    if train is not None and verification is not None:         # a train: the path meets the criterion
         low, high = _ratio_range(result)
-        miss = result.verification.max_error_mm
+        miss = verification.max_error_mm
         lines += [f"- Train: {problem.topology}, split {problem.split}; total ratio i0 from {low:.4f} to {high:.4f}",
-                  f"- Gear closure errors (rad): {', '.join(f'{e:.2e}' for e in _closure_errors(result))}",
+                  f"- Gear closure errors (rad): {', '.join(f'{e:.2e}' for e in _closure_errors(train))}",
                   f"- Round trip (gears rolled from their pitch curves, tip rebuilt): largest miss {miss:.3e} mm", "",
                   "| gear | radius min (mm) | radius max (mm) | convex | perimeter (mm) | teeth at the module |",
                   "| --- | --- | --- | --- | --- | --- |"]
         lines += [f"| {g.name} | {g.radius_range[0]:.3f} | {g.radius_range[1]:.3f} | {g.convex} | "
-                  f"{g.perimeter:.3f} | {g.teeth_at_module:.2f} |" for g in gear_rows(result)]
-        train = result.train
+                  f"{g.perimeter:.3f} | {g.teeth_at_module:.2f} |" for g in gear_rows(train, problem.module)]
+        printed = _printed_turn_deg(result)
         if isinstance(train, IdlerTrain):
             lines += ["", f"The rice-transplanter paper's iteration: {train.iterations} iterations, "
                       f"settled: {bool(train.converged)}, eq (5) model residual {train.model_residual:.3e}; the train "
                       f"as built misses the path by {miss:.3f} mm (see docs/reverse.md, 'Published findings')."]
-        elif problem.split == "peak_to_valley":
+        elif printed is not None:
             lines += ["", "The reverse-gear-design paper's split as printed (i1 = i25 bs) would turn the intermediate "
-                      f"gear {_printed_turn_deg(result):.3f} deg per cycle (360 closes)."]
+                      f"gear {printed:.3f} deg per cycle (360 closes)."]
     lines += [""] + [f"![{name}]({name})" for name in files if name.endswith(".png")]
     return "\n".join(lines) + "\n"
