@@ -8,6 +8,7 @@ import ezdxf
 import numpy as np
 import pytest
 import shapely
+from command_result_checks import check_protocol
 from matplotlib.figure import Figure
 from PIL import Image, ImageChops
 
@@ -225,6 +226,11 @@ def test_thinning_keeps_an_outline_simple_where_plain_douglas_peucker_would_cros
     kept = thinned(outline, 0.05)
     assert shapely.is_simple(shapely.linearrings(kept))
     assert shapely.distance(shapely.points(outline), shapely.linearrings(kept)).max() <= 0.05
+
+
+def test_the_design_is_a_command_result(result, tmp_path):
+    """What the command runner reads of the five-bar design (``CommandResult``)."""
+    check_protocol(result, tmp_path)
 
 
 @pytest.fixture
