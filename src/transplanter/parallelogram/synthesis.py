@@ -7,6 +7,7 @@ from collections.abc import Callable
 import numpy as np
 
 from transplanter.errors import ProblemError, SolverError, TransplanterError
+from transplanter.gears.result import GearResult
 from transplanter.parallelogram.evaluation import (
     EVALUATION_SAMPLES,
     DesignFile,
@@ -15,7 +16,6 @@ from transplanter.parallelogram.evaluation import (
     evaluate_published,
     problem_design,
 )
-from transplanter.gears.result import GearResult
 from transplanter.parallelogram.gear_pair import gear_pair
 from transplanter.parallelogram.kinematics import mechanisms
 from transplanter.parallelogram.nlp import polish
