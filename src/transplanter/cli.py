@@ -1,13 +1,16 @@
 """``transplanter <command>``: parses arguments, calls the library's API, saves the report and the
 figures; no logic of its own.
 
+One runner (``_run_command``) serves every design command of the registry ``COMMANDS``: it reads the
+problem with the command's subpackage, runs the job, and reports the ``CommandResult`` it returns.
 Conventions of every design command: ``--out DIR`` is written whole or not at all
 (``output_folder.staged``) and its report.json lists every file under "files" by kind; progress
 of the longer steps goes to stderr when it is a terminal (as git does; a pipe or a log gets only
 errors), unless ``--quiet`` or ``--json``; exit 0 when the result
 passes its checks, 1 when it fails one (every file name then starts with FAILED- and the reports
 say why), 2 for bad input or no result (one line; inputs, ``--out`` and ``--plot`` are checked
-before the work), 130 for Ctrl-C; report.json is always valid JSON (``output_folder.report_json``).
+before the work; a result without its mechanism still gets its FAILED report), 130 for Ctrl-C;
+report.json is always valid JSON (``output_folder.report_json``).
 """
 from __future__ import annotations
 
@@ -18,9 +21,14 @@ import signal
 import sys
 import threading
 import warnings
+from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
+from types import ModuleType
+from typing import Any
 
-from transplanter import __version__, progress
+from transplanter import __version__, burmester, cam, fivebar, gears, parallelogram, pickup, progress, reverse
+from transplanter.command_result import CommandResult
 from transplanter.errors import TransplanterError
 from transplanter.output_folder import FAILED_PREFIX, check_file, files_by_kind, report_json, staged, staged_file
 
@@ -28,18 +36,15 @@ from transplanter.output_folder import FAILED_PREFIX, check_file, files_by_kind,
 PLOT_SUFFIXES = {".png", ".pdf", ".svg", ".jpg", ".jpeg", ".eps", ".ps", ".tif", ".tiff", ".webp"}
 
 
-def _failures(*checked) -> tuple[str, ...]:
-    """Why the result fails: the ``failures`` of every object whose ``passed`` is False."""
-    return tuple(reason for item in checked if getattr(item, "passed", True) is False
-                 for reason in (getattr(item, "failures", None) or [f"{type(item).__name__} failed its checks"]))
-
-
-def _publish(args, report: dict, file_text: str, screen_text: str, failures: tuple[str, ...] = ()) -> int:
+def _publish(args, result: CommandResult, files: list[str]) -> int:
     """Write report.md and report.json beside the files already in the output folder (listed in the
     report under "files"), print the JSON (--json) or the screen text, the same way for every command.
-    A result that failed a check is marked FAILED (report status, file names) and exits 1."""
+    A result that failed a check is marked FAILED (report status, file names) and exits 1, or 2 when
+    no mechanism was made (``CommandResult.produced``)."""
+    report, file_text, screen_text = result.to_json(), result.to_markdown(files), result.to_text()
+    failures = [] if result.passed else list(result.failures)
     if failures:
-        report = {"status": "FAILED", "failures": list(failures), **report}
+        report = {"status": "FAILED", "failures": failures, **report}
         file_text = "# FAILED: " + "; ".join(failures) + "\n\n" + file_text
         screen_text = "FAILED: " + "; ".join(failures) + "\n" + screen_text
     folder, prefix = args.folder, FAILED_PREFIX if failures else ""
@@ -58,10 +63,10 @@ def _publish(args, report: dict, file_text: str, screen_text: str, failures: tup
         if folder:
             sys.stdout.write(f"wrote {args.out}/: " + ", ".join(n for names in report["files"].values() for n in names)
                              + "\n")
-    if failures:
-        _say(f"transplanter: failed: {report.get('source', args.file)}: " + "; ".join(failures), args.warned)
-        return 1
-    return 0
+    if result.passed:
+        return 0
+    _say(f"transplanter: failed: {result.source}: " + "; ".join(failures), args.warned)
+    return 1 if result.produced else 2
 
 
 def _say(line: str, warned: list):
@@ -77,169 +82,49 @@ def _save_figures(figures: dict, out: Path, dpi: int = 120) -> list[str]:
     return [f"{stem}.png" for stem in figures]
 
 
-def _burmester(args) -> int:
-    from transplanter import burmester
-    from transplanter.burmester.report import to_markdown, to_text
-
-    plot = check_file(args.plot, "--plot", PLOT_SUFFIXES, args.out) if args.plot else None
-    problem = burmester.load_problem(args.file)
-    with progress.step("synthesis"):
-        result = burmester.synthesize(problem)
+def _run_command(command: Command, args) -> int:
+    """One design command: check ``--plot``, load the problem, run the job, save the figures and the files,
+    publish the report; the exit code follows the result (``_publish``)."""
+    plot = check_file(args.plot, "--plot", PLOT_SUFFIXES, args.out) if command.plot and args.plot else None
+    problem = command.package.load_problem(args.file)
+    result = command.run(command, problem, args)
+    files: list[str] = []
     if plot or args.folder:
         with progress.step("figures"):
-            figures = burmester.draw_figures(result)
-            if plot:
+            figures = result.draw_figures()
+            if plot and command.plot:
                 with staged_file(plot) as partial:
-                    figures["burmester"].savefig(partial, dpi=130)
+                    figures[command.plot].savefig(partial, dpi=command.dpi)
             if args.folder:
-                _save_figures(figures, args.folder, dpi=130)
-    return _publish(args, result.to_json(), to_markdown(result, "burmester.png"), to_text(result), _failures(result))
-
-
-def _gear(args) -> int:
-    from transplanter import gears
-    from transplanter.gears.report import to_markdown
-
-    problem = gears.load_problem(args.file)
-    with progress.step("synthesis"):
-        result = gears.synthesize(problem)
-    report = result.to_json()
-    drawings, figures = [], []
+                files = _save_figures(figures, args.folder, dpi=command.dpi)
     if args.folder:
-        with progress.step("drawings"):
-            drawings = [p.name for p in gears.write_drawings(result, args.folder)]
-        with progress.step("figures"):
-            figures = _save_figures(gears.draw_figures(result), args.folder)
-    return _publish(args, report, to_markdown(report, figures, drawings),
-                    to_markdown(report, [], []).replace("# ", "", 1), _failures(result))
+        written = result.write_files(args.folder, animation=not getattr(args, "no_animation", False))
+        files += [path.name for path in written]
+    return _publish(args, result, files)
 
 
-def _fivebar(args) -> int:
-    from transplanter import fivebar
-    from transplanter.fivebar.report import evaluation_markdown, to_markdown
+def _synthesize(command: Command, problem, args) -> CommandResult:
+    """The job of a command without options: its subpackage's ``synthesize(problem)``."""
+    with progress.step(command.step):
+        return command.package.synthesize(problem)
 
-    problem = fivebar.load_problem(args.file)
+
+def _fivebar(command: Command, problem, args) -> CommandResult:
+    """A given design evaluated (``--design``), or a design made (``--pick`` builds another alternative)."""
     if args.design:
-        evaluation = fivebar.evaluate_design(problem, fivebar.load_design(args.design))
-        if args.folder and evaluation.support:
-            from transplanter.cam import write_drawings as write_cam_drawings
-
-            with progress.step("drawings"):
-                write_cam_drawings(evaluation.support.cam, args.folder)
-        report = evaluation.to_json()
-        return _publish(args, report, evaluation_markdown(report, problem.labels),
-                        evaluation_markdown(report, problem.labels), _failures(evaluation.candidate, evaluation.support))
+        return fivebar.evaluate_design(problem, fivebar.load_design(args.design))
     with progress.step("synthesis"):
-        result = fivebar.synthesize(problem, pick=args.pick, progress=_report)
-    report = result.to_json()
-    figures = []
-    if args.folder:
-        from transplanter.fivebar.animation import write_animation
-        from transplanter.fivebar.drawings import write_drawings
-        from transplanter.fivebar.gears_on_carrier import teeth_on_carrier
-
-        with progress.step("figures"):
-            figures = _save_figures(fivebar.draw_figures(result), args.folder)
-        with progress.step("drawings"):
-            write_drawings(result, args.folder)
-        if not args.no_animation:
-            with progress.step("animation"):
-                teeth = teeth_on_carrier(result.toothed, result.design.mech.carrier_length)
-                write_animation(result, args.folder, teeth)
-    text = to_markdown(report, problem.labels, figures)
-    return _publish(args, report, text, text, _failures(result))
+        return fivebar.synthesize(problem, pick=args.pick, progress=_report)
 
 
-def _reverse(args) -> int:
-    from transplanter import reverse
-    from transplanter.reverse.report import to_markdown
-
-    problem = reverse.load_problem(args.file)
-    with progress.step("synthesis"):
-        result = reverse.synthesize(problem)
-    report = result.to_json()
-    figures = []
-    if args.folder:
-        with progress.step("figures"):
-            figures = _save_figures(reverse.draw_figures(result), args.folder)
-    code = _publish(args, report, to_markdown(report, figures), to_markdown(report, []), _failures(result))
-    return code if result.monotonic else 2          # no train: no result, though the report gives the hints
-
-
-def _cam(args) -> int:
-    from transplanter import cam
-    from transplanter.cam.report import to_markdown
-
-    problem = cam.load_problem(args.file)
-    with progress.step("synthesis"):
-        result = cam.synthesize(problem)
-    drawings, figures = [], []
-    if args.folder:
-        with progress.step("drawings"):
-            drawings = [path.name for path in cam.write_drawings(result, args.folder)]
-        with progress.step("figures"):
-            figures = _save_figures(cam.draw_figures(result), args.folder)
-    report = result.to_json()
-    return _publish(args, report, to_markdown(report, figures, drawings),
-                    to_markdown(report, [], []).replace("# ", "", 1), _failures(result))
-
-
-def _parallelogram(args) -> int:
-    from transplanter import parallelogram
-    from transplanter.parallelogram.report import evaluation_markdown, to_markdown
-
-    problem = parallelogram.load_problem(args.file)
+def _parallelogram(command: Command, problem, args) -> CommandResult:
+    """A given design evaluated (``--design``), or the Pareto designs searched and one built (``--pick``)."""
     if args.design:
         given = parallelogram.load_design(args.design)
         with progress.step("evaluation"):
-            result = parallelogram.evaluate_design(problem, given)
-        report = result.to_json()
-        figures = []
-        if args.folder:
-            with progress.step("figures"):
-                figures = _save_figures(parallelogram.draw_design_figures(problem, given.design), args.folder)
-        return _publish(args, report, evaluation_markdown(report, figures), evaluation_markdown(report),
-                        _failures(result))
+            return parallelogram.evaluate_design(problem, given)
     with progress.step("search"):
-        result = parallelogram.synthesize(problem, pick=args.pick, progress=_report)
-    report = result.to_json()
-    figures = []
-    if args.folder:
-        from transplanter.parallelogram.tables import write_tables
-
-        with progress.step("figures"):
-            figures = _save_figures(parallelogram.draw_figures(result), args.folder)
-        with progress.step("tables"):
-            write_tables(result, args.folder)
-        if result.gear.teeth is not None:
-            from transplanter.gears import write_drawings
-
-            with progress.step("drawings"):
-                write_drawings(result.gear, args.folder)
-        if not args.no_animation:
-            from transplanter.parallelogram.animation import write_animation
-
-            with progress.step("animation"):
-                write_animation(result, args.folder)
-    return _publish(args, report, to_markdown(report, figures), to_markdown(report), _failures(result))
-
-
-def _pickup(args) -> int:
-    from transplanter import pickup
-    from transplanter.pickup.report import to_markdown
-
-    problem = pickup.load_problem(args.file)
-    with progress.step("kinematics"):
-        result = pickup.synthesize(problem)
-    report = result.to_json()
-    files = []
-    if args.folder:
-        with progress.step("figures"):
-            files = _save_figures(pickup.draw_figures(result), args.folder)
-        if not args.no_animation:
-            with progress.step("animation"):
-                files.append(pickup.write_animation(result, args.folder).name)
-    return _publish(args, report, to_markdown(report, files), to_markdown(report, []).replace("# ", "", 1))
+        return parallelogram.synthesize(problem, pick=args.pick, progress=_report)
 
 
 def _derive(args) -> int:
@@ -248,19 +133,106 @@ def _derive(args) -> int:
     return run_build(["--check"] if args.check else [])
 
 
-def _command(commands, name: str, run, summary: str, file_help: str, extras: str, animation: str | None = None):
+@dataclass(frozen=True)
+class Flag:
+    """An option of one command beyond those every design command takes: its names and argparse keywords;
+    the ``exclusive`` flags of a command exclude each other."""
+
+    names: tuple[str, ...]
+    options: dict[str, Any]
+    exclusive: bool = False
+
+
+@dataclass(frozen=True)
+class Command:
+    """A design command: ``transplanter <name> FILE`` reads FILE with ``package.load_problem`` and reports
+    the ``CommandResult`` that ``run(command, problem, args)`` returns.
+
+    Attributes
+    ----------
+    name, summary, file_help : str
+        The command, its line in ``--help`` and the help of FILE.
+    writes : str
+        What ``--out`` holds besides report.md and report.json (for ``--help``).
+    package : module
+        The subpackage whose public API runs the command.
+    step : str
+        The progress step of ``_synthesize``.
+    run : callable
+        The job: ``_synthesize`` unless the command has options of its own.
+    flags : tuple of Flag
+        The command's own options.
+    animation : str or None
+        The animation file ``--no-animation`` skips, for a command that writes one.
+    plot : str or None
+        The figure ``--plot FILE`` writes, for a command that offers it.
+    dpi : int
+        Resolution of the saved figures.
+    """
+
+    name: str
+    summary: str
+    file_help: str
+    writes: str
+    package: ModuleType
+    step: str = "synthesis"
+    run: Callable[[Command, Any, argparse.Namespace], CommandResult] = _synthesize
+    flags: tuple[Flag, ...] = ()
+    animation: str | None = None
+    plot: str | None = None
+    dpi: int = 120
+
+
+#: The design commands, in the order ``--help`` lists them.
+COMMANDS = (
+    Command("burmester", "RR dyads that guide a body through 3 or more poses", "problem file (TOML, mm and degrees)",
+            "the figure", burmester, plot="burmester", dpi=130,
+            flags=(Flag(("--plot",), {"metavar": "PNG", "help": "write the figure to this file"}),)),
+    Command("gear", "a pair of non-circular gears: pitch curves, closure, teeth, drawings",
+            "gear problem file (TOML, mm and degrees)", "CSV/SVG/DXF drawings and figures", gears),
+    Command("fivebar", "five-bar seedling pushing mechanism with its planetary gear train (Wang et al. 2025): region, "
+            "precise design, gears, verification", "five-bar problem file (TOML, mm and degrees)",
+            "the figures, linkage.dxf, CSV tables and animation.gif", fivebar, run=_fivebar, animation="animation.gif",
+            flags=(Flag(("--design",), {"metavar": "DESIGN.toml",
+                                        "help": "evaluate this given design instead of designing one"}, exclusive=True),
+                   Flag(("--pick",), {"metavar": "N", "type": int, "help": "build alternative N of the ranked "
+                                      "alternatives (default 1, the best; report.md lists them)"}, exclusive=True))),
+    Command("reverse", "planetary non-circular gear train that makes the arm tip follow a closed path (the "
+            "rice-transplanter, reverse-gear-design and cusp-pitch-curve papers): inverse kinematics, monotonicity, "
+            "gears, round trip", "reverse-design problem file (TOML, mm and degrees)", "the figures", reverse),
+    Command("cam", "a disc cam with a roller follower (translating or oscillating): motion laws, profile, pressure "
+            "angle, curvature, undercut, the smallest base circle", "cam problem file (TOML, mm and degrees)",
+            "cam_profile.csv, cam.dxf, cam.svg and the figures", cam),
+    Command("parallelogram", "onion transplanter: parallelogram planting mechanism driven by denatured Pascal limacon "
+            "gears, NSGA-II and NLP polish", "parallelogram problem file (TOML, mm and degrees)",
+            "figures, pareto.csv, trajectory.csv, gear drawings and animation.gif", parallelogram, run=_parallelogram,
+            animation="animation.gif",
+            flags=(Flag(("--design",), {"metavar": "DESIGN.toml", "help": "evaluate this given design (e.g. "
+                                        "examples/onion_published.toml) instead of searching"}, exclusive=True),
+                   Flag(("--pick",), {"metavar": "N", "type": int, "help": "build the N-th Pareto design, ranked by "
+                                      "distance to the ideal point (default 1, the knee)"}, exclusive=True))),
+    Command("pickup", "the seedling pick-up mechanism of the cusp-pitch-curve paper (eq 15), forward: tip path, "
+            "picking and pushing angles, tip speed, animation", "pick-up problem file (TOML, mm and degrees)",
+            "the figures and pickup.gif", pickup, step="kinematics", animation="pickup.gif"),
+)
+
+
+def _add_command(commands, command: Command):
     """A subcommand with the arguments every design command takes: FILE, --json, --out DIR, --quiet; and
-    --no-animation when it writes the animation file ``animation``."""
-    command = commands.add_parser(name, help=summary)
-    command.add_argument("file", help=file_help)
-    command.add_argument("--json", action="store_true", help="print the report as one JSON object (no progress)")
-    command.add_argument("--out", metavar="DIR", help=f"write report.md, report.json and {extras} here (the "
-                         "folder is replaced only when the run succeeds)")
-    command.add_argument("--quiet", action="store_true", help="no progress on stderr")
-    if animation:
-        command.add_argument("--no-animation", action="store_true", help=f"with --out: skip {animation} (one cycle)")
-    command.set_defaults(run=run)
-    return command
+    --no-animation when it writes an animation, then its own flags."""
+    parser = commands.add_parser(command.name, help=command.summary)
+    parser.add_argument("file", help=command.file_help)
+    parser.add_argument("--json", action="store_true", help="print the report as one JSON object (no progress)")
+    parser.add_argument("--out", metavar="DIR", help=f"write report.md, report.json and {command.writes} here (the "
+                        "folder is replaced only when the run succeeds)")
+    parser.add_argument("--quiet", action="store_true", help="no progress on stderr")
+    if command.animation:
+        parser.add_argument("--no-animation", action="store_true",
+                            help=f"with --out: skip {command.animation} (one cycle)")
+    exclusive = parser.add_mutually_exclusive_group() if any(flag.exclusive for flag in command.flags) else None
+    for flag in command.flags:
+        (exclusive if flag.exclusive and exclusive else parser).add_argument(*flag.names, **flag.options)
+    parser.set_defaults(run=lambda args: _run_command(command, args))
 
 
 class _OneLineParser(argparse.ArgumentParser):
@@ -274,39 +246,8 @@ def _parser() -> argparse.ArgumentParser:
     parser = _OneLineParser(prog="transplanter", description="Synthesis of seedling transplanting mechanisms.")
     parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     commands = parser.add_subparsers(dest="command", required=True)
-    burmester = _command(commands, "burmester", _burmester, "RR dyads that guide a body through 3 or more poses",
-                         "problem file (TOML, mm and degrees)", "the figure")
-    burmester.add_argument("--plot", metavar="PNG", help="write the figure to this file")
-    _command(commands, "gear", _gear, "a pair of non-circular gears: pitch curves, closure, teeth, drawings",
-             "gear problem file (TOML, mm and degrees)", "CSV/SVG/DXF drawings and figures")
-    fivebar = _command(commands, "fivebar", _fivebar, "five-bar seedling pushing mechanism with its planetary gear "
-                       "train (Wang et al. 2025): region, precise design, gears, verification",
-                       "five-bar problem file (TOML, mm and degrees)",
-                       "the figures, linkage.dxf, CSV tables and animation.gif", "animation.gif")
-    given_or_picked = fivebar.add_mutually_exclusive_group()     # --pick ranks designed alternatives; --design has one
-    given_or_picked.add_argument("--design", metavar="DESIGN.toml",
-                                 help="evaluate this given design instead of designing one")
-    given_or_picked.add_argument("--pick", metavar="N", type=int, help="build alternative N of the ranked alternatives "
-                         "(default 1, the best; report.md lists them)")
-    _command(commands, "reverse", _reverse, "planetary non-circular gear train that makes the arm tip follow a closed "
-             "path (the rice-transplanter, reverse-gear-design and cusp-pitch-curve papers): inverse kinematics, "
-             "monotonicity, gears, round trip",
-             "reverse-design problem file (TOML, mm and degrees)", "the figures")
-    _command(commands, "cam", _cam, "a disc cam with a roller follower (translating or oscillating): motion laws, "
-             "profile, pressure angle, curvature, undercut, the smallest base circle",
-             "cam problem file (TOML, mm and degrees)", "cam_profile.csv, cam.dxf, cam.svg and the figures")
-    parallelogram = _command(commands, "parallelogram", _parallelogram, "onion transplanter: parallelogram planting "
-                             "mechanism driven by denatured Pascal limacon gears, NSGA-II and NLP polish",
-                             "parallelogram problem file (TOML, mm and degrees)",
-                             "figures, pareto.csv, trajectory.csv, gear drawings and animation.gif", "animation.gif")
-    given_or_picked = parallelogram.add_mutually_exclusive_group()
-    given_or_picked.add_argument("--design", metavar="DESIGN.toml", help="evaluate this given design (e.g. "
-                               "examples/onion_published.toml) instead of searching")
-    given_or_picked.add_argument("--pick", metavar="N", type=int, help="build the N-th Pareto design, ranked by "
-                               "distance to the ideal point (default 1, the knee)")
-    _command(commands, "pickup", _pickup, "the seedling pick-up mechanism of the cusp-pitch-curve paper "
-                      "(eq 15), forward: tip path, picking and pushing angles, tip speed, animation",
-                      "pick-up problem file (TOML, mm and degrees)", "the figures and pickup.gif", "pickup.gif")
+    for command in COMMANDS:
+        _add_command(commands, command)
     derive = commands.add_parser("derive", help="regenerate src/transplanter/_generated from derivations/")
     derive.add_argument("--check", action="store_true", help="exit 1 if the generated code is out of step")
     derive.set_defaults(run=_derive)

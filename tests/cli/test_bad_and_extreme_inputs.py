@@ -184,8 +184,8 @@ def test_gear_with_self_crossing_teeth_exits_1_with_failed_files(tmp_path, capsy
     assert "driver 4, driven 4 crossings" in crossing_failures[0]
     monkeypatch.setattr(gears, "synthesize", lambda problem: real)
     monkeypatch.setattr(gears.GearResult, "failures", property(lambda self: crossing_failures))
-    monkeypatch.setattr(gears, "write_drawings", lambda result, folder: [])
-    monkeypatch.setattr(gears, "draw_figures", lambda result: {"gears": Figure(figsize=(1, 1))})
+    monkeypatch.setattr(gears.GearResult, "write_files", lambda result, folder, animation=True: [])
+    monkeypatch.setattr(gears.GearResult, "draw_figures", lambda result: {"gears": Figure(figsize=(1, 1))})
     out = tmp_path / "out"
     assert main(["gear", str(EXAMPLES / "gear_ellipse.toml"), "--out", str(out), "--quiet"]) == 1
     assert "tooth outlines cross themselves" in capsys.readouterr().err
@@ -201,7 +201,7 @@ def test_a_given_design_that_violates_a_condition_exits_1(capsys):
 
 
 def _small_burmester_figures(monkeypatch):
-    monkeypatch.setattr(burmester, "draw_figures", lambda result: {"burmester": Figure(figsize=(1, 1))})
+    monkeypatch.setattr(burmester.Synthesis, "draw_figures", lambda result: {"burmester": Figure(figsize=(1, 1))})
 
 
 def test_interrupt_leaves_no_output_and_one_line(tmp_path, capsys, monkeypatch):

@@ -24,7 +24,7 @@ def small_figures(monkeypatch):
         fig = Figure(figsize=(1, 1))
         fig.subplots().plot([0, 1])
         return {"burmester": fig}
-    monkeypatch.setattr(burmester, "draw_figures", draw)
+    monkeypatch.setattr(burmester.Synthesis, "draw_figures", draw)
 
 
 def _listed(folder: Path) -> set[str]:

@@ -28,8 +28,7 @@ from transplanter.fivebar.design_solver import DesignSolver, HollowError
 from transplanter.fivebar.figures import draw_figures
 from transplanter.fivebar.nlp import CONCAVITY_LIMIT
 from transplanter.fivebar.problem import parse_problem
-from transplanter.fivebar.report import to_markdown
-from transplanter.fivebar.result import alternative_json
+from transplanter.fivebar.report import alternative_json
 from transplanter.fivebar.synthesis import pick_alternative, synthesize
 from transplanter.fivebar.whole_turn import CURVES
 from transplanter.solve import ActiveBound as SolvedBound
@@ -109,7 +108,7 @@ def test_pick_2_builds_the_second_alternative(run):
     assert report["transmission_angle_min_deg"] == pytest.approx(np.degrees(second.transmission_angle), abs=1e-12)
     assert report["active_bounds"] == alternative_json(second, 2, result.problem.poses[0])["active_bounds"]
     json.dumps(report, allow_nan=False)
-    text = to_markdown(report, result.problem.labels, [])
+    text = result.to_markdown()
     table = text[text.index("## Alternatives"):text.index("## Solution region")]
     assert "| 2 (built) |" in table and "| 1 |" in table and "min EBF (deg)" in table and "min at E (deg)" in table
 

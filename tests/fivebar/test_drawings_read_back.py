@@ -11,6 +11,7 @@ import shapely
 from matplotlib.figure import Figure
 from PIL import Image, ImageChops
 
+from tests.cli.command_result_checks import check_protocol
 from transplanter import fivebar, gears
 from transplanter.cli import main
 from transplanter.fivebar.animation import FRAMES, render_frames, write_animation
@@ -227,18 +228,23 @@ def test_thinning_keeps_an_outline_simple_where_plain_douglas_peucker_would_cros
     assert shapely.distance(shapely.points(outline), shapely.linearrings(kept)).max() <= 0.05
 
 
+def test_the_design_is_a_command_result(result, tmp_path):
+    """What the command runner reads of the five-bar design (``CommandResult``)."""
+    check_protocol(result, tmp_path)
+
+
 @pytest.fixture
 def quick_command(result, monkeypatch):
     """The fivebar command on the module's result with one small figure and a stand-in animation (both are
     tested above or elsewhere; here only what the command writes and lists)."""
-    from transplanter.fivebar import animation
+    from transplanter.fivebar import output_files
 
     def stand_in(result, folder, teeth=None):
         (folder / "animation.gif").write_bytes(b"GIF89a")
         return [folder / "animation.gif"]
     monkeypatch.setattr(fivebar, "synthesize", lambda problem, **options: result)
-    monkeypatch.setattr(fivebar, "draw_figures", lambda result: {"trajectory": Figure(figsize=(1, 1))})
-    monkeypatch.setattr(animation, "write_animation", stand_in)
+    monkeypatch.setattr(fivebar.FiveBarResult, "draw_figures", lambda result: {"trajectory": Figure(figsize=(1, 1))})
+    monkeypatch.setattr(output_files, "write_animation", stand_in)
 
 
 @pytest.mark.parametrize("animation", [True, False])

@@ -16,6 +16,7 @@ from transplanter import fivebar
 from transplanter.cli import main
 from transplanter.errors import ProblemError
 from transplanter.fivebar.evaluation import evaluate_design, load_design
+from transplanter.fivebar.report import support_json
 from transplanter.fivebar.support import design_support
 from transplanter.toml_fields import read_toml
 
@@ -76,7 +77,7 @@ def test_segments_are_the_design_stages_found_by_forward_kinematics(problem, eva
     cam = [np.degrees(s.angle) for s in support.cam.problem.segments]
     assert np.allclose(cam, np.diff(marks), atol=1e-5)
     assert [s.kind for s in support.cam.problem.segments] == ["rise", "dwell", "return", "dwell"]
-    assert support.to_json()["segments"]["source"].startswith("design stages")
+    assert support_json(support)["segments"]["source"].startswith("design stages")
 
 
 def _rocker_angle(linkage, height, guess):
@@ -99,7 +100,7 @@ def test_swing_from_eq14_solved_independently(support):
     high = _rocker_angle(spec.linkage, spec.heights[1], spec.high_angle)
     assert low == pytest.approx(spec.low_angle, abs=1e-9)
     assert high == pytest.approx(spec.high_angle, abs=1e-9)
-    assert support.to_json()["swing_deg"] == pytest.approx(np.degrees(low - high), abs=1e-7)
+    assert support_json(support)["swing_deg"] == pytest.approx(np.degrees(low - high), abs=1e-7)
     assert support.cam.problem.segments[0].lift == pytest.approx(abs(low - high), abs=1e-9)
 
 
@@ -140,7 +141,7 @@ def test_clearance_by_direct_sampling(problem, evaluation, support):
     k = int(np.argmin(gap))
     assert support.clearance_mm == pytest.approx(gap[k], abs=1e-3)
     assert np.degrees(support.clearance_turn) == pytest.approx(np.degrees(fine[k]), abs=0.2)
-    report = support.to_json()
+    report = support_json(support)
     assert report["clearance_to_receiving_plate_mm"] == support.clearance_mm > 0
 
 
@@ -157,7 +158,7 @@ def test_plate_across_hinge_e_fails_the_check(evaluation):
 def test_typed_segments_and_drive_ratio(evaluation):
     typed = evaluate_design(_problem(segments_deg=[110.0, 80.0, 85.0, 85.0]), load_design(TABLE4)).support
     assert [np.degrees(s.angle) for s in typed.cam.problem.segments] == pytest.approx([110, 80, 85, 85])
-    assert typed.to_json()["segments"]["source"].startswith("typed")
+    assert support_json(typed)["segments"]["source"].startswith("typed")
     with pytest.raises(ProblemError, match=r"support\.drive_ratio = 2\.0: .*720 deg of cam: expected one cam turn "
                                            r"\(360 deg\); with these stages the ratio would be 1$"):
         evaluate_design(_problem(drive_ratio=2.0), load_design(TABLE4))

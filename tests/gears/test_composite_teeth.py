@@ -22,7 +22,6 @@ from transplanter.gears.composite_teeth import (
 from transplanter.gears.mesh_check import ERROR_MODULES, check_mesh
 from transplanter.gears.pair import arc_length, arc_to_angle, design_pair
 from transplanter.gears.pitch_curves import ellipse
-from transplanter.gears.report import to_markdown
 from transplanter.gears.swept_teeth import BIN_MODULES, shaper_profile
 from transplanter.gears.teeth import driver_table
 from transplanter.gears.tooth_contact import SAMPLES_PER_PITCH, measure_contact_ratio
@@ -144,7 +143,7 @@ def test_composite_teeth_of_the_ellipse_and_chord(example):
     assert involute["flanks_compared"] == 2 * 29 and involute["largest_mm"] < BIN_MODULES * 2.0
     assert example.passed
     assert set(report) >= {"cusps", "contact_ratio_min", "contact_ratio_where", "mesh_check"}
-    markdown = to_markdown(report, [], [])                      # the report says what the checks found
+    markdown = example.to_markdown()                            # the report says what the checks found
     assert (f"corner pressure angle 22 deg (tried: 22 deg passed (transmission error "
             f"{report['mesh_check']['transmission_error_mm']:.4f} mm))") in markdown
     assert f"transmission error {report['mesh_check']['transmission_error_mm']:.4f} mm" in markdown
@@ -191,7 +190,7 @@ def test_without_a_corner_pressure_angle_the_first_that_passes_is_kept():
     assert first["transmission_error_mm"] > ERROR_MODULES * 2.0
     assert second == {"corner_pressure_angle_deg": 26.0, "passed": True, "failures": [],
                       "transmission_error_mm": report["mesh_check"]["transmission_error_mm"]}
-    assert "22 deg failed (transmission error" in to_markdown(report, [], [])
+    assert "22 deg failed (transmission error" in result.to_markdown()
     assert report["corner_pressure_angle_deg"] == 26.0 and result.passed
 
 
@@ -285,8 +284,8 @@ def test_when_no_corner_pressure_angle_passes_the_smallest_transmission_error_is
     outcomes = {22.0: 0.05, 26.0: 0.03, 30.0: 0.04, 34.0: None, 38.0: None}
     kept = _first_that_passes(_trying(outcomes), CORNER_PRESSURE_TRIALS_DEG)
     assert kept.degrees == 26.0 and not kept.passed
-    assert [t["corner_pressure_angle_deg"] for t in kept.trials] == list(CORNER_PRESSURE_TRIALS_DEG)
-    assert [("refused" in t) for t in kept.trials] == [False, False, False, True, True]
+    assert [t.degrees for t in kept.trials] == list(CORNER_PRESSURE_TRIALS_DEG)
+    assert [t.refused is not None for t in kept.trials] == [False, False, False, True, True]
 
 
 def test_the_first_refusal_is_raised_when_every_angle_is_refused():

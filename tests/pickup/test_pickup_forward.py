@@ -1,5 +1,6 @@
 """The pick-up mechanism forward (the cusp-pitch-curve paper, section 6, eq 15): circles, rates, closure, bad
 input, command."""
+import dataclasses
 import json
 from pathlib import Path
 
@@ -9,6 +10,8 @@ import pytest
 from transplanter import pickup
 from transplanter.cli import main
 from transplanter.errors import InfeasibleError, ProblemError
+from transplanter.gears.pair import driven_turn
+from transplanter.geometry.turn_quadrature import panels
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples/pickup_forward.toml"
 
@@ -93,3 +96,57 @@ def test_command_writes_the_report(tmp_path, capsys):
     report = json.loads(capsys.readouterr().out)
     assert {"picking", "pushing", "tip_speed_range_mm_s"} <= set(report)
     assert (tmp_path / "out" / "pickup_path.png").exists()
+
+
+@pytest.fixture(scope="module")
+def turned():
+    """The equal circles turned (a quick pick-up that passes)."""
+    return pickup.synthesize(pickup.parse_problem(circles(), "circles.toml"))
+
+
+def test_a_mechanism_whose_gears_close_and_whose_tip_is_reached_passes(turned):
+    assert turned.passed and turned.failures == [] and turned.produced
+
+
+@pytest.mark.parametrize("stage", ["stage_one", "stage_two"])
+def test_a_stage_that_does_not_close_fails(turned, stage):
+    """The stage's pair as built 1 % beyond its closing centre distance: its driven gear misses a whole turn by
+    what the turn quadrature gives there (the pair is otherwise unchanged, so only this check can fail)."""
+    pair = getattr(turned, stage)
+    wide = 1.01 * pair.center_distance
+    closure = driven_turn(pair.driver, wide, panels(pair.driver.breaks)) - 2 * np.pi
+    failing = dataclasses.replace(turned, **{stage: dataclasses.replace(pair, closure_error=closure)})
+    name = {"stage_one": "stage1", "stage_two": "stage2"}[stage]
+    assert len(failing.failures) == 1 and failing.failures[0].startswith(f"{name} does not close")
+    assert f"{abs(closure) * pair.center_distance:.3g} mm" in failing.failures[0]
+
+
+def test_a_tip_lost_at_one_position_fails(turned):
+    """One carrier position where the tip and its velocity are not numbers (an arm that could not be placed)."""
+    tip, velocity = turned.tip.copy(), turned.velocity.copy()
+    tip[100], velocity[100] = np.nan, np.nan
+    failing = dataclasses.replace(turned, tip=tip, velocity=velocity)
+    assert failing.failures == [f"the tip path is not reached at 1 of {len(tip)} carrier positions, first at carrier "
+                                f"turn {np.degrees(turned.carrier_turns[100]):.2f} deg (tip or velocity not finite)"]
+
+
+def test_a_planet_that_does_not_come_back_after_a_carrier_turn_fails(turned):
+    """A planet that turns half a turn against the carrier per carrier turn (a stage of order two would): the tip
+    does not come back to where it started."""
+    failing = dataclasses.replace(turned, planet_turn_per_turn=-np.pi)
+    assert len(failing.failures) == 1 and "turns -180 deg against the carrier per carrier turn" in failing.failures[0]
+    arc = turned.problem.arm_length * np.pi
+    assert f"the needle is +180 deg off its start, {arc:.3g} mm of arc" in failing.failures[0]
+
+
+def test_a_failing_pickup_exits_1_with_failed_files(turned, tmp_path, monkeypatch, capsys):
+    failing = dataclasses.replace(turned, planet_turn_per_turn=-np.pi)
+    monkeypatch.setattr(pickup, "synthesize", lambda problem: failing)
+    out = tmp_path / "out"
+    assert main(["pickup", str(EXAMPLE), "--json", "--out", str(out), "--no-animation"]) == 1
+    captured = capsys.readouterr()
+    report = json.loads(captured.out)
+    assert report["status"] == "FAILED" and report["failures"] == failing.failures
+    assert captured.err == f"transplanter: failed: circles.toml: {failing.failures[0]}\n"
+    assert {p.name for p in out.iterdir()} == {"FAILED-report.json", "FAILED-report.md", "FAILED-pickup_path.png",
+                                               "FAILED-pickup_speed.png"}

@@ -11,6 +11,7 @@ from transplanter.fivebar.problem import load_problem, parse_problem
 from transplanter.fivebar.relative_angle import RelativeAngle
 from transplanter.gears.pair import arc_lengths
 from transplanter.trains.planetary import design_train
+from transplanter.trains.report import toothed_train_json
 from transplanter.trains.rolling import arc_map, conjugate_curve
 from transplanter.trains.toothed_train import (
     Gearing,
@@ -18,7 +19,6 @@ from transplanter.trains.toothed_train import (
     design_toothed_train,
     gear_angles,
     stage_shape,
-    toothed_train_json,
 )
 
 CONSTANT_RATE = RelativeAngle(0.3, np.zeros(12))             # rho' = 1: four equal circles of radius a / 2

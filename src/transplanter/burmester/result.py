@@ -1,23 +1,21 @@
-"""What a dyad synthesis found, and its JSON (the content of report.json)."""
+"""What a dyad synthesis found, and whether it found any."""
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from transplanter.burmester.problem import DyadProblem
+from transplanter.command_result import CommandResult
 from transplanter.geometry.curve_trace import CurveTrace
 from transplanter.geometry.dyad import Dyad
 
-
-def _dyad_json(dyad: Dyad) -> dict:
-    return {"center": dyad.center.tolist(), "circle": dyad.circle.tolist(), "length": dyad.length,
-            "max_residual": dyad.max_residual, "max_residual_mm": dyad.max_residual_mm,
-            "residuals_mm": dyad.residuals_mm.tolist()}
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 
 @dataclass(frozen=True)
-class Synthesis:
+class Synthesis(CommandResult):
     """RR dyads found for a ``DyadProblem``.
 
     Attributes
@@ -49,38 +47,33 @@ class Synthesis:
     rms_mm: list[float] = field(default_factory=list)
 
     @property
-    def passed(self) -> bool:
-        """Whether any dyad was found."""
-        return bool(self.dyads or self.circle_curve_dyads)
+    def source(self) -> str:
+        return self.problem.source
 
     @property
     def failures(self) -> list[str]:
-        """Why the synthesis has no result (empty when it passed)."""
-        if self.passed:
+        """Why the synthesis has no result: no dyad found (empty when it found one)."""
+        if self.dyads or self.circle_curve_dyads:
             return []
         return [f"no dyad found within search.radius_mm = {self.radius_mm:.6g} mm of the poses' centroid: enlarge "
                 "search.radius_mm, or check that the poses belong to one rigid body's motion"]
 
-    def to_json(self) -> dict:
-        """The report as plain JSON types (lengths in mm, angles in degrees): the content of report.json."""
-        problem = self.problem
-        dyads = self.dyads + self.circle_curve_dyads
-        out = {
-            "source": problem.source,
-            "title": problem.title,
-            "method": self.method,
-            "pose_count": len(problem.poses),
-            "poses": [{"label": label, "x": p[0], "y": p[1], "angle_deg": float(np.degrees(p[2]))}
-                      for label, p in zip(problem.labels or [""] * len(problem.poses), problem.poses.tolist())],
-            "relative": None if problem.link is None else {
-                "pivot": problem.link.pivot.tolist(), "phases_deg": np.degrees(problem.link.phases).tolist()},
-            "pose_scale_mm": dyads[0].scale if dyads else None,
-            "radius_mm": self.radius_mm,
-            "max_residual": max((d.max_residual for d in dyads), default=None),
-            "dyads": [_dyad_json(d) for d in self.dyads],
-        }
-        if self.center_curve is not None:
-            out["circle_curve_dyads"] = [_dyad_json(d) for d in self.circle_curve_dyads]
-        if self.rms_mm:
-            out["rms_mm"] = self.rms_mm
-        return out
+    def to_json(self) -> dict[str, Any]:
+        from transplanter.burmester.report import synthesis_json
+
+        return synthesis_json(self)
+
+    def to_markdown(self, files: Sequence[str] = ()) -> str:
+        from transplanter.burmester.report import to_markdown
+
+        return to_markdown(self, files)
+
+    def to_text(self) -> str:
+        from transplanter.burmester.report import to_text
+
+        return to_text(self)
+
+    def draw_figures(self) -> dict[str, Figure]:
+        from transplanter.burmester.figures import draw_figures
+
+        return draw_figures(self)

@@ -1,34 +1,25 @@
-"""A designed cam, and its JSON (the content of report.json)."""
+"""A designed cam, and the checks it passes."""
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from transplanter.cam.checks import CamChecks, Extreme, Stretch
+from transplanter import progress
+from transplanter.cam.checks import CamChecks, Extreme
 from transplanter.cam.kinematics import CamGeometry
 from transplanter.cam.problem import CamProblem
+from transplanter.command_result import CommandResult
 
-
-def _extreme(extreme: Extreme | None, scale=float):
-    return None if extreme is None else float(scale(extreme.value))
-
-
-def _at(extreme: Extreme | None):
-    return None if extreme is None else float(np.degrees(extreme.angle))
-
-
-def _stretch(stretch: Stretch) -> dict:
-    return {"from_deg": float(np.degrees(stretch.start)), "to_deg": float(np.degrees(stretch.end)),
-            "worst_mm": stretch.worst}
-
-
-def _finite(value):
-    return None if value is None or not np.isfinite(value) else float(value)
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 
 @dataclass(frozen=True)
-class CamResult:
+class CamResult(CommandResult):
     """A cam for a ``CamProblem``.
 
     Attributes
@@ -52,6 +43,10 @@ class CamResult:
     timings_s: dict
 
     @property
+    def source(self) -> str:
+        return self.problem.source
+
+    @property
     def base_radius(self) -> float:
         return self.geometry.base_radius
 
@@ -73,59 +68,24 @@ class CamResult:
                                        f"{nearest.value:.4f} mm of the centre at cam angle "
                                        f"{np.degrees(nearest.angle):.2f} deg"]
 
-    @property
-    def passed(self) -> bool:
-        return not self.failures
+    def to_json(self) -> dict[str, Any]:
+        from transplanter.cam.report import cam_result_json
 
-    def to_json(self) -> dict:
-        """The report as plain JSON types (mm and degrees; a swing in degrees): the content of report.json."""
-        problem, checks, follower = self.problem, self.checks, self.problem.follower
-        swing, flat = problem.oscillating, follower.kind == "flat_faced"
-        unit = np.degrees if swing else float
-        jumps = [{"at_deg": round(float(np.degrees(j.angle)), 9),
-                  "between": [self._segment_name(j.before), self._segment_name(j.after)],
-                  "size": float(unit(j.size)), "unit": "deg/rad^2" if swing else "mm/rad^2"}
-                 for j in checks.acceleration_jumps]
-        return {
-            "source": problem.source, "title": problem.title,
-            "follower": {"kind": follower.kind, "roller_radius_mm": follower.roller_radius,
-                         **({"pivot_mm": follower.pivot.tolist(), "arm_length_mm": follower.arm_length,
-                             "roller_side": "pulled" if follower.pulled else "pushed"} if swing
-                            else {"face_offset_range_mm": [float(self.geometry.center[:, 0].min()),
-                                                           float(self.geometry.center[:, 0].max())]} if flat
-                            else {"offset_mm": follower.offset})},
-            "direction": "counterclockwise" if problem.direction > 0 else "clockwise",
-            "base_radius_mm": self.base_radius,
-            "bore_radius_mm": problem.bore_radius,
-            "nearest_profile_mm": {"distance": self.nearest_profile.value, "at_deg": _at(self.nearest_profile)},
-            "designed_base_radius": self.designed,
-            "cams_evaluated": self.cams_evaluated,
-            "segments": [{"kind": s.kind, "angle_deg": round(float(np.degrees(s.angle)), 9), "law": s.law,
-                          ("swing_deg" if swing else "lift_mm"): round(float(unit(abs(s.lift))), 9)} for s in problem.segments],
-            "laws": sorted({s.law for s in problem.segments if s.law}),
-            "max_pressure_angle_deg": {"rise": _extreme(checks.pressure["rise"], np.degrees),
-                                       "return": _extreme(checks.pressure["return"], np.degrees),
-                                       "at_deg": {"rise": _at(checks.pressure["rise"]),
-                                                  "return": _at(checks.pressure["return"])},
-                                       "limit": round(float(np.degrees(problem.pressure_limit)), 9)},
-            "min_curvature_radius_mm": {"pitch": _extreme(checks.min_pitch_radius),
-                                        "profile": _extreme(checks.min_profile_radius),
-                                        "concave_profile": _finite(_extreme(checks.min_concave_profile_radius)),
-                                        "profile_limit": problem.profile_radius_limit,
-                                        "at_deg": {"pitch": _at(checks.min_pitch_radius),
-                                                   "profile": _at(checks.min_profile_radius),
-                                                   "concave_profile": _at(checks.min_concave_profile_radius)}},
-            "undercut": bool(checks.undercut),
-            "undercut_stretches": [_stretch(s) for s in checks.undercut],
-            "roller_interference": [_stretch(s) for s in checks.interference],
-            "acceleration_jumps": jumps,
-            "laws_with_acceleration_jumps": sorted({self.problem.segments[k].law for j in checks.acceleration_jumps
-                                                    for k in (j.before, j.after) if self.problem.segments[k].law}),
-            "displacement_range": [float(unit(self.geometry.motion[0].min())), float(unit(self.geometry.motion[0].max()))],
-            "samples": int(self.geometry.angle.size),
-            "timings_s": self.timings_s,
-        }
+        return cam_result_json(self)
 
-    def _segment_name(self, index: int) -> str:
-        segment = self.problem.segments[index]
-        return f"{index + 1}: {segment.kind}" + (f" ({segment.law})" if segment.law else "")
+    def to_markdown(self, files: Sequence[str] = ()) -> str:
+        from transplanter.cam.report import to_markdown
+
+        return to_markdown(self, files)
+
+    def draw_figures(self) -> dict[str, Figure]:
+        from transplanter.cam.figures import draw_figures
+
+        return draw_figures(self)
+
+    def write_files(self, folder: Path, animation: bool = True) -> list[Path]:
+        """The profile as CSV, DXF and SVG (``cam.write_drawings``)."""
+        from transplanter.cam.drawings import write_drawings
+
+        with progress.step("drawings"):
+            return write_drawings(self, folder)

@@ -13,27 +13,25 @@ key and return points, as in the paper; with ``[support]``, the seedling support
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
+from transplanter import progress
 from transplanter.api_arguments import require_problem
+from transplanter.command_result import CommandResult
 from transplanter.errors import ProblemError
 from transplanter.fivebar.candidate import Candidate, evaluate_candidate
 from transplanter.fivebar.linkage import FiveBar, circle_intersection, from_hinges
 from transplanter.fivebar.problem import FiveBarProblem
-from transplanter.fivebar.result import design_json
 from transplanter.fivebar.support import SupportDesign, design_support
 from transplanter.toml_fields import ClassFields, FieldReader, read_toml, shown
 
 _FIELDS = ("carrier_length", "carrier_angle_deg", "rod_length", "rod_angle_deg", "push_plate_length",
            "receiving_plate_length")
-
-
-def _finite_or_none(value: float) -> float | None:
-    """JSON has no NaN or infinity: a condition the evaluation did not reach is null."""
-    return float(value) if np.isfinite(value) else None
 
 
 @dataclass(frozen=True)
@@ -79,7 +77,7 @@ class GivenDesign:
 
 
 @dataclass(frozen=True)
-class DesignEvaluation:
+class DesignEvaluation(CommandResult):
     """How well a given design meets a five-bar problem.
 
     Attributes
@@ -114,25 +112,40 @@ class DesignEvaluation:
     alternatives: list[float]
     support: SupportDesign | None = None
 
-    def to_json(self) -> dict:
-        """The report as plain JSON types (mm, degrees; null where the whole-turn check was not
-        reached): the content of report.json."""
+    @property
+    def source(self) -> str:
+        """The design file (the report is about it)."""
+        return self.design.source
+
+    @property
+    def relative_angle_monotonic(self) -> bool:
+        """Whether the relative angle fitted through the key and return points increases all round."""
         candidate = self.candidate
-        return {
-            "source": self.design.source,
-            "key_pose_position_errors_mm": self.position_errors_mm.tolist(),
-            "key_pose_angle_errors_deg": self.angle_errors_deg.tolist(),
-            "receiving_chain_errors_mm": self.chain_errors_mm[0].tolist(),
-            "carrier_chain_errors_mm": self.chain_errors_mm[1].tolist(),
-            "violations": candidate.defects,
-            "min_closure_margin": _finite_or_none(candidate.min_margin),
-            "relative_angle_monotonic": (candidate.relative_angle is not None
-                                         and "monotonic" not in " ".join(candidate.defects)),
-            "ratio_range": [_finite_or_none(v) for v in candidate.ratio_range],
-            "assemblies_worst_position_error_mm": self.alternatives,
-            "design": design_json(self.mech, self.problem.poses[0]),
-            **({"support": self.support.to_json()} if self.support else {}),
-        }
+        return candidate.relative_angle is not None and "monotonic" not in " ".join(candidate.defects)
+
+    @property
+    def failures(self) -> list[str]:
+        """The conditions the design violates (``Candidate.defects``), then the support's failures."""
+        return [*self.candidate.failures, *(self.support.failures if self.support else [])]
+
+    def to_json(self) -> dict[str, Any]:
+        from transplanter.fivebar.report import design_evaluation_json
+
+        return design_evaluation_json(self)
+
+    def to_markdown(self, files: Sequence[str] = ()) -> str:
+        from transplanter.fivebar.report import evaluation_markdown
+
+        return evaluation_markdown(self)
+
+    def write_files(self, folder: Path, animation: bool = True) -> list[Path]:
+        """The support cam's drawings (``cam.write_drawings``), with ``[support]``."""
+        if self.support is None:
+            return []
+        from transplanter.cam.drawings import write_drawings
+
+        with progress.step("drawings"):
+            return write_drawings(self.support.cam, folder)
 
 
 def load_design(path: str | Path) -> GivenDesign:

@@ -17,8 +17,8 @@ from transplanter.cam.kinematics import motion_at
 from transplanter.cam.problem import parse_problem as parse_cam
 from transplanter.cam.result import CamResult
 from transplanter.cam.synthesis import synthesize as synthesize_cam
-from transplanter.cam.table5 import evaluate_table5
-from transplanter.cam.timing import STAGES, plate_clearance, timed_segments
+from transplanter.cam.table5 import Table5Evaluation, evaluate_table5
+from transplanter.cam.timing import plate_clearance, timed_segments
 from transplanter.errors import ProblemError
 from transplanter.fivebar.linkage import FiveBar
 from transplanter.fivebar.loop_closure import close_loop
@@ -35,10 +35,6 @@ def design_stages(key_turns, return_turns) -> np.ndarray:
     receive from there to the first return point, the return to the last return point, the rest to the turn's end."""
     marks = np.r_[0.0, key_turns[-1], return_turns[0], return_turns[-1], TWO_PI]
     return np.diff(marks)
-
-
-def _deg(values) -> list[float]:
-    return [float(v) for v in np.degrees(values)]
 
 
 @dataclass(frozen=True)
@@ -62,6 +58,8 @@ class SupportDesign:
         The receiving plate's hinge E over the turn (mm).
     clearance_mm : float
         Smallest x_E - x_Z over the turn; ``clearance_turn`` (rad) is where.
+    table5 : Table5Evaluation
+        The published support (Wang et al. 2025 Table 5) evaluated, which the report sets beside this one.
     """
 
     spec: SupportSpec
@@ -74,6 +72,7 @@ class SupportDesign:
     hinge_e: np.ndarray
     clearance_mm: float
     clearance_turn: float
+    table5: Table5Evaluation
 
     @property
     def failures(self) -> list[str]:
@@ -111,31 +110,6 @@ class SupportDesign:
         angle = CAM_DIRECTION * float(self.cam_angle(carrier_turn))
         turn = np.array([[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]])
         return self.spec.cam_center + getattr(self.cam.geometry, curve) @ turn.T
-
-    def to_json(self) -> dict:
-        spec, cam = self.spec, self.cam.to_json()
-        names = dict(zip(STAGES, _deg([s.angle for s in self.cam.problem.segments])))
-        return {
-            "swing_deg": float(np.degrees(spec.swing)),
-            "theta_cg_deg": {"low": float(np.degrees(spec.low_angle)), "high": float(np.degrees(spec.high_angle))},
-            "bell_crank_kcg_deg": float(np.degrees(spec.bell_crank)),
-            "clearance_to_receiving_plate_mm": self.clearance_mm,
-            "clearance_least_at_carrier_turn_deg": float(np.degrees(self.clearance_turn)),
-            "plate_x_mm": spec.linkage.plate_x, "heights_mm": list(spec.heights),
-            "plate_height_range_mm": [float(np.nanmin(self.plate_height)), float(np.nanmax(self.plate_height))],
-            "drive_ratio": spec.drive_ratio,
-            "segments": {"cam_angles_deg": names,
-                         "source": "typed (support.segments_deg)" if self.typed else
-                         "design stages: push pose 1 to the last key pose, receive to the first return point, return "
-                         "to the last return point, rest to the end of the turn",
-                         "carrier_stage_deg": dict(zip(STAGES, _deg(self.stages)))},
-            "cam": {key: cam[key] for key in ("base_radius_mm", "direction", "follower", "laws", "max_pressure_angle_deg",
-                                              "min_curvature_radius_mm", "undercut", "undercut_stretches",
-                                              "roller_interference", "acceleration_jumps")},
-            "cam_passed": self.cam.passed,
-            "failures": self.failures,
-            "table5": evaluate_table5().to_json(),      # the published support, for comparison
-        }
 
 
 def cam_angle(spec: SupportSpec, carrier_turns) -> np.ndarray:
@@ -188,4 +162,4 @@ def design_support(spec: SupportSpec, mech: FiveBar, relative: RelativeAngle, ke
     clearance, k = plate_clearance(spec.linkage.plate_x, hinge_e[:, 0])
     rocker = rocker_angles(spec, cam, cam_angle(spec, turns))
     return SupportDesign(spec, stages, typed, cam, turns, rocker, spec.linkage.plate_height(rocker, _above(spec)),
-                         hinge_e, clearance, float(turns[k]))
+                         hinge_e, clearance, float(turns[k]), evaluate_table5())

@@ -86,7 +86,7 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
 
     Every feasible region candidate is refined by the design NLP; the results are judged by
     their own forward evaluation, merged where they are one mechanism, and ranked
-    (``fivebar.alternatives``: the largest smallest transmission angle EBF first). Alternative
+    (``fivebar.alternatives``: the largest smallest transmission angle at E first). Alternative
     ``pick`` gets its gears and the verification.
 
     Parameters

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import dataclasses
 import re
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 
 import numpy as np
 import shapely
@@ -140,6 +140,21 @@ def _fits(plan: Layout, teeth: int, candidate: int) -> bool:
 
 
 @dataclass(frozen=True)
+class CornerPressureTrial:
+    """One corner pressure angle tried (deg): refused before cutting (``refused`` says why), or cut and judged
+    (its failures and transmission error, mm)."""
+
+    degrees: float
+    refused: str | None = None
+    failures: tuple[str, ...] = ()
+    transmission_error_mm: float | None = None
+
+    @property
+    def passed(self) -> bool:
+        return self.refused is None and not self.failures
+
+
+@dataclass(frozen=True)
 class CompositeTeeth:
     """Both outlines (mm, each gear's frame) and what was built and measured on the way."""
 
@@ -152,7 +167,7 @@ class CompositeTeeth:
     contact: ContactRatio
     involute: InvoluteDeviation     # the shaper-cut stretches against the closed-form variable involute
     corner_pressure_deg: float      # theta_J / 2 of the arches
-    trials: tuple[dict, ...] = ()   # the corner pressure angles tried when none was given, and how each did
+    trials: tuple[CornerPressureTrial, ...] = ()   # the corner pressure angles tried when none was given
     cutter: str = "composite"
 
     @property
@@ -165,8 +180,8 @@ class CompositeTeeth:
         found = []
         where = self.contact.where()
         if self.contact.minimum < 1:
-            found.append(f"contact ratio {self.contact.minimum:.3f} below 1 on the {where['flank']} flank of the "
-                         f"tooth at {where['phi_deg']:.2f} deg")
+            found.append(f"contact ratio {self.contact.minimum:.3f} below 1 on the {where.flank} flank of the "
+                         f"tooth at {where.phi_deg:.2f} deg")
         for flank, angles in zip(("low-arc", "high-arc"), self.contact.uncovered_deg):
             if angles.size:
                 found.append(f"no {flank} flank touches (contact ratio below 1) at {angles.size} of the sampled "
@@ -359,10 +374,10 @@ def _first_that_passes(pair_at, angles: list[float]) -> CompositeTeeth:
                 teeth = pair_at(float(np.radians(degrees)))
         except InfeasibleError as error:
             refusal = refusal or error
-            trials.append({"corner_pressure_angle_deg": degrees, "refused": str(error).split(": ", 1)[-1]})
+            trials.append(CornerPressureTrial(degrees, refused=str(error).split(": ", 1)[-1]))
             continue
-        trials.append({"corner_pressure_angle_deg": degrees, "passed": teeth.passed, "failures": teeth.failures,
-                       "transmission_error_mm": teeth.mesh.max_transmission_error_mm})
+        trials.append(CornerPressureTrial(degrees, failures=tuple(teeth.failures),
+                                          transmission_error_mm=teeth.mesh.max_transmission_error_mm))
         built.append(teeth)
         if teeth.passed:
             break
@@ -440,28 +455,3 @@ def _corner_tooth(outline, corner, start, end, pitch, arches, rising) -> CornerT
     return CornerTooth(float(corner), float(start), float(end), pitch, arches, tuple(kinks), tuple(gaps), tuple(rising),
                        tuple(arch_pressure_range(a, n) for a, n in zip(arches, used)),
                        tuple(polyline_min_curvature_radius(points[STRAIGHT_POINTS:]) for points in rising))
-
-
-def composite_teeth_json(teeth: CompositeTeeth) -> dict:
-    """The composite teeth's part of report.json (mm, degrees)."""
-    mesh, contact = teeth.mesh, teeth.contact
-    return {
-        "tooth_counts_built": list(teeth.counts),
-        "contact_ratio_min": contact.minimum,
-        "contact_ratio_where": contact.where(),
-        "contact_lost_at_deg": {"low-arc": contact.uncovered_deg[0].tolist(), "high-arc": contact.uncovered_deg[1].tolist()},
-        "variable_involute": asdict(teeth.involute),
-        "corner_pressure_angle_deg": teeth.corner_pressure_deg,
-        "corner_pressure_trials": list(teeth.trials),
-        "mesh_check": {"max_overlap_mm": mesh.max_overlap_mm, "min_clearance_mm": mesh.min_clearance_mm,
-                       "transmission_error_deg": float(np.degrees(mesh.max_transmission_error_rad)),
-                       "transmission_error_mm": mesh.max_transmission_error_mm, "passed": mesh.passed},
-        "corner_teeth": [{"corner_arc_mm": t.corner_arc, "thickness_pitches": t.thickness_ratio,
-                          "rolling_radii_mm": [a.radius for a in t.arches],
-                          "joint_heights_mm": [a.joint_height for a in t.arches],
-                          "corner_heights_mm": [a.corner_height for a in t.arches],
-                          "joint_kinks_deg": list(t.joint_kinks_deg), "joint_gaps_mm": list(t.joint_gaps_mm),
-                          "arch_pressure_angles_deg": [list(p) for p in t.pressure_angles_deg],
-                          "arch_min_curvature_radius_mm": list(t.min_curvature_radius_mm)}
-                         for t in teeth.corner_teeth],
-    }

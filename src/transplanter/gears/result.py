@@ -1,16 +1,23 @@
-"""A designed gear pair, and its JSON (the content of report.json)."""
+"""A designed gear pair, and the checks it passes."""
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from transplanter.gears.composite_curve import CompositeCurve, cusps
-from transplanter.gears.composite_teeth import CompositeTeeth, composite_teeth_json
+from transplanter import progress
+from transplanter.command_result import CommandResult
+from transplanter.gears.composite_teeth import CompositeTeeth
 from transplanter.gears.pair import GearPairDesign
 from transplanter.gears.problem import GearProblem
 from transplanter.gears.rack_teeth import ADDENDUM
 from transplanter.gears.teeth import PairTeeth
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 
 @dataclass(frozen=True)
@@ -38,13 +45,13 @@ class ToothCounts:
     scale_for_module: float
 
 
-def _min_convex(rho, convexity):
+def _min_convex(rho, convexity) -> float | None:
     convex = convexity > 0
     return float(rho[convex].min()) if convex.any() else None
 
 
 @dataclass(frozen=True)
-class GearResult:
+class GearResult(CommandResult):
     """A pair of non-circular gears designed from a ``GearProblem``.
 
     Attributes
@@ -72,14 +79,36 @@ class GearResult:
     timings_s: dict
 
     @property
+    def source(self) -> str:
+        return self.problem.source
+
+    @property
+    def convex(self) -> list[bool]:
+        """Whether each pitch curve (driver, driven) is convex all round."""
+        return [bool((c > 0).all()) for c in self.design.convexity]
+
+    @property
+    def min_convex_curvature_radius(self) -> list[float | None]:
+        """Smallest curvature radius of each pitch curve's convex stretches (mm; None when it has none)."""
+        return [_min_convex(r, c) for r, c in zip(self.design.curvature_radius, self.design.convexity, strict=True)]
+
+    @property
+    def undercut(self) -> list[bool] | None:
+        """Whether a rack of the module would undercut each gear: its smallest convex curvature radius below
+        addendum * module / sin^2(pressure angle); None without a module."""
+        if self.tooth_counts is None:
+            return None
+        limit = ADDENDUM * self.tooth_counts.module / np.sin(self.problem.pressure_angle) ** 2
+        return [bool(v is not None and v < limit) for v in self.min_convex_curvature_radius]
+
+    @property
     def failures(self) -> list[str]:
         """Checks the pair fails: tooth outlines that cross themselves (a cutter that cuts away teeth it
         made) cannot be made or drawn as given; composite teeth add their contact and mesh checks."""
         if self.teeth is None:
             return []
-        composite = getattr(self.teeth, "failures", None)
-        if composite is not None:          # composite teeth name their own crossings
-            return list(composite)
+        if isinstance(self.teeth, CompositeTeeth):          # composite teeth name their own crossings
+            return self.teeth.failures
         if not any(self.teeth.self_intersections):
             return []
         driver, driven = self.teeth.self_intersections
@@ -87,46 +116,24 @@ class GearResult:
                 "away teeth it made, usually where a pitch curve bends sharper than the tooth; try fewer teeth "
                 "(a larger pair.module), or pair.cutter = \"shaper\" for concave stretches"]
 
-    @property
-    def passed(self) -> bool:
-        """Whether the pair passes its checks (``failures`` empty)."""
-        return not self.failures
+    def to_json(self) -> dict[str, Any]:
+        from transplanter.gears.report import gear_result_json
 
-    def to_json(self) -> dict:
-        """The report as plain JSON types (mm, rad, rad/s): the content of report.json."""
-        d, problem = self.design, self.problem
-        out = {
-            "source": problem.source, "title": problem.title,
-            "driver": {"family": d.driver.family, "parameters": problem.parameters, "scale": d.driver.scale},
-            "center_distance": d.center_distance,
-            "orders": list(d.orders),
-            "closure_error": d.closure_error,
-            "rolling_mismatch_mm": d.rolling_mismatch_mm,
-            "ratio_range": [float(d.ratio.min()), float(d.ratio.max())],
-            "perimeters": list(d.perimeters),
-            "convex": [bool((c > 0).all()) for c in d.convexity],
-            "min_curvature_radius": [_min_convex(r, c) for r, c in zip(d.curvature_radius, d.convexity)],
-            "joints": d.joints,
-            "cusps": cusps(d.driver, d.center_distance) if isinstance(d.driver, CompositeCurve) else None,
-            "driver_speed_rad_s": d.driver_speed,
-            "driven_speed_range_rad_s": [float(d.driven_speed.min()), float(d.driven_speed.max())],
-            "driven_acceleration_range_rad_s2": [float(d.driven_acceleration.min()),
-                                                 float(d.driven_acceleration.max())],
-            "ratio_correction_factor": self.ratio_correction,
-            "module": problem.module,
-            "tooth_counts": None, "undercut": None, "contact_ratio_range": None, "self_intersections": None,
-            "timings_s": self.timings_s,
-        }
-        if self.tooth_counts is not None:
-            counts = self.tooth_counts
-            limit = ADDENDUM * counts.module / np.sin(problem.pressure_angle) ** 2
-            out["tooth_counts"] = {"fractional": list(counts.fractional), "nearest": list(counts.counts),
-                                   "exact_module": counts.exact_module, "scale_for_module": counts.scale_for_module}
-            out["undercut"] = [bool(v is not None and v < limit) for v in out["min_curvature_radius"]]
-        if self.teeth is not None:
-            out["cutter"] = self.teeth.cutter
-            out["contact_ratio_range"] = None if self.teeth.contact_ratio is None else list(self.teeth.contact_ratio)
-            out["self_intersections"] = list(self.teeth.self_intersections)
-        if isinstance(self.teeth, CompositeTeeth):
-            out.update(composite_teeth_json(self.teeth))
-        return out
+        return gear_result_json(self)
+
+    def to_markdown(self, files: Sequence[str] = ()) -> str:
+        from transplanter.gears.report import to_markdown
+
+        return to_markdown(self, files)
+
+    def draw_figures(self) -> dict[str, Figure]:
+        from transplanter.gears.figures import draw_figures
+
+        return draw_figures(self)
+
+    def write_files(self, folder: Path, animation: bool = True) -> list[Path]:
+        """The pitch curves and tooth outlines as CSV, SVG and DXF (``gears.write_drawings``)."""
+        from transplanter.gears.drawings import write_drawings
+
+        with progress.step("drawings"):
+            return write_drawings(self, folder)

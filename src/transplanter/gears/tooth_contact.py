@@ -15,6 +15,7 @@ flank of a side touches are listed too (there the next pair has not taken over).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import shapely
@@ -33,6 +34,14 @@ REACH_PITCHES, SPACING_MODULES = 1.5, 0.01
 TIP_MODULES = 0.05
 
 
+class LeastContact(NamedTuple):
+    """Where a contact ratio is smallest: the driver tooth (index), its centre's polar angle (deg), the flank side."""
+
+    tooth: int
+    phi_deg: float
+    flank: str
+
+
 @dataclass(frozen=True)
 class ContactRatio:
     """Per driver tooth and flank side: contact ratio and the tooth's pitch-arc centre (mm)."""
@@ -46,10 +55,9 @@ class ContactRatio:
     def minimum(self) -> float:
         return float(np.nanmin(self.ratios))
 
-    def where(self) -> dict:
+    def where(self) -> LeastContact:
         side, tooth = np.unravel_index(int(np.nanargmin(self.ratios)), self.ratios.shape)
-        return {"tooth": int(tooth), "phi_deg": float(self.tooth_angles_deg[tooth]),
-                "flank": ("low-arc", "high-arc")[side]}
+        return LeastContact(int(tooth), float(self.tooth_angles_deg[tooth]), ("low-arc", "high-arc")[side])
 
 
 def _densified(outline: np.ndarray, spacing: float) -> np.ndarray:

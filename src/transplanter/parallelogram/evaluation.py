@@ -91,15 +91,6 @@ class Evaluation:
     undercut_free: bool
     min_curvature_radius: tuple[float, float]
 
-    def to_json(self) -> dict:
-        return {"curve": self.label, "conventions": self.conventions, "m12": self.m12,
-                "center_distance": self.center_distance, "driven_turn_deg": self.driven_turn_deg,
-                "depth_mm": self.depth, "vx_release_mm_s": self.vx_release, "ax_release_mm_s2": self.ax_release,
-                "vertical_range_mm": self.vertical_range, "spacing_mm": self.spacing,
-                "planting_time_s": self.planting_time, "depth_window_cut": self.window_cut,
-                "gear_convex": self.convex, "gear_undercut_free": self.undercut_free,
-                "min_curvature_radius_mm": list(self.min_curvature_radius)}
-
 
 def evaluate(problem: ParallelogramProblem, design: dict, label: str = "closed", m12=None, center_distance=None,
              conventions: Conventions | None = None, conventions_name: str = "file") -> Evaluation:

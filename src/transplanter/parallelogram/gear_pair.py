@@ -23,15 +23,3 @@ def gear_pair(design: dict, module: float, pressure_angle: float, driver_speed: 
         pair["teeth"] = int(teeth)
     driver = {"family": "denatured_limacon", "base": design["l"], "amplitude": design["b"], "m11": design["m11"]}
     return gears.synthesize(gears.parse_problem({"driver": driver, "pair": pair}, source))
-
-
-def gear_json(result: GearResult) -> dict:
-    """``gear`` of report.json: center distance (mm), tooth counts, convexity and undercut of both gears."""
-    report = result.to_json()
-    counts = report["tooth_counts"] or {}
-    return {"center_distance": report["center_distance"], "closure_error_rad": report["closure_error"],
-            "scale": report["driver"]["scale"], "module": report["module"],
-            "teeth": counts.get("nearest"), "teeth_fractional": counts.get("fractional"),
-            "convex": report["convex"], "undercut": report["undercut"],
-            "min_curvature_radius_mm": report["min_curvature_radius"], "ratio_range": report["ratio_range"],
-            "joints": report["joints"]}

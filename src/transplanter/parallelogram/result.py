@@ -1,47 +1,25 @@
-"""Results of the onion-transplanter command and their JSON (the content of report.json)."""
+"""Results of the onion-transplanter command, and the checks they pass."""
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from transplanter.command_result import CommandResult
 from transplanter.gears.result import GearResult
-from transplanter.parallelogram.evaluation import DesignFile, Evaluation, problem_design
-from transplanter.parallelogram.gear_pair import gear_json
-from transplanter.parallelogram.objectives import OBJECTIVES
-from transplanter.parallelogram.problem import FILE_NAMES, PUBLISHED_FIELDS, TRANSLATION_ONLY, ParallelogramProblem
+from transplanter.parallelogram.evaluation import DesignFile, Evaluation
+from transplanter.parallelogram.problem import ParallelogramProblem
+from transplanter.parallelogram.search import SearchResult
 
-
-def variables_json(design: dict) -> dict:
-    """The eight variables as in a file (mm, alpha in degrees)."""
-    return {FILE_NAMES[k]: (float(np.degrees(v)) if k == "alpha" else float(v)) for k, v in design.items()
-            if k in FILE_NAMES}
-
-
-def trajectory_json(evaluation: Evaluation) -> dict:
-    """``trajectory`` summary of report.json."""
-    return {"depth_mm": evaluation.depth, "vx_release_mm_s": evaluation.vx_release,
-            "vertical_range_mm": evaluation.vertical_range, "spacing_mm": evaluation.spacing,
-            "planting_time_s": evaluation.planting_time, "ax_release_mm_s2": evaluation.ax_release}
-
-
-def conventions_json(problem: ParallelogramProblem) -> dict:
-    c = problem.conventions
-    return {"crank_sense": "counterclockwise" if c.crank_sense > 0 else "clockwise",
-            "alpha_reference_deg": float(np.degrees(c.alpha_reference)), "alpha_instant": c.alpha_instant,
-            "forward": "+x" if c.forward > 0 else "-x", "forward_speed_mm_s": problem.forward_speed,
-            "driver_speed_rpm": problem.driver_speed * 60 / (2 * np.pi),
-            "crank_pivot_mm": [float(v) for v in problem.crank_pivot], "depth_window_mm": problem.depth_window}
-
-
-def published_json(given: DesignFile, evaluations: list[Evaluation]) -> dict:
-    """``published`` of report.json: the paper's figures, its printed gear values, every evaluation."""
-    return {"paper": {k: given.published[k] for k in PUBLISHED_FIELDS if k in given.published},
-            "printed": dict(given.printed), "evaluations": [e.to_json() for e in evaluations]}
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 
 @dataclass(frozen=True)
-class DesignReport:
+class DesignReport(CommandResult):
     """A given design evaluated (``--design``): every reading of its gear and conventions, the
     gear pair through the gear library, and the closed curve under the file's conventions."""
 
@@ -54,16 +32,25 @@ class DesignReport:
     failures: tuple[str, ...] = ()
 
     @property
-    def passed(self) -> bool:
-        return not self.failures
+    def source(self) -> str:
+        """The problem file (the design is judged against its requirements)."""
+        return self.problem.source
 
-    def to_json(self) -> dict:
-        return {"source": self.problem.source, "design_source": self.given.source, "title": self.given.title,
-                "design": variables_json(self.given.design), "conventions": conventions_json(self.problem),
-                "translation_only": [FILE_NAMES[k] for k in TRANSLATION_ONLY],
-                "published": published_json(self.given, self.evaluations),
-                "gear": gear_json(self.gear), "trajectory": trajectory_json(self.closed),
-                "timings_s": self.timings_s}
+    def to_json(self) -> dict[str, Any]:
+        from transplanter.parallelogram.report import design_report_json
+
+        return design_report_json(self)
+
+    def to_markdown(self, files: Sequence[str] = ()) -> str:
+        from transplanter.parallelogram.report import evaluation_markdown
+
+        return evaluation_markdown(self, files)
+
+    def draw_figures(self) -> dict[str, Figure]:
+        """The design's trajectory, velocity and acceleration (``draw_design_figures``)."""
+        from transplanter.parallelogram.figures import draw_design_figures
+
+        return draw_design_figures(self.problem, self.given.design)
 
 
 def objective_values(problem: ParallelogramProblem, evaluation: Evaluation) -> np.ndarray:
@@ -98,18 +85,9 @@ class Polished:
             out.append("the polished design does not dominate the NSGA-II design it started from")
         return tuple(out)
 
-    def to_json(self, problem: ParallelogramProblem) -> dict:
-        out = {"status": self.status, "iterations": self.iterations, "solve_seconds": self.solve_seconds,
-               "dominates_start": self.dominates_start, "variables": None, "objectives": None, "evaluation": None}
-        if self.variables is not None:
-            out["variables"] = variables_json(self.variables)
-            out["objectives"] = dict(zip(OBJECTIVES, (float(v) for v in objective_values(problem, self.evaluation))))
-            out["evaluation"] = self.evaluation.to_json()
-        return out
-
 
 @dataclass(frozen=True)
-class ParallelogramResult:
+class ParallelogramResult(CommandResult):
     """A designed onion transplanter: the Pareto designs of NSGA-II, the picked one evaluated again
     independently on a finer grid, its gear pair, and the published optimum for comparison.
 
@@ -135,7 +113,7 @@ class ParallelogramResult:
     """
 
     problem: ParallelogramProblem
-    search: object
+    search: SearchResult
     pick: int
     chosen: dict
     evaluation: Evaluation
@@ -156,37 +134,27 @@ class ParallelogramResult:
         return self.polished.evaluation if self.polished is not None and self.polished.variables else self.evaluation
 
     @property
-    def passed(self) -> bool:
-        return not self.failures
+    def source(self) -> str:
+        return self.problem.source
 
-    def pareto_json(self) -> list[dict]:
-        s = self.search
-        rows = []
-        for k in range(len(s.designs)):
-            variables = variables_json({**self.problem.design, **s.variables(k + 1)})
-            rows.append({"rank": k + 1, "variables": variables,
-                         "objectives": dict(zip(OBJECTIVES, (float(v) for v in s.objectives[k]))),
-                         "depth_mm": float(s.depth[k]), "vx_release_mm_s": float(s.vx_release[k]),
-                         "vertical_range_mm": float(s.vertical_range[k]), "center_distance": float(s.center_distance[k])})
-        return rows
+    def to_json(self) -> dict[str, Any]:
+        from transplanter.parallelogram.report import parallelogram_result_json
 
-    def to_json(self) -> dict:
-        pareto = self.pareto_json()
-        e = self.evaluation
-        return {"source": self.problem.source, "title": self.problem.title,
-                "conventions": conventions_json(self.problem),
-                "translation_only": [FILE_NAMES[k] for k in TRANSLATION_ONLY],
-                "searched": [FILE_NAMES[k] for k in self.search.names],
-                "search": {"population": self.problem.population, "generations": self.problem.generations,
-                           "seed": self.problem.seed, "evaluations": self.search.evaluations,
-                           "depth_band_mm": list(self.problem.depth_band), "depth_target_mm": self.problem.depth_target,
-                           "vertical_range_target_mm": self.problem.vertical_range_target},
-                "pareto": pareto, "knee": pareto[0], "pick": self.pick,
-                "chosen": {"variables": variables_json(self.chosen),
-                           "objectives": dict(zip(OBJECTIVES, (float(v) for v in objective_values(self.problem, e)))),
-                           "evaluation": e.to_json()},
-                "start": self.start.to_json(),
-                "published": published_json(problem_design(self.problem), self.published),
-                "gear": gear_json(self.gear), "trajectory": trajectory_json(self.final_evaluation),
-                "polished": None if self.polished is None else self.polished.to_json(self.problem),
-                "timings_s": self.timings_s}
+        return parallelogram_result_json(self)
+
+    def to_markdown(self, files: Sequence[str] = ()) -> str:
+        from transplanter.parallelogram.report import to_markdown
+
+        return to_markdown(self, files)
+
+    def draw_figures(self) -> dict[str, Figure]:
+        from transplanter.parallelogram.figures import draw_figures
+
+        return draw_figures(self)
+
+    def write_files(self, folder: Path, animation: bool = True) -> list[Path]:
+        """``parallelogram.write_files``: the tables, the gear drawings and, unless ``animation`` is False, the
+        animation."""
+        from transplanter.parallelogram.output_files import write_files
+
+        return write_files(self, folder, animation=animation)

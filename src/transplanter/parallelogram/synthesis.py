@@ -8,6 +8,7 @@ import numpy as np
 
 from transplanter.api_arguments import require_problem
 from transplanter.errors import ProblemError, SolverError, TransplanterError
+from transplanter.gears.result import GearResult
 from transplanter.parallelogram.evaluation import (
     EVALUATION_SAMPLES,
     DesignFile,
@@ -16,7 +17,7 @@ from transplanter.parallelogram.evaluation import (
     evaluate_published,
     problem_design,
 )
-from transplanter.parallelogram.gear_pair import gear_json, gear_pair
+from transplanter.parallelogram.gear_pair import gear_pair
 from transplanter.parallelogram.kinematics import mechanisms
 from transplanter.parallelogram.nlp import polish
 from transplanter.parallelogram.problem import ParallelogramProblem
@@ -29,20 +30,20 @@ from transplanter.toml_fields import shown
 AGREEMENT = 1e-6
 
 
-def requirement_failures(problem: ParallelogramProblem, evaluation: Evaluation, gear: dict) -> tuple[str, ...]:
+def requirement_failures(problem: ParallelogramProblem, evaluation: Evaluation, gear: GearResult) -> tuple[str, ...]:
     """Why a design misses the problem's requirements (empty when it meets them): its depth on the fine
     grid within the depth band, its gear pair (gear library) convex and free of undercut."""
     failures = []
     low, high = problem.depth_band
     if not low - AGREEMENT * high <= evaluation.depth <= high * (1 + AGREEMENT):
         failures.append(f"depth {evaluation.depth:.4f} mm outside the band [{low:g}, {high:g}] mm")
-    if not all(gear["convex"]) or any(gear["undercut"] or ()):
-        failures.append(f"gear pair: convex {gear['convex']}, undercut {gear['undercut']}")
+    if not all(gear.convex) or any(gear.undercut or ()):
+        failures.append(f"gear pair: convex {gear.convex}, undercut {gear.undercut}")
     return tuple(failures)
 
 
 def _checks(problem: ParallelogramProblem, search: SearchResult, rank: int, evaluation: Evaluation,
-            gear: dict) -> tuple[str, ...]:
+            gear: GearResult) -> tuple[str, ...]:
     """Why the chosen design fails (empty when it passes): the fine evaluation must agree with the search
     and the design meet the requirements (``requirement_failures``)."""
     failures = []
@@ -126,7 +127,7 @@ def synthesize(problem: ParallelogramProblem, pick: int | None = None,
     start = time.perf_counter()
     gear, gear_failures = toothed_pair(problem, final)
     timings["gear"] = time.perf_counter() - start
-    failures = _checks(problem, search, rank, evaluation, gear_json(gear)) + gear_failures
+    failures = _checks(problem, search, rank, evaluation, gear) + gear_failures
     if polished is not None:
         failures += polished.failures(problem)
     return ParallelogramResult(problem, search, rank, chosen, evaluation, gear, reference, timings, failures,
@@ -158,4 +159,4 @@ def evaluate_design(problem: ParallelogramProblem, given: DesignFile) -> DesignR
     gear = gear_pair(given.design, problem.module, problem.pressure_angle, problem.driver_speed,
                      source=given.source)
     timings["gear"] = time.perf_counter() - start
-    return DesignReport(problem, given, rows, closed, gear, timings, requirement_failures(problem, closed, gear_json(gear)))
+    return DesignReport(problem, given, rows, closed, gear, timings, requirement_failures(problem, closed, gear))

@@ -10,23 +10,23 @@ from transplanter.api_arguments import require_result
 from transplanter.output_folder import writable_folder
 from transplanter.parallelogram.kinematics import mechanisms
 from transplanter.parallelogram.objectives import OBJECTIVES
+from transplanter.parallelogram.report import pareto_variables
 from transplanter.parallelogram.result import ParallelogramResult
 from transplanter.parallelogram.trajectory import sample_path
 
 
 def write_pareto(result: ParallelogramResult, path: Path) -> Path:
     """``pareto.csv``: rank (1 = knee), the eight variables (mm, alpha in degrees), f1-f3, H, Vx, Y, a."""
-    rows = result.pareto_json()
-    names = list(rows[0]["variables"])
+    s = result.search
+    names = list(pareto_variables(result, 1))
     with path.open("w", newline="") as handle:
         writer = csv.writer(handle)
         writer.writerow(["rank", *names, *OBJECTIVES, "depth_mm", "vx_release_mm_s", "vertical_range_mm",
                          "center_distance_mm"])
-        for row in rows:
-            writer.writerow([row["rank"], *(f"{row['variables'][n]:.10g}" for n in names),
-                             *(f"{row['objectives'][n]:.10g}" for n in OBJECTIVES),
-                             *(f"{row[k]:.10g}" for k in ("depth_mm", "vx_release_mm_s", "vertical_range_mm",
-                                                           "center_distance"))])
+        for k in range(len(s.designs)):
+            measures = (s.objectives[k], (s.depth[k], s.vx_release[k], s.vertical_range[k], s.center_distance[k]))
+            writer.writerow([k + 1, *(f"{value:.10g}" for value in pareto_variables(result, k + 1).values()),
+                             *(f"{float(value):.10g}" for values in measures for value in values)])
     return path
 
 

@@ -19,12 +19,12 @@ def draw_path(result: PickupResult) -> Figure:
     direction = result.needle_direction()
     for where, colour, name in ((result.problem.picking, "tab:green", "picking"),
                                 (result.problem.pushing, "tab:red", "pushing")):
-        angle = result.angle_at(where)
-        k = result._index(where)
-        tip = result.tip[k]
-        base = tip - result.problem.arm_length * np.array([np.cos(direction[k]), np.sin(direction[k])])
+        needle = result.angle_at(where)
+        tip = needle.tip
+        base = tip - result.problem.arm_length * np.array([np.cos(direction[needle.index]),
+                                                           np.sin(direction[needle.index])])
         ax.plot([base[0], tip[0]], [base[1], tip[1]], color=colour, lw=2,
-                label=f"{name}: {angle['angle_deg']:.1f} deg to the horizontal")
+                label=f"{name}: {np.degrees(needle.angle):.1f} deg to the horizontal")
     ax.set_aspect("equal")
     ax.set_xlabel("x / mm")
     ax.set_ylabel("y / mm")

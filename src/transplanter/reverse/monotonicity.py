@@ -26,10 +26,6 @@ class Violation:
     worst: float            # the smallest c'(x) or chi'(c) in the interval, or the turn count
     message: str
 
-    def to_json(self) -> dict:
-        return {"condition": self.condition, "u": [self.u_start, self.u_end], "worst": self.worst,
-                "message": self.message}
-
 
 def _runs(failing: np.ndarray) -> list[tuple[int, int]]:
     """(first, last) index of each run of True, the runs that wrap round joined."""

@@ -1,43 +1,173 @@
-"""A reverse-design report (``ReverseResult.to_json``) as Markdown."""
+"""A reverse design as JSON (report.json) and Markdown (report.md): the path, the arm's motion, the
+monotonicity verdict with the changes that would pass, and the gear train with its round trip."""
 from __future__ import annotations
 
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-def to_markdown(report: dict, figures: list[str]) -> str:
-    lines = [f"# Reverse design: {report['title'] or report['source']}", "",
-             f"- Path: {report['trajectory']['points']} {report['trajectory']['kind'].replace('_', ' ')}, farthest "
-             f"{report['trajectory']['farthest_mm']:.4f} mm and nearest {report['trajectory']['nearest_mm']:.4f} mm "
-             f"from the pivot {report['trajectory']['pivot']}"
-             + (f"; the curve fitted to the samples misses them by up to {report['trajectory']['fit_residual_mm']:.3g} mm"
-                if report["trajectory"]["fit_residual_mm"] is not None else ""),
-             f"- Carrier s = {report['carrier_length']:.4f} mm, arm l = {report['arm_length']:.4f} mm "
-             f"({report['lengths_from']}), carrier turning {report['direction']}",
-             "- Branches: " + ", ".join(f"{s['branch']} on u {s['u'][0]:.4f}-{s['u'][1]:.4f}"
-                                        for s in report["branch_segments"])
-             + (f"; switches at u = {', '.join(f'{u:.4f}' for u in report['branch_switches_u'])} (the path touches "
-                "the reach circles there)" if report["branch_switches_u"] else ""),
-             f"- Monotonicity criterion (the reverse-gear-design paper): {'met' if report['monotonic'] else 'NOT met'}"]
-    for violation in report["violations"]:
-        lines.append(f"  - {violation['condition']}: {violation['message']}")
-    for hint in report["fix_hints"]:
-        lines.append(f"  - would pass with: {hint}")
-    if report["monotonic"]:
-        lines += [f"- Train: {report['topology']}, split {report['split']}; total ratio i0 from "
-                  f"{report['ratio_range'][0]:.4f} to {report['ratio_range'][1]:.4f}",
-                  f"- Gear closure errors (rad): {', '.join(f'{e:.2e}' for e in report['gear_closure_errors'])}",
-                  f"- Round trip (gears rolled from their pitch curves, tip rebuilt): largest miss "
-                  f"{report['roundtrip_max_error_mm']:.3e} mm", "",
+import numpy as np
+
+from transplanter.geometry.closed_trajectory import TWO_PI
+from transplanter.reverse.arm_inverse import BRANCH_NAMES, DIRECTION_NAMES
+from transplanter.reverse.idler_train import IdlerTrain
+from transplanter.trains.planetary import printed_peak_to_valley_turn
+
+if TYPE_CHECKING:
+    from transplanter.reverse.monotonicity import Violation
+    from transplanter.reverse.result import ReverseResult
+    from transplanter.trains.planetary import PlanetaryTrain
+
+
+@dataclass(frozen=True)
+class GearRow:
+    """One gear of the train: radius range (mm), convex all round, pitch perimeter (mm), teeth at the module."""
+
+    name: str
+    radius_range: tuple[float, float]
+    convex: bool
+    perimeter: float
+    teeth_at_module: float
+
+
+def _gear(name: str, radius: np.ndarray, convexity: np.ndarray, perimeter: float, module: float) -> GearRow:
+    return GearRow(name, (float(radius.min()), float(radius.max())), bool(np.all(convexity > 0)), perimeter,
+                   perimeter / (np.pi * module))
+
+
+def gear_rows(train: PlanetaryTrain | IdlerTrain, module: float) -> list[GearRow]:
+    """Sun to planet: a sun-idler-planet train has three gears, a planetary train four."""
+    one, two = train.stage_one, train.stage_two
+    rows = [_gear("sun", one.radius[0], one.convexity[0], one.perimeters[0], module)]
+    if isinstance(train, IdlerTrain):
+        return rows + [_gear("idler", one.radius[1], one.convexity[1], one.perimeters[1], module),
+                       _gear("planet", two.radius[1], two.convexity[1], two.perimeters[1], module)]
+    return rows + [_gear("first intermediate", one.radius[1], one.convexity[1], one.perimeters[1], module),
+                   _gear("second intermediate", two.radius[0], two.convexity[0], two.perimeters[0], module),
+                   _gear("planet", two.radius[1], two.convexity[1], two.perimeters[1], module)]
+
+
+def branch_stretches(result: ReverseResult) -> list[tuple[float, float, str]]:
+    """Stretches of the path parameter u (in turns, from, to) and the arm branch on each."""
+    motion = result.motion
+    cuts = [0.0] + [t.parameter for t in motion.touches] + [TWO_PI]
+    return [(a / TWO_PI, b / TWO_PI, BRANCH_NAMES[int(motion.branch(np.array((a + b) / 2)))])
+            for a, b in zip(cuts[:-1], cuts[1:], strict=True) if b > a]
+
+
+def _fit_residual(result: ReverseResult) -> float | None:
+    """How far the curve fitted to sampled points misses them (mm); None for a path given as a curve."""
+    problem = result.problem
+    return float(result.trajectory.sample_misses(problem.points).max()) if problem.kind == "samples" else None
+
+
+def _lengths_from(result: ReverseResult) -> str:
+    return "path extremes (the rice-transplanter paper eq 1-2)" if result.lengths_derived else "problem file"
+
+
+def _ratio_range(result: ReverseResult) -> tuple[float, float]:
+    ratio = result.motion.total_ratio()
+    return float(ratio.min()), float(ratio.max())
+
+
+def _closure_errors(train: PlanetaryTrain | IdlerTrain) -> list[float]:
+    return [train.stage_one.closure_error, train.stage_two.closure_error]
+
+
+def _printed_turn_deg(result: ReverseResult) -> float | None:
+    """The intermediate gear's turn per cycle with the reverse-gear-design paper's split as printed (deg); None
+    unless a planetary train splits the ratio peak to valley."""
+    if result.problem.split != "peak_to_valley" or result.relative is None or isinstance(result.train, IdlerTrain):
+        return None
+    return float(np.degrees(printed_peak_to_valley_turn(result.relative, result.problem.peak_to_valley)))
+
+
+def violation_json(violation: Violation) -> dict:
+    return {"condition": violation.condition, "u": [violation.u_start, violation.u_end], "worst": violation.worst,
+            "message": violation.message}
+
+
+def reverse_result_json(result: ReverseResult) -> dict:
+    """The report as plain JSON types (mm, degrees; u in turns): the content of report.json."""
+    problem, motion = result.problem, result.motion
+    report = {
+        "title": problem.title, "source": problem.source,
+        "trajectory": {"kind": problem.kind, "points": len(problem.points), "pivot": problem.pivot.tolist(),
+                       "farthest_mm": result.extremes[0], "nearest_mm": result.extremes[1],
+                       "fit_residual_mm": _fit_residual(result)},
+        "carrier_length": motion.carrier_length, "arm_length": motion.arm_length,
+        "lengths_from": _lengths_from(result),
+        "direction": DIRECTION_NAMES[motion.direction],
+        "touches": [{"u": t.parameter / TWO_PI, "circle": t.circle, "gap_mm": t.gap_mm} for t in motion.touches],
+        "branch_segments": [{"u": [start, end], "branch": branch} for start, end, branch in branch_stretches(result)],
+        "branch_switches_u": [t.parameter / TWO_PI for t in motion.touches],
+        "monotonic": result.monotonic,
+        "violations": [violation_json(v) for v in result.violations],
+        "fix_hints": result.hints,
+        "topology": problem.topology, "split": problem.split,
+    }
+    train, verification = result.train, result.verification
+    if train is None or verification is None:          # no train: the path fails the monotonicity criterion
+        return report
+    report.update({
+        "ratio_range": list(_ratio_range(result)),
+        "gears": [{"gear": g.name, "radius_range_mm": list(g.radius_range), "convex": g.convex,
+                   "perimeter_mm": g.perimeter, "teeth_at_module": g.teeth_at_module}
+                  for g in gear_rows(train, problem.module)],
+        "gear_closure_errors": _closure_errors(train),
+        "roundtrip_max_error_mm": verification.max_error_mm,
+        "contact_gap_max_mm": max(float(np.abs(g).max()) for g in verification.contact_gaps_mm),
+    })
+    if isinstance(train, IdlerTrain):
+        report["idler_iteration"] = {"iterations": train.iterations, "settled": bool(train.converged),
+                                     "eq5_model_residual": train.model_residual, "correction_x": train.correction,
+                                     "center_distance_mm": train.center_distance}
+    else:
+        report.update({"center_distances": list(train.center_distances), "correction_factor_k": train.correction,
+                       "stage_one_exponent": train.exponent})
+        if result.geometry is not None:
+            report["carrier_bend_deg"] = float(np.degrees(result.geometry.bend))
+        if problem.split == "peak_to_valley":
+            report["printed_peak_to_valley_intermediate_turn_deg"] = _printed_turn_deg(result)
+    return report
+
+
+def to_markdown(result: ReverseResult, files: Sequence[str] = ()) -> str:
+    """report.md: the path, the arm, the criterion (with the changes that would pass), the train, the figures."""
+    problem, motion = result.problem, result.motion
+    fit = _fit_residual(result)
+    switches = [t.parameter / TWO_PI for t in motion.touches]
+    lines = [f"# Reverse design: {problem.title or problem.source}", "",
+             f"- Path: {len(problem.points)} {problem.kind.replace('_', ' ')}, farthest {result.extremes[0]:.4f} mm "
+             f"and nearest {result.extremes[1]:.4f} mm from the pivot {problem.pivot.tolist()}"
+             + (f"; the curve fitted to the samples misses them by up to {fit:.3g} mm" if fit is not None else ""),
+             f"- Carrier s = {motion.carrier_length:.4f} mm, arm l = {motion.arm_length:.4f} mm "
+             f"({_lengths_from(result)}), carrier turning {DIRECTION_NAMES[motion.direction]}",
+             "- Branches: " + ", ".join(f"{branch} on u {start:.4f}-{end:.4f}"
+                                        for start, end, branch in branch_stretches(result))
+             + (f"; switches at u = {', '.join(f'{u:.4f}' for u in switches)} (the path touches "
+                "the reach circles there)" if switches else ""),
+             f"- Monotonicity criterion (the reverse-gear-design paper): {'met' if result.monotonic else 'NOT met'}"]
+    lines += [f"  - {violation.condition}: {violation.message}" for violation in result.violations]
+    lines += [f"  - would pass with: {hint}" for hint in result.hints]
+    train, verification = result.train, result.verification
+    if train is not None and verification is not None:         # a train: the path meets the criterion
+        low, high = _ratio_range(result)
+        miss = verification.max_error_mm
+        lines += [f"- Train: {problem.topology}, split {problem.split}; total ratio i0 from {low:.4f} to {high:.4f}",
+                  f"- Gear closure errors (rad): {', '.join(f'{e:.2e}' for e in _closure_errors(train))}",
+                  f"- Round trip (gears rolled from their pitch curves, tip rebuilt): largest miss {miss:.3e} mm", "",
                   "| gear | radius min (mm) | radius max (mm) | convex | perimeter (mm) | teeth at the module |",
                   "| --- | --- | --- | --- | --- | --- |"]
-        lines += [f"| {g['gear']} | {g['radius_range_mm'][0]:.3f} | {g['radius_range_mm'][1]:.3f} | {g['convex']} | "
-                  f"{g['perimeter_mm']:.3f} | {g['teeth_at_module']:.2f} |" for g in report["gears"]]
-        if "idler_iteration" in report:
-            it = report["idler_iteration"]
-            lines += ["", f"The rice-transplanter paper's iteration: {it['iterations']} iterations, "
-                      f"settled: {it['settled']}, eq (5) model "
-                      f"residual {it['eq5_model_residual']:.3e}; the train as built misses the path by "
-                      f"{report['roundtrip_max_error_mm']:.3f} mm (see docs/reverse.md, 'Published findings')."]
-        if "printed_peak_to_valley_intermediate_turn_deg" in report:
-            lines += ["", "The reverse-gear-design paper's split as printed (i1 = i25 bs) would turn the intermediate gear "
-                      f"{report['printed_peak_to_valley_intermediate_turn_deg']:.3f} deg per cycle (360 closes)."]
-    lines += [""] + [f"![{name}]({name})" for name in figures]
+        lines += [f"| {g.name} | {g.radius_range[0]:.3f} | {g.radius_range[1]:.3f} | {g.convex} | "
+                  f"{g.perimeter:.3f} | {g.teeth_at_module:.2f} |" for g in gear_rows(train, problem.module)]
+        printed = _printed_turn_deg(result)
+        if isinstance(train, IdlerTrain):
+            lines += ["", f"The rice-transplanter paper's iteration: {train.iterations} iterations, "
+                      f"settled: {bool(train.converged)}, eq (5) model residual {train.model_residual:.3e}; the train "
+                      f"as built misses the path by {miss:.3f} mm (see docs/reverse.md, 'Published findings')."]
+        elif printed is not None:
+            lines += ["", "The reverse-gear-design paper's split as printed (i1 = i25 bs) would turn the intermediate "
+                      f"gear {printed:.3f} deg per cycle (360 closes)."]
+    lines += [""] + [f"![{name}]({name})" for name in files if name.endswith(".png")]
     return "\n".join(lines) + "\n"

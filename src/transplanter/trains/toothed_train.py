@@ -133,11 +133,6 @@ class TrainSize:
     cutters: tuple[str, str]
     largest_pitch_radius: tuple[float, float]
 
-    def to_json(self) -> dict:
-        return {"teeth": list(self.counts), "center_distances_mm": list(self.center_distances),
-                "module": self.module, "cutters": list(self.cutters),
-                "largest_pitch_radius_mm": list(self.largest_pitch_radius)}
-
 
 @dataclass(frozen=True)
 class ToothedGear:
@@ -433,35 +428,3 @@ def design_toothed_train(relative: RelativeMotion, carrier_length: float, gearin
                            shapes[stage].cutter, reasons[stage][side]))
     return ToothedTrain(train, float(carrier_length), gearing.layout, float(module), gearing.pressure_angle,
                         tuple(int(z) for z in counts), delta, shaft, tuple(gears), teeth, mesh, timings)
-
-
-def _mesh_json(check: MeshCheck) -> dict:
-    return {"max_overlap_mm": check.max_overlap_mm, "min_clearance_mm": check.min_clearance_mm,
-            "max_contact_gap_mm": check.max_contact_gap_mm,
-            "transmission_error_deg": float(np.degrees(check.max_transmission_error_rad)),
-            "transmission_error_mm": check.max_transmission_error_mm, "positions": len(check.driver_angle),
-            "passed": check.passed, "failures": check.failures}
-
-
-def toothed_train_json(toothed: ToothedTrain) -> dict:
-    """The toothed train as plain JSON types (mm, degrees): layout, the four gears and the mesh check."""
-    a1, a2 = toothed.train.center_distances
-    stages = [_mesh_json(check) for check in toothed.mesh]
-    worst = lambda key, pick: pick(s[key] for s in stages)  # noqa: E731
-    return {
-        "layout": toothed.layout, "module": toothed.module,
-        "pressure_angle_deg": float(np.degrees(toothed.pressure_angle)),
-        "carrier_length_mm": toothed.carrier_length, "center_distances_mm": [a1, a2],
-        "teeth": list(toothed.counts), "bend_angle_deg": float(np.degrees(toothed.bend_angle)),
-        "shaft_mm": toothed.shaft.tolist(),
-        "gears": [{"name": g.name, "role": g.role, "teeth": g.teeth, "module": g.module, "convex": g.convex,
-                   "min_curvature_radius_mm": g.min_curvature_radius, "min_concave_radius_mm": g.min_concave_radius,
-                   "cutter": g.cutter, "reason": g.reason, "center_mm": g.center.tolist(),
-                   "angle_at_turn_zero_deg": float(np.degrees(g.angle_at_turn_zero))} for g in toothed.gears],
-        "mesh_check": {"max_overlap_mm": worst("max_overlap_mm", max),
-                       "min_clearance_mm": worst("min_clearance_mm", min),
-                       "max_contact_gap_mm": worst("max_contact_gap_mm", max),
-                       "transmission_error_deg": worst("transmission_error_deg", max),
-                       "passed": toothed.passed, "failures": toothed.failures, "stages": stages},
-        "timings_s": toothed.timings_s,
-    }

@@ -1,0 +1,26 @@
+"""Every file a designed five-bar gives besides its report and figures: the drawings and tables for the
+workshop (``drawings.write_drawings``) and one turn animated with the cut teeth (``animation``)."""
+from __future__ import annotations
+
+from pathlib import Path
+
+from transplanter import progress
+from transplanter.api_arguments import require_result
+from transplanter.fivebar.animation import write_animation
+from transplanter.fivebar.drawings import write_drawings
+from transplanter.fivebar.gears_on_carrier import teeth_on_carrier
+from transplanter.fivebar.result import FiveBarResult
+
+
+def write_files(result: FiveBarResult, folder: str | Path, animation: bool = True) -> list[Path]:
+    """linkage.dxf, the CSV tables, each gear's DXF and SVG, the support cam's files and, unless ``animation`` is
+    False, animation.gif (and .mp4 where ffmpeg exists) with the teeth turning on the carrier, in ``folder``
+    (made if missing); the files written."""
+    require_result(result, FiveBarResult, "fivebar")
+    with progress.step("drawings"):
+        written = write_drawings(result, folder)
+    if animation:
+        with progress.step("animation"):
+            teeth = teeth_on_carrier(result.toothed, float(result.design.mech.carrier_length))
+            written += write_animation(result, folder, teeth)
+    return written

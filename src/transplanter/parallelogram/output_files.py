@@ -1,0 +1,27 @@
+"""Every file a designed onion transplanter gives besides its report and figures: the CSV tables, the gear
+pair's drawings when its teeth are cut, and one driver turn animated."""
+from __future__ import annotations
+
+from pathlib import Path
+
+from transplanter import progress
+from transplanter.api_arguments import require_result
+from transplanter.gears.drawings import write_drawings
+from transplanter.parallelogram.animation import write_animation
+from transplanter.parallelogram.result import ParallelogramResult
+from transplanter.parallelogram.tables import write_tables
+
+
+def write_files(result: ParallelogramResult, folder: str | Path, animation: bool = True) -> list[Path]:
+    """pareto.csv and trajectory.csv, the gears' CSV, SVG and DXF (with teeth) and, unless ``animation`` is False,
+    animation.gif, in ``folder`` (made if missing); the files written."""
+    require_result(result, ParallelogramResult, "parallelogram")
+    with progress.step("tables"):
+        written = write_tables(result, folder)
+    if result.gear.teeth is not None:
+        with progress.step("drawings"):
+            written += write_drawings(result.gear, folder)
+    if animation:
+        with progress.step("animation"):
+            written.append(write_animation(result, folder))
+    return written
