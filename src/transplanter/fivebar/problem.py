@@ -35,6 +35,7 @@ Schema (docs/fivebar.md, "Problem files"); the carrier pivot O is the origin:
     first_center_distance = 93.8  # optional, both or neither: a1, a2 (mm) fixed instead of searched;
     second_center_distance = 122. # they must give whole teeth at the module
     [support]                     # optional: the seedling support timed to the design (fivebar/support_problem.py)
+    [load]                        # optional: the planting load and link masses (fivebar/load_spec.py)
 """
 from __future__ import annotations
 
@@ -44,6 +45,7 @@ from pathlib import Path
 import numpy as np
 
 from transplanter.burmester.problem import check_distinct
+from transplanter.fivebar.load_spec import LoadSpec, parse_load
 from transplanter.fivebar.support_problem import SupportSpec, parse_support
 from transplanter.toml_fields import LONGEST_LABEL, LONGEST_TITLE, ClassFields, FieldReader, read_toml, warn_if_radians
 from transplanter.trains.toothed_train import (
@@ -57,7 +59,7 @@ from transplanter.trains.toothed_train import (
 
 RANGE_FIELDS = {"ep": "|EP| (mm)", "fp": "|FP| (mm)", "x_e": "x of E in pose 1 (mm)", "x_f": "x of F in pose 1 (mm)"}
 _TOP_KEYS = {"title", "description", "key_poses", "return_points", "ranges", "conditions", "spline", "region", "gears",
-             "support"}
+             "support", "load"}
 
 
 @dataclass(frozen=True)
@@ -94,6 +96,9 @@ class FiveBarProblem:
         (``trains.toothed_train``); ``center_distances`` gives its fixed centre distances (mm) or None.
     support : SupportSpec or None
         The seedling support to design with the five-bar (``[support]``); None: none.
+    load : LoadSpec
+        The planting load at P and the links' masses for the kinetostatics (``[load]``; default 20 N against P's
+        velocity over the pushing stroke, no masses).
     source, title : str
         Where the problem came from (file name or ``"<dict>"``) and its title.
 
@@ -117,6 +122,7 @@ class FiveBarProblem:
     radius_mm: float = 600.0
     gearing: Gearing = field(default_factory=Gearing)
     support: SupportSpec | None = None
+    load: LoadSpec = field(default_factory=LoadSpec)
     source: str = "<dict>"
     title: str = ""
 
@@ -142,6 +148,8 @@ class FiveBarProblem:
             check.fail("gearing", self.gearing, "a trains.toothed_train.Gearing")
         if self.support is not None and not isinstance(self.support, SupportSpec):
             check.fail("support", self.support, "None or a fivebar.support_problem.SupportSpec")
+        if not isinstance(self.load, LoadSpec):
+            check.fail("load", self.load, "a fivebar.load_spec.LoadSpec")
 
     @property
     def center_distances(self) -> tuple[float, float] | None:
@@ -309,11 +317,12 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
     gearing = _gearing(read, data.get("gears", {}))
     _check_return_points(read, rows[:, :2], points, radius)
     support = parse_support(read, data["support"], ranges.get("x_e")) if "support" in data else None
+    load = parse_load(read, data.get("load", {}))
 
     poses = rows[:, :3].copy()
     poses[:, 2] = np.radians(poses[:, 2])
     return FiveBarProblem(poses=poses, carrier_turns=np.radians(turns), return_points=points, labels=tuple(labels),
-                          return_tolerance_mm=tolerance,
+                          return_tolerance_mm=tolerance, load=load,
                           return_labels=tuple(return_labels), ranges=ranges, min_closure_margin=margin,
                           ratio_bounds=ratio, spline_count=count, samples=samples, radius_mm=radius,
                           gearing=gearing, support=support, source=source, title=read.text(data, "title", "", LONGEST_TITLE))
