@@ -41,6 +41,7 @@ Schema (docs/fivebar.md, "Problem files"); the carrier pivot O is the origin:
     first_center_distance = 93.8  # optional, both or neither: a1, a2 (mm) fixed instead of searched;
     second_center_distance = 122. # they must give whole teeth at the module
     [support]                     # optional: the seedling support timed to the design (fivebar/support_problem.py)
+    [load]                        # optional: the planting load and link masses (fivebar/load_spec.py)
 """
 from __future__ import annotations
 
@@ -60,6 +61,7 @@ from transplanter.fivebar.key_pose_bands import (
     read_requirements,
     stroke_direction,
 )
+from transplanter.fivebar.load_spec import LoadSpec, parse_load
 from transplanter.fivebar.support_problem import SupportSpec, parse_support
 from transplanter.toml_fields import LONGEST_LABEL, LONGEST_TITLE, ClassFields, FieldReader, read_toml, warn_if_radians
 from transplanter.trains.toothed_train import (
@@ -74,7 +76,7 @@ from transplanter.trains.toothed_train import (
 RANGE_FIELDS = {"ep": "|EP| (mm)", "fp": "|FP| (mm)", "x_e": "x of E in pose 1 (mm)", "x_f": "x of F in pose 1 (mm)"}
 _TOP_KEYS = {"title", "description", "key_poses", "return_points", "ranges", "conditions", "requirements", "spline",
              "region", "gears",
-             "support"}
+             "support", "load"}
 
 
 @dataclass(frozen=True)
@@ -119,6 +121,9 @@ class FiveBarProblem:
         Pose sets drawn inside the bands when the region at their centres holds no feasible five-bar.
     min_transmission_angle : float or None
         Floor on the transmission angle at E over the turn (rad), or None.
+    load : LoadSpec
+        The planting load at P and the links' masses for the kinetostatics (``[load]``; default 20 N against P's
+        velocity over the pushing stroke, no masses).
     source, title : str
         Where the problem came from (file name or ``"<dict>"``) and its title.
 
@@ -146,6 +151,7 @@ class FiveBarProblem:
     requirements: Requirements = field(default_factory=Requirements)
     band_samples: int = 16
     min_transmission_angle: float | None = None
+    load: LoadSpec = field(default_factory=LoadSpec)
     source: str = "<dict>"
     title: str = ""
 
@@ -171,6 +177,8 @@ class FiveBarProblem:
             check.fail("gearing", self.gearing, "a trains.toothed_train.Gearing")
         if self.support is not None and not isinstance(self.support, SupportSpec):
             check.fail("support", self.support, "None or a fivebar.support_problem.SupportSpec")
+        if not isinstance(self.load, LoadSpec):
+            check.fail("load", self.load, "a fivebar.load_spec.LoadSpec")
         if self.pose_bands is not None and not isinstance(self.pose_bands, PoseBands):
             check.fail("pose_bands", self.pose_bands, "None or a fivebar.key_pose_bands.PoseBands")
         if not isinstance(self.requirements, Requirements):
@@ -374,6 +382,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
     gearing = _gearing(read, data.get("gears", {}))
     _check_return_points(read, rows[:, :2], points, radius)
     support = parse_support(read, data["support"], ranges.get("x_e")) if "support" in data else None
+    load = parse_load(read, data.get("load", {}))
 
     poses = rows[:, :3].copy()
     poses[:, 2] = np.radians(poses[:, 2])
@@ -381,7 +390,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
     bands = PoseBands(low * to_internal, high * to_internal) if np.any(high > low) else None
     return FiveBarProblem(poses=poses, carrier_turns=np.radians(turns), return_points=points, labels=tuple(labels),
                           return_tolerance_mm=tolerance, pose_bands=bands, requirements=requirements,
-                          band_samples=band_samples,
+                          band_samples=band_samples, load=load,
                           min_transmission_angle=None if transmission is None else float(np.radians(transmission)),
                           return_labels=tuple(return_labels), ranges=ranges, min_closure_margin=margin,
                           ratio_bounds=ratio, spline_count=count, samples=samples, radius_mm=radius,
