@@ -66,7 +66,7 @@ def test_pencil_resultant_has_the_circular_factor():
     assert quotient.degree() == 6
 
 
-POSITIVE_INPUTS = ("gears", "train_pitch_curvature")
+POSITIVE_INPUTS = ("gears", "train_pitch_curvature", "train_pitch_tangent")
 GENERATED_FUNCTIONS = [(module, name) for module in MODULES
                        for name in __import__(f"transplanter._generated.{module}", fromlist=["SIGNATURES"]).SIGNATURES]
 
