@@ -1,24 +1,27 @@
 """Polar tangent angle of the four pitch curves of the planetary train at the contact, scale-free.
 
 Where two pitch curves touch, the contact point lies on the line of centres, and their common tangent
-leans from the normal to that line by the polar tangent angle mu: tan(mu) = r_theta / r, with r and its
-derivative in the gear's own angle counted the way the gear turns as the carrier turns (the curves of
-``train_pitch_curvature``, Wang et al. 2025 eq 11-13, in s = rho'(c), s' and k). Each curve is
-r = a f(theta), so r_theta / r is free of a: ``derive`` checks that a drops out of r / a and r_theta / a.
+leans from the normal to that line by the polar tangent angle mu: tan(mu) = r_theta / r, with theta the
+curve's own polar angle, the one the contact runs along as the carrier turns (the curves of
+``train_pitch_curvature``, Wang et al. 2025 eq 11-13, in s = rho'(c), s' and k; the gear itself turns the
+other way). Each curve is r = a f(theta), so r_theta / r is free of a: ``derive`` checks that a drops
+out of r / a and r_theta / a.
 
-Driver and driven side. The driven radius is a - r1 and its angle turns by r1 / (a - r1) per driver
-radian, so its r_theta / r is -(r1_theta / r1): the two curves share one tangent line, and the opposite
-signs only say that each angle is counted in its own gear's turning sense. ``derive`` checks the
+Driver and driven side. The driven radius is a - r1 and its angle runs r1 / (a - r1) per driver radian,
+so its r_theta / r is -(r1_theta / r1): both angles run the same way along the one shared tangent, and mu
+is each curve's lean toward its mate's centre, which lies on opposite sides. ``derive`` checks the
 identity for both stages; the generated rows give all four curves (driven = -driver).
 
-Pressure angle. Teeth cut by a rack of pressure angle alpha0 (``gears.rack_teeth``) act along a line
+Pressure angle. Teeth cut by a rack of pressure angle alpha0 (``gears.rack_teeth``) push along a line
 through the contact at alpha0 from the common tangent. Put the driver's centre at the origin, the contact
-at (r1, 0), the driver turning counterclockwise: the tangent (r_theta, r) leans by mu from +y toward the
-driven centre. A tooth narrows toward its tip, so the leading flank's outward normal points forward and
-outward: the force on the driven tooth leans by alpha0 + mu from +y, the velocity of the driven gear's
-point at the contact. That is the drive flank (the driver pushes the driven gear on): pressure angle
-alpha0 + mu. The coast flank (the load drives back) is its mirror image: alpha0 - mu. The pressure angle
-the teeth see over a turn is therefore alpha0 + |mu| at worst, the same seen from either gear.
+at (r, 0) and the driven centre on +x, with theta counterclockwise: the driver turns clockwise, its point
+at the contact moving along -y, and the tangent (r_theta, r) leans from the y axis toward +x by mu. A tooth
+narrows toward its tip, so its leading flank's outward normal points forward (-y) and outward (+x): the
+force on the driven tooth, cos(alpha0) t + sin(alpha0) n with t = -(sin mu, cos mu), n = (cos mu, -sin mu),
+is (sin(alpha0 - mu), -cos(alpha0 - mu)), at alpha0 - mu from the motion. That is the drive flank (the
+driver pushes the driven gear on): pressure angle alpha0 - mu of the driver, alpha0 + mu of the driven
+curve, one angle. The coast flank (the load drives back) is its mirror image: alpha0 + mu of the driver.
+Either way the teeth see at most alpha0 + |mu| (tests measure both flanks on rack-cut outlines).
 """
 from __future__ import annotations
 
@@ -56,7 +59,7 @@ def derive() -> list[Derived]:
         Derived(name="train_pitch_tangent",
                 doc=("Sun, first intermediate, second intermediate, planet (eq 11-13 with I1 = rho'^(-1/2)/k, "
                      "I2 = k rho'^(-1/2)): tan(mu) = r_theta / r, the lean of the pitch curves' common tangent from "
-                     "the normal to the line of centres, in each gear's own turning sense (driven = -driver), "
+                     "the normal to the line of centres, in the curve's own polar angle (driven = -driver), "
                      "and mu = atan(r_theta / r) (rad), from rho', rho'' and k."),
                 inputs=(("slope_derivatives", slope), ("correction", (k,))),
                 outputs=(("tangent", tuple(tangents)),
