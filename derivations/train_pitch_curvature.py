@@ -47,14 +47,25 @@ def _in_own_angle(radius, rate):
     return radius, slope, rate * sp.diff(slope, _c)
 
 
+#: The center distance a, root = sqrt(s) and the correction k, as ``curves_in_own_angle`` writes them.
+CENTER_DISTANCE, ROOT, CORRECTION = sp.symbols("a root k", positive=True)
+
+
+def curves_in_own_angle(slope_derivatives):
+    """Per curve of ``CURVES``: r, dr/dtheta, d2r/dtheta2 in its own angle, in ``CENTER_DISTANCE``, ``ROOT``,
+    ``CORRECTION`` and s', s'' (``slope_derivatives[1:]``; substitute sqrt(s) for ``ROOT``)."""
+    _, s1, s2 = slope_derivatives
+    rates = {sp.Derivative(_slope, (_c, 2)): s2, sp.Derivative(_slope, _c): s1, _slope: ROOT**2}
+    return [tuple(sp.together(v.subs(rates)) for v in _in_own_angle(radius, rate))
+            for radius, rate in train_curves(CORRECTION, CENTER_DISTANCE)]
+
+
 def scale_free_curvature(correction, slope_derivatives):
     """Per curve: convexity / a^2, curvature a kappa and curvature radius / a, in s, s', s'', k."""
-    a, root, k = sp.symbols("a root k", positive=True)      # root = sqrt(s), k = correction
-    s0, s1, s2 = slope_derivatives
-    rates = {sp.Derivative(_slope, (_c, 2)): s2, sp.Derivative(_slope, _c): s1, _slope: root**2}
+    a, root, k = CENTER_DISTANCE, ROOT, CORRECTION
+    s0 = slope_derivatives[0]
     out = []
-    for radius, rate in train_curves(k, a):
-        r, r_theta, r_theta2 = (sp.together(v.subs(rates)) for v in _in_own_angle(radius, rate))
+    for r, r_theta, r_theta2 in curves_in_own_angle(slope_derivatives):
         convexity = polar_convexity(r, r_theta, r_theta2)
         speed_squared = r**2 + r_theta**2
         relative_convexity = sp.factor(sp.cancel(convexity / a**2))
@@ -62,7 +73,8 @@ def scale_free_curvature(correction, slope_derivatives):
         if a in relative_convexity.free_symbols or a in relative_speed.free_symbols:
             raise AssertionError("the center distance does not cancel from the pitch curvature")
         curvature = relative_convexity / relative_speed ** sp.Rational(3, 2)
-        out.append(tuple(v.subs({root: sp.sqrt(s0), k: correction}) for v in (relative_convexity, curvature, 1 / curvature)))
+        out.append(tuple(v.subs({root: sp.sqrt(s0), k: correction})
+                         for v in (relative_convexity, curvature, 1 / curvature)))
     return out
 
 

@@ -24,7 +24,7 @@ def generated_body(module: str, name: str):
 
 ROOT = Path(__file__).resolve().parents[2]
 
-POSITIVE_INPUTS = ("gears", "train_pitch_curvature")
+POSITIVE_INPUTS = ("gears", "train_pitch_curvature", "train_pitch_tangent")
 GENERATED_FUNCTIONS = [(module, name) for module in MODULES
                        for name in __import__(f"transplanter._generated.{module}", fromlist=["SIGNATURES"]).SIGNATURES]
 

@@ -35,6 +35,7 @@ Schema (docs/fivebar.md, "Problem files"); the carrier pivot O is the origin:
     [gears]
     module = 1.5                  # mm, 0.2-10: pitch perimeters are pi * module * whole teeth
     pressure_angle_deg = 20.0     # 14.5-30
+    max_pressure_angle_deg = 45.0 # largest pressure angle of a mesh over the turn, above pressure_angle_deg, below 90
     cutter = "rack"               # "rack" (a stage with a concave stretch is shaper-cut, with the reason) or "shaper"
     shaper_teeth = 16             # teeth of the shaper cutter, 8-200
     layout = "bent"               # "bent": intermediate shaft off O-A; "straight": a1 + a2 = |OA|
@@ -244,7 +245,7 @@ def _choice(read: FieldReader, table: dict, key: str, choices: tuple[str, ...], 
 def _gearing(read: FieldReader, table: dict) -> Gearing:
     """The [gears] table: module, pressure angle, cutter, layout and optional fixed centre distances."""
     read.keys(table, {"module", "pressure_angle_deg", "cutter", "shaper_teeth", "layout", "first_center_distance",
-                      "second_center_distance"}, "gears")
+                      "second_center_distance", "max_pressure_angle_deg"}, "gears")
     module = read.number(table, "module", "gears") if "module" in table else 1.5
     if not MODULE_RANGE[0] <= module <= MODULE_RANGE[1]:
         read.fail("gears.module", module, f"a module from {MODULE_RANGE[0]:g} to {MODULE_RANGE[1]:g} mm (finer gives "
@@ -267,7 +268,12 @@ def _gearing(read: FieldReader, table: dict) -> Gearing:
         centers = tuple(read.number(table, key, "gears") for key in keys)
         if min(centers) <= 0:
             read.fail("gears", {k: table[k] for k in keys}, "positive center distances (mm)")
-    return Gearing(module, float(np.radians(pressure)), cutter, teeth, layout, centers)
+    limit = read.number(table, "max_pressure_angle_deg", "gears") if "max_pressure_angle_deg" in table else 45.0
+    if not pressure < limit < 90:
+        read.fail("gears.max_pressure_angle_deg", limit, f"an angle above gears.pressure_angle_deg ({pressure:g}) and "
+                                                         "below 90 deg (the mesh's push along the motion falls as its "
+                                                         "cosine)")
+    return Gearing(module, float(np.radians(pressure)), cutter, teeth, layout, centers, float(np.radians(limit)))
 
 
 def _check_return_points(read: FieldReader, key: np.ndarray, points: np.ndarray, radius: float):

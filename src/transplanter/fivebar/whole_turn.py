@@ -1,5 +1,6 @@
 """A design judged over the whole carrier turn by independent forward evaluation: the margins of the
-dyad B-E-F, rho' and a kappa of the four pitch curves (with k by the train's own quadrature)."""
+dyad B-E-F, rho', a kappa of the four pitch curves and the lean mu of each mesh's common tangent (the
+gear pressure angle's variable part, ``trains.pressure_angle``), with k by the train's own quadrature."""
 from __future__ import annotations
 
 import numpy as np
@@ -10,6 +11,7 @@ from transplanter.fivebar.relative_angle import RelativeAngle
 from transplanter.generated import numpy_twin
 from transplanter.geometry.periodic_bspline import TWO_PI, knots
 from transplanter.trains.planetary import correction_factor
+from transplanter.trains.pressure_angle import stage_leans
 
 #: Carrier turns of the fine check (0.05 deg apart).
 CHECK_POINTS = 7200
@@ -33,7 +35,8 @@ def knot_left_sides(count: int) -> np.ndarray:
 
 def whole_turn(mech: FiveBar, relative: RelativeAngle, turns: np.ndarray | None = None) -> dict:
     """At carrier turns ``turns`` (rad; default ``fine_turns()``): sin^2 of the angles EBF and BEF (forward
-    kinematics), rho', a kappa of the four pitch curves (rows of ``CURVES``), k, and P."""
+    kinematics), rho', a kappa of the four pitch curves (rows of ``CURVES``), k, mu of the two meshes
+    (``leans``, rows of ``trains.pressure_angle.STAGES``), and P."""
     turns = fine_turns() if turns is None else turns
     state = mech.forward(turns, relative.evaluate(turns))
     distance = np.linalg.norm(state["f"] - mech.hinge_b, axis=-1)
@@ -41,4 +44,5 @@ def whole_turn(mech: FiveBar, relative: RelativeAngle, turns: np.ndarray | None 
     k = correction_factor(relative)
     curvature = _curvature(slope, [np.full_like(turns, k)])[1]
     return {"turns": turns, "ebf": state["margin"], "bef": state["margin"] * distance**2 / mech.link_length**2,
-            "slope": slope[0], "curvature": curvature, "correction": k, "p": state["p"]}
+            "slope": slope[0], "curvature": curvature, "correction": k, "leans": stage_leans(relative, k, turns),
+            "p": state["p"]}

@@ -1,10 +1,11 @@
-"""Pitch curves of a planetary train drawn where they sit on the carrier."""
+"""A planetary train drawn: its pitch curves where they sit on the carrier, its meshes' pressure angles."""
 from __future__ import annotations
 
 import numpy as np
 
 from transplanter.figure_conventions import LEGEND_BESIDE
 from transplanter.geometry.poses import rotate_about
+from transplanter.trains.pressure_angle import FLANKS, STAGES
 
 
 def draw_four_gear_train(ax, train, carrier_length: float, bend_side: float = 1.0):
@@ -26,4 +27,21 @@ def draw_four_gear_train(ax, train, carrier_length: float, bend_side: float = 1.
     ax.set_aspect("equal")
     ax.set_xlabel("x along the carrier (mm)")
     ax.set_ylabel("y (mm)")
+    ax.legend(fontsize=7, **LEGEND_BESIDE)
+
+
+def draw_pressure_angles(ax, pressure):
+    """Pressure angle (deg) of both meshes on the drive and coast flank against the carrier turn (deg), with
+    the nominal angle, the limit and each stage's largest (``trains.pressure_angle.StagePressureAngles``)."""
+    turns = np.degrees(pressure.turns)
+    for stage, flanks, colour in zip(STAGES, np.degrees(pressure.flanks), ("C0", "C1"), strict=True):
+        for flank, values, style in zip(FLANKS, flanks, ("-", "--"), strict=True):
+            ax.plot(turns, values, style, color=colour, lw=1, label=f"{stage}, {flank} flank")
+    ax.plot(np.degrees(pressure.largest_turn), np.degrees(pressure.largest), "kv", label="largest of each stage")
+    ax.axhline(np.degrees(pressure.nominal), color="gray", ls=":", lw=1,
+               label=f"nominal {np.degrees(pressure.nominal):g} deg")
+    ax.axhline(np.degrees(pressure.limit), color="r", ls="--", lw=1,
+               label=f"limit gears.max_pressure_angle_deg = {np.degrees(pressure.limit):g}")
+    ax.set_xlabel("carrier turn c (deg)")
+    ax.set_ylabel("gear pressure angle (deg)")
     ax.legend(fontsize=7, **LEGEND_BESIDE)

@@ -81,6 +81,9 @@ class Gearing:
         ``"bent"`` (shaft off O-A) or ``"straight"`` (a1 + a2 = |OA|).
     center_distances : (float, float) or None
         Fixed a1, a2 (mm); None: chosen by the search of the module docstring.
+    max_pressure_angle : float
+        rad, above ``pressure_angle`` and below pi / 2: the largest pressure angle a mesh may reach over the
+        turn (``trains.pressure_angle``; the push along the motion falls as its cosine).
     """
 
     module: float = 1.5
@@ -89,6 +92,7 @@ class Gearing:
     shaper_teeth: int = 16
     layout: str = "bent"
     center_distances: tuple[float, float] | None = None
+    max_pressure_angle: float = math.radians(45.0)
 
     def __post_init__(self):
         check = ClassFields(self)
@@ -109,6 +113,10 @@ class Gearing:
         centers = self.center_distances
         if centers is not None and (len(centers) != 2 or not all(is_finite_number(v) and v > 0 for v in centers)):
             check.fail("center_distances", self.center_distances, "two positive distances (mm) or None")
+        limit = self.max_pressure_angle
+        if not is_finite_number(limit) or not self.pressure_angle < limit < np.pi / 2:
+            check.fail("max_pressure_angle", limit, f"an angle above pressure_angle ({self.pressure_angle:.6g}) and "
+                                                    "below pi / 2, in radians")
 
 
 @dataclass(frozen=True)
