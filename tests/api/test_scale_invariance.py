@@ -127,27 +127,36 @@ def test_fivebar_region_scales_with_the_poses():
 def test_fivebar_design_nlp_scales_with_the_poses():
     """The design NLP measures lengths in the power of ten at or below the problem's reach, so the
     example in micrometres, millimetres and metres (ranges and return tolerance scaled alike) refines its
-    first candidate to the same mechanism (with a fixed 100 mm unit, all 17 candidates failed at 1e-3)."""
+    first candidate that refines at all to the same mechanism (with a fixed 100 mm unit, all 17 candidates
+    failed at 1e-3)."""
     from transplanter import fivebar
+    from transplanter.errors import SolverError
     from transplanter.fivebar.design_solver import DesignSolver
     from transplanter.fivebar.nlp import length_unit
     from transplanter.fivebar.region import solution_region
 
     base = read_toml(ROOT / "examples" / "vegetable_planting.toml")
-    designs = {}
+    problems = {}
     for scale in SCALES:
         data = _scaled(base, scale, "key_poses", "return_points", "region.radius_mm",
                        *(f"ranges.{key}" for key in base["ranges"]))
         data["conditions"]["return_tolerance_mm"] = base["conditions"]["return_tolerance_mm"] * scale
-        problem = fivebar.parse_problem(data)
-        assert length_unit(problem) == pytest.approx(100.0 * scale, rel=1e-12)
-        designs[scale] = DesignSolver(problem).refine(solution_region(problem).feasible[0])
-    one = designs[1.0]
+        problems[scale] = fivebar.parse_problem(data)
+        assert length_unit(problems[scale]) == pytest.approx(100.0 * scale, rel=1e-12)
+    starts = solution_region(problems[1.0]).feasible
+    for index, start in enumerate(starts):
+        try:
+            one = DesignSolver(problems[1.0]).refine(start)
+            break
+        except SolverError:
+            continue
+    designs = {scale: DesignSolver(problem).refine(solution_region(problem).feasible[index])
+               for scale, problem in problems.items()}
     for scale, design in designs.items():
         for name in ("carrier_length", "rod_length", "receiving_length", "hinge_b", "e_local", "f_local"):
             np.testing.assert_allclose(np.asarray(getattr(design.mech, name)) / scale, getattr(one.mech, name),
                                        rtol=0, atol=1e-6 * 300.0)
-        assert design.min_angle_ebf == pytest.approx(one.min_angle_ebf, rel=1e-6)
+        assert design.min_angle_bef == pytest.approx(one.min_angle_bef, rel=1e-6)
 
 
 def test_cam_design_scales_with_its_lengths_and_its_default_reach():

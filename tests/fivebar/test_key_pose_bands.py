@@ -1,10 +1,12 @@
 """Key poses as bands and the relative requirements between them (Wang et al. 2025 section 3.1): how they are
 read and refused, and the design the bands example gets, each checked on the design itself."""
+import json
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from transplanter.cli import main
 from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.fivebar import load_problem, parse_problem, synthesize
 from transplanter.fivebar.alternatives import transmission_angles
@@ -125,10 +127,59 @@ def test_the_band_edges_a_design_sits_on_are_named_as_the_file_names_them(banded
                                                                                                      abs=1e-6)
 
 
-def test_the_fixed_pose_design_keeps_the_transmission_angle_the_closure_optimum_had(example_result):
-    """Maximising the transmission angle at E on the fixed poses of Table 1 gives at least the 26.78 deg the
-    design that maximised the angle EBF had (measured on its hinges)."""
-    design = example_result.design
+def _smallest_angle_at_e_deg(design) -> float:
     turns = np.linspace(0, 2 * np.pi, 3600, endpoint=False)
     at_e, _ = transmission_angles(design.mech, design.mech.forward(turns, design.relative_angle.evaluate(turns)))
-    assert np.degrees(at_e.min()) >= 26.78
+    return float(np.degrees(at_e.min()))
+
+
+def test_on_the_fixed_poses_the_pressure_limit_is_what_holds_the_transmission_angle_below_the_former_design(
+        example_result):
+    """The former design, which maximised the angle EBF, had 26.78 deg at E but a gear pressure angle of 47.35 deg,
+    above the default 45 deg. With that limit the smallest angle at E is lower, and the report names the limit
+    among the bounds the design sits on."""
+    angle = _smallest_angle_at_e_deg(example_result.design)
+    names = [bound.name for bound in example_result.chosen.active_bounds]
+    assert angle >= 26.78 or "gears.max_pressure_angle_deg" in names
+    assert np.degrees(example_result.pressure.largest.max()) <= 45.0 * (1 + 1e-3)
+
+
+def test_with_the_pressure_limit_the_former_design_met_the_transmission_angle_is_at_least_its(tmp_path):
+    """With gears.max_pressure_angle_deg = 48 the former design (47.35 deg) is a feasible point of the NLP, so the
+    design that maximises the angle at E has at least its 26.78 deg (measured on the hinges)."""
+    data = read_toml(FIXED)
+    data["gears"]["max_pressure_angle_deg"] = 48.0
+    result = synthesize(parse_problem(data, "fixed.toml"))
+    assert _smallest_angle_at_e_deg(result.design) >= 26.78
+
+
+def test_the_report_lists_the_chosen_poses_the_pose_sets_tried_the_pressure_angles_and_the_load(banded):
+    report = json.loads(json.dumps(banded.to_json(), allow_nan=False))
+    design = banded.design
+    chosen = report["chosen_key_poses"]
+    assert [row["label"] for row in chosen] == ["P1", "P2", "P3", "P4"]
+    assert [row["x"] for row in chosen] == pytest.approx(design.poses[:, 0].tolist(), abs=1e-12)
+    assert [row["angle_deg"] for row in chosen] == pytest.approx(np.degrees(design.poses[:, 2]).tolist(), abs=1e-9)
+    assert chosen[0]["banded"] == [] and chosen[1]["banded"] == ["x", "y", "angle_deg"]
+    tried = report["key_pose_sets"]
+    assert tried[-1]["feasible_five_bars"] > 0 and all(t["emptied_by"] for t in tried[:-1])
+    assert tried[0]["poses"][1]["x"] == pytest.approx(-51.1)             # the bands' centres come first
+    assert {b["bound"] for b in report["active_bounds"]} >= {b.name for b in banded.chosen.active_bounds}
+    assert len(report["gear_pressure_angle_max_deg"]) == 2
+    assert max(report["gear_pressure_angle_max_deg"]) <= report["gear_pressure_angle_limit_deg"] * (1 + 1e-3)
+    load = report["load"]
+    assert load["resisting_n"] == 20.0 and set(load["hinge_force_peak_n"]) == {"O", "A", "B", "E", "F"}
+    assert abs(load["be_force_peak_n"]) > 0 and abs(load["carrier_torque_peak_nm"]) > 0
+    assert report["transmission_angle_min_deg"] == pytest.approx(np.degrees(banded.chosen.transmission_angle))
+    assert report["closure_angle_min_deg"] == pytest.approx(np.degrees(banded.chosen.closure_angle))
+
+
+def test_a_band_upside_down_exits_2_with_one_line_and_writes_nothing(tmp_path, capsys):
+    text = BANDS.read_text().replace("x = [-56.1, -46.1]", "x = [-46.1, -56.1]")
+    path = tmp_path / "upside_down.toml"
+    path.write_text(text)
+    out = tmp_path / "out"
+    assert main(["fivebar", str(path), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "key_poses[1].x = [-46.1, -56.1]" in err and "low <= high" in err
+    assert not out.exists()

@@ -46,7 +46,7 @@ def test_json_names_a_constant_force():
 
 def test_markdown_states_the_load_and_the_peaks(loads):
     report = load_json(loads)
-    text = "\n".join(load_markdown(report))
+    text = "\n".join(load_markdown(loads))
     assert "20 N at P against its velocity" in text and "rod 0.7 kg, plate 0.3 kg" in text
     assert f"{report['carrier_torque_peak_nm']:.3f} N m" in text
     assert f"{report['be_force_peak_n']:.1f} N" in text

@@ -33,12 +33,13 @@ from transplanter.fivebar.candidate import (
 from transplanter.fivebar.design_solver import DesignSolver, HollowError, concavity_text
 from transplanter.fivebar.lanes import refine_in_lanes
 from transplanter.fivebar.linkage import FiveBar
-from transplanter.fivebar.nlp import RETURN_TOLERANCE, DesignSolution, reach
+from transplanter.fivebar.nlp import PRESSURE_LIMIT, RETURN_TOLERANCE, DesignSolution, reach
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.relative_angle import ratio_range
 from transplanter.fivebar.return_passes import other_passes
 from transplanter.fivebar.whole_turn import CURVES
 from transplanter.geometry.planar import TWO_PI
+from transplanter.trains.pressure_angle import stage_pressure_angles
 from transplanter.trains.toothed_train import TrainSize, train_size
 
 #: Carrier turns of the evaluation (0.1 deg apart).
@@ -170,8 +171,8 @@ def _requirement_values(problem: FiveBarProblem, poses: np.ndarray):
 
 
 def active_bounds(problem: FiveBarProblem, design: DesignSolution, min_margin: float,
-                  ratios: tuple[float, float], misses: np.ndarray,
-                  transmission_angle_deg: float = float("nan")) -> tuple[ActiveBound, ...]:
+                  ratios: tuple[float, float], misses: np.ndarray, transmission_angle_deg: float = float("nan"),
+                  pressure_angle_deg: float = float("nan")) -> tuple[ActiveBound, ...]:
     """The bounds the design NLP found its solution on (``DesignSolution.active_bounds``, decided by the
     ``solve`` layer), each with the problem's limit and the value of the design's own evaluation (mm,
     margin, ratio, a kappa): ``[ranges]``, the margin floor, the ratio bounds, the return tolerance (with
@@ -207,6 +208,9 @@ def active_bounds(problem: FiveBarProblem, design: DesignSolution, min_margin: f
         elif bound.name in requirement_values:
             limit, value = requirement_values[bound.name][side]
             found.append(ActiveBound(bound.name, bound.side, limit, value))
+        elif bound.name == PRESSURE_LIMIT:
+            found.append(ActiveBound(bound.name, bound.side, float(np.degrees(problem.gearing.max_pressure_angle)),
+                                     pressure_angle_deg))
         elif bound.name == "conditions.min_transmission_angle_deg" and problem.min_transmission_angle is not None:
             found.append(ActiveBound(bound.name, bound.side, float(np.degrees(problem.min_transmission_angle)),
                                      transmission_angle_deg))
@@ -215,7 +219,7 @@ def active_bounds(problem: FiveBarProblem, design: DesignSolution, min_margin: f
         found.append(ActiveBound(f"{RETURN_TOLERANCE} ({points})", "upper", problem.return_tolerance_mm,
                                  float(misses[on_tolerance].max())))
     order = ("key_poses.", "requirements.", "ranges.", "conditions.min_transmission_angle_deg", "min_closure_margin",
-             "ratio", RETURN_TOLERANCE, "a kappa of the")
+             "ratio", RETURN_TOLERANCE, PRESSURE_LIMIT, "a kappa of the")
     return tuple(sorted(found, key=lambda b: next(k for k, head in enumerate(order) if b.name.startswith(head))))
 
 
@@ -270,7 +274,9 @@ def assess(problem: FiveBarProblem, design: DesignSolution, start: int) -> Alter
     slope = relative.evaluate(turns, 1)
     ratios = ratio_range(slope)
     min_margin = float(np.min(state["margin"]))
-    defects = _defects(resolved, design, slope, ratios, min_margin) + _chosen_pose_defects(problem, design)
+    pressure = stage_pressure_angles(relative, design.correction, problem.gearing, turns)
+    defects = [*_defects(resolved, design, slope, ratios, min_margin), *_chosen_pose_defects(problem, design),
+               *pressure.failures()]
     if defects:
         return Failure(start, "; ".join(defects))
     at_e, at_b = transmission_angles(mech, state)
@@ -278,7 +284,8 @@ def assess(problem: FiveBarProblem, design: DesignSolution, start: int) -> Alter
     misses = np.linalg.norm(returns["p"] - problem.return_points, axis=1)
     return Alternative(design, (start,), float(at_e.min()), float(turns[at_e.argmin()]), float(at_b.min()),
                        float(turns[at_b.argmin()]), ratios, misses, min_margin,
-                       active_bounds(problem, design, min_margin, ratios, misses, float(np.degrees(at_e.min()))))
+                       active_bounds(problem, design, min_margin, ratios, misses, float(np.degrees(at_e.min())),
+                                     float(np.degrees(pressure.largest.max()))))
 
 
 def mechanism_signature(design: DesignSolution, size: float) -> np.ndarray:

@@ -31,10 +31,14 @@ from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.return_stroke import ReturnStroke
 from transplanter.fivebar.whole_turn import CURVES, whole_turn
 from transplanter.solve import Solver, StallRule, exchange, periodic_peaks
+from transplanter.trains.pressure_angle import PRESSURE_GAP, pressure_excess
 
-EXCHANGE_ROUNDS = 4
+EXCHANGE_ROUNDS = 6
 #: The fine check adds carrier turns where the quality falls below t by more than this fraction ...
 QUALITY_GAP = 1e-3
+#: ... where the closure margin falls below its floor by more than this fraction of it (a tenth of what the
+#: verification allows: the floor binds wherever the transmission angle is bought with the angle EBF) ...
+CLOSURE_GAP = 1e-7
 #: ... or where a kappa falls below the value it is held at by more than this fraction of that value's size.
 CURVATURE_GAP = 1e-3
 #: Iterations each solve of the attempt at convex curves may take, from the design held at -CONCAVITY_LIMIT.
@@ -131,7 +135,8 @@ class DesignSolver:
     def _exchange(self, start: Candidate, curvature_floor: float | None, warm: DesignSolution | None = None,
                   iteration_limit: int | None = None, closure_in_quality: bool = False) -> DesignSolution:
         """``solve`` with the carrier turns where the fine check finds sin^2 of the transmission angle below t,
-        the closure margin below its floor, or rho' or a curvature (below ``curvature_floor``) out of bounds,
+        the closure margin below its floor, or rho', a pressure angle or a curvature (below
+        ``curvature_floor``) out of bounds,
         added to its grid (``solve.exchange``)."""
         low, high = 1 / self.problem.ratio_bounds[1], 1 / self.problem.ratio_bounds[0]
         floor = self.problem.min_closure_margin
@@ -145,7 +150,8 @@ class DesignSolver:
             quality = np.fmin(check["bef"], check["ebf"]) if closure_in_quality else check["bef"]
             shortfall = np.fmax.reduce([
                 (solution.quality - quality) / max(solution.quality, QUALITY_GAP) - QUALITY_GAP,
-                (floor - check["ebf"]) / floor, (low - slope) / low, (slope - high) / high,
+                (floor - check["ebf"]) / floor - CLOSURE_GAP, (low - slope) / low, (slope - high) / high,
+                pressure_excess(check["leans"], self.problem.gearing) - PRESSURE_GAP,
                 *([] if curvature_floor is None else
                   (curvature_floor - check["curvature"]) / abs(curvature_floor) - CURVATURE_GAP)])
             return check["turns"][periodic_peaks(shortfall)]

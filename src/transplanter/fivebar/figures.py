@@ -11,10 +11,12 @@ from matplotlib.figure import Figure
 
 from transplanter.api_arguments import require_result
 from transplanter.cam.figures import draw_figures as draw_cam_figures
-from transplanter.figure_conventions import LEGEND_BESIDE
+from transplanter.figure_conventions import LEGEND_BESIDE, PROBLEM_TITLE
 from transplanter.fivebar.gears_on_carrier import gears_on_carrier, tooth_outlines
+from transplanter.fivebar.load_figures import draw_load_figure
 from transplanter.fivebar.result import FiveBarResult
 from transplanter.fivebar.support import SupportDesign
+from transplanter.trains.figures import draw_pressure_angles
 
 
 def draw_region(result: FiveBarResult) -> Figure:
@@ -197,9 +199,19 @@ def draw_support(support: SupportDesign) -> Figure:
     return fig
 
 
+def draw_pressure_angle(result: FiveBarResult) -> Figure:
+    """The gear pressure angle of both meshes, drive and coast flank, over the carrier turn."""
+    fig = Figure(figsize=(9, 4.5), layout="constrained")
+    draw_pressure_angles(fig.subplots(), result.pressure)
+    if result.problem.title:
+        fig.suptitle(result.problem.title, **PROBLEM_TITLE)
+    return fig
+
+
 def draw_figures(result: FiveBarResult) -> dict[str, Figure]:
     """The figures of a five-bar design by file stem: ``region``, ``relative_angle``, ``gears``, ``trajectory``,
-    ``tradeoff``, and with a seedling support ``support`` and the cam's own (``cam_motion``, ...).
+    ``tradeoff``, ``loads``, ``pressure_angle``, and with a seedling support ``support`` and the cam's own
+    (``cam_motion``, ...).
 
     Parameters
     ----------
@@ -213,7 +225,9 @@ def draw_figures(result: FiveBarResult) -> dict[str, Figure]:
     """
     require_result(result, FiveBarResult, "fivebar")
     figures = {"region": draw_region(result), "relative_angle": draw_relative_angle(result),
-               "gears": draw_gears(result), "trajectory": draw_trajectory(result), "tradeoff": draw_tradeoff(result)}
+               "gears": draw_gears(result), "trajectory": draw_trajectory(result), "tradeoff": draw_tradeoff(result),
+               "loads": draw_load_figure(result.loads, result.problem.title),
+               "pressure_angle": draw_pressure_angle(result)}
     if result.support is not None:
         figures["support"] = draw_support(result.support)
         figures.update(draw_cam_figures(result.support.cam))

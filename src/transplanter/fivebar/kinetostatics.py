@@ -1,5 +1,4 @@
-"""Forces and torques in a five-bar design over one carrier turn, for a planting load at P and the links' weights
-(issue 28).
+"""Forces and torques in a five-bar design over one carrier turn, for a planting load at P and the links' weights.
 
 Model (``derivations/fivebar_statics.py``): quasi-static, frictionless hinges, a lossless gear train. The train is
 taken to pass pure torques: it turns rod AF about A by ``planet_torque`` and takes the reaction on the carrier and

@@ -27,18 +27,21 @@ def load_json(loads: Kinetostatics) -> dict:
     return report
 
 
-def load_markdown(report: dict) -> list[str]:
-    """Lines of report.md from ``load_json``'s object."""
-    applied = (f"constant force {report['force_n']} N at P" if "force_n" in report
-               else f"{report['resisting_n']:g} N at P against its velocity")
-    masses = ", ".join(f"{link.replace('_', ' ')} {mass:g} kg" for link, mass in report["masses_kg"].items() if mass)
-    hinges = ", ".join(f"{name} {report['hinge_force_peak_n'][name]:.1f} N "
-                       f"({report['hinge_force_peak_at_deg'][name]:.1f} deg)" for name in HINGES)
-    return [f"- load: {applied} over the pushing stroke {report['stroke_deg'][0]:g}-{report['stroke_deg'][1]:g} deg; "
+def load_markdown(loads: Kinetostatics) -> list[str]:
+    """Lines of report.md: the load used and the peaks."""
+    load, peaks = loads.load, loads.peaks()
+    applied = (f"constant force {load.force_n.tolist()} N at P" if load.force_n is not None
+               else f"{load.resisting_n:g} N at P against its velocity")
+    masses = ", ".join(f"{link.replace('_', ' ')} {mass:g} kg" for link, mass in load.masses_kg.items() if mass)
+    stroke = np.degrees(loads.stroke)
+
+    def peak(name: str, unit: str, digits: int) -> str:
+        value, turn = peaks[name]
+        return f"{value:.{digits}f} {unit} at {np.degrees(turn):.1f} deg"
+
+    return [f"- load: {applied} over the pushing stroke {stroke[0]:g}-{stroke[1]:g} deg; "
             + (f"link masses {masses}" if masses else "no link masses"),
-            f"- carrier input torque peak {report['carrier_torque_peak_nm']:.3f} N m at "
-            f"{report['carrier_torque_peak_at_deg']:.1f} deg; train torque on the rod peak "
-            f"{report['planet_torque_peak_nm']:.3f} N m at {report['planet_torque_peak_at_deg']:.1f} deg",
-            f"- force in BE peak {report['be_force_peak_n']:.1f} N at {report['be_force_peak_at_deg']:.1f} deg "
-            "(tension +)",
-            f"- hinge force peaks: {hinges}"]
+            f"- carrier input torque peak {peak('carrier_torque', 'N m', 3)}; train torque on the rod peak "
+            f"{peak('planet_torque', 'N m', 3)}",
+            f"- force in BE peak {peak('be_force', 'N', 1)} (tension +)",
+            "- hinge force peaks: " + ", ".join(f"{name} {peak(name, 'N', 1)}" for name in HINGES)]

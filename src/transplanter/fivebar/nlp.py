@@ -22,7 +22,9 @@ Constraints, each a named block (every closure equation from ``derivations/fiveb
 - on the grid (``GRID_POINTS`` carrier turns, the left sides of the spline's knots, where a kappa jumps,
   and ``capacity`` exchange slots whose turns are parameters): ``closure_margin`` (>= its floor),
   ``transmission_quality`` (sin^2 mu >= t), ``slope`` (1/i_max <= rho' <= 1/i_min: the gears never
-  reverse) and ``curvature_<curve>`` (a kappa >= u for the four pitch curves, ``train_pitch_curvature``);
+  reverse), ``curvature_<curve>`` (a kappa >= u for the four pitch curves, ``train_pitch_curvature``) and
+  ``pressure_angle_stage_<j>`` (the teeth's pressure angle alpha0 + |mu| within ``[gears]
+  max_pressure_angle_deg``, mu the lean of the pitch curves' common tangent, ``trains.pressure_angle``);
 - ``correction_closure``: k int_0^2pi sqrt(rho') dc = 2 pi by ``QUADRATURE_NODES``-point Gauss-Legendre
   per knot span (rho' is a quadratic there: the row agrees with ``trains.planetary.correction_factor``
   to about 1e-13);
@@ -64,6 +66,7 @@ from transplanter.generated import casadi_function
 from transplanter.geometry.periodic_bspline import CASADI, TWO_PI, basis, basis_matrix, knots
 from transplanter.geometry.turn_quadrature import NODES, panels
 from transplanter.solve import ActiveBound, Bounds, NLPBuilder, NLPLayout, Solution
+from transplanter.trains.pressure_angle import pressure_rows
 
 GRID_POINTS = 72
 BENDING_WEIGHT = 1e-5
@@ -78,9 +81,12 @@ MIN_STEP = np.radians(1.0)   # smallest carrier turn between consecutive positio
 #: Exchange slots one NLP holds before it is rebuilt larger.
 ADDED_CAPACITY = 16
 #: The grid blocks each exchange slot adds a row to.
-GRID_BLOCKS = ("closure_margin", "transmission_quality", "closure_quality", "slope",
-               *(f"curvature_{c.replace(' ', '_')}" for c in CURVES))
-CURVATURE_BLOCKS = GRID_BLOCKS[4:]
+CURVATURE_BLOCKS = tuple(f"curvature_{c.replace(' ', '_')}" for c in CURVES)
+PRESSURE_BLOCKS = ("pressure_angle_stage_1", "pressure_angle_stage_2")
+GRID_BLOCKS = ("closure_margin", "transmission_quality", "closure_quality", "slope", *CURVATURE_BLOCKS,
+               *PRESSURE_BLOCKS)
+#: Report name of the gear pressure angle's bound.
+PRESSURE_LIMIT = "gears.max_pressure_angle_deg"
 #: Report names of the return tolerance and of the curvature hold (``active_bounds`` groups by them).
 RETURN_TOLERANCE = "conditions.return_tolerance_mm"
 
@@ -357,6 +363,9 @@ def build_nlp(problem: FiveBarProblem, capacity: int = ADDED_CAPACITY) -> Design
     for k, (name, curve) in enumerate(zip(CURVATURE_BLOCKS, CURVES, strict=True)):
         nlp.constraints(name, curvature[k, :].T - least_curvature, 0.0, np.inf, CURVATURE_FLOOR,
                         ((f"a kappa of the {curve} pitch curve", "lower"), None))
+    pressure = pressure_rows(derivatives, correction, problem.gearing)
+    for k, name in enumerate(PRESSURE_BLOCKS):
+        nlp.constraints(name, pressure[k, :].T, -np.inf, 0.0, 1.0, (None, (PRESSURE_LIMIT, "upper")))
 
     spans = panels(knots(n), count=n, nodes=QUADRATURE_NODES)
     root_slope = ca.sqrt(1 + ca.mtimes(ca.DM(basis_matrix(spans.nodes.ravel(), n, 1)), q))

@@ -9,6 +9,8 @@ import numpy as np
 
 from transplanter.cam.timing import STAGES
 from transplanter.fivebar.alternatives import RANKING_RULE
+from transplanter.fivebar.key_pose_bands import QUANTITIES
+from transplanter.fivebar.load_report import load_json, load_markdown
 from transplanter.fivebar.nlp import BENDING_WEIGHT
 from transplanter.trains.planetary import printed_correction
 from transplanter.trains.report import toothed_train_json, train_size_json, worst_mesh
@@ -155,9 +157,31 @@ def fivebar_result_json(result: FiveBarResult) -> dict:
         "nlp": {"status": design.status, "iterations": design.iterations, "objective": design.objective,
                 "bending_weight": BENDING_WEIGHT, "curvature_floor": design.curvature_floor,
                 "convexity_note": design.convexity_note},
+        "chosen_key_poses": chosen_key_poses_json(result),
+        "key_pose_sets": [{"poses": pose_rows_json(trial.poses, trial.carrier_turns),
+                           "feasible_five_bars": trial.feasible, "emptied_by": trial.binding or None}
+                          for trial in result.band_trials],
+        **result.pressure.to_json(),
+        "load": load_json(result.loads),
         **support,
         "timings_s": result.timings_s,
     }
+
+
+def pose_rows_json(poses, turns) -> list[dict]:
+    """Key poses (mm, rad) as the file gives them: x, y, angle_deg, carrier_turn_deg."""
+    return [{"x": float(pose[0]), "y": float(pose[1]), "angle_deg": float(np.degrees(pose[2])),
+             "carrier_turn_deg": float(np.degrees(turn))} for pose, turn in zip(poses, turns, strict=True)]
+
+
+def chosen_key_poses_json(result: FiveBarResult) -> list[dict]:
+    """Every key pose the design meets, with its label and, where the problem gave a band, which quantities it
+    chose (``banded``)."""
+    problem, bands = result.problem, result.pose_bands
+    rows = pose_rows_json(problem.poses, problem.carrier_turns)
+    return [{"label": label, **row,
+             "banded": [] if bands is None else [QUANTITIES[q] for q in np.flatnonzero(bands.banded[k])]}
+            for k, (label, row) in enumerate(zip(problem.labels, rows, strict=True))]
 
 
 def _finite_or_none(value: float) -> float | None:
@@ -244,9 +268,31 @@ def to_markdown(result: FiveBarResult, files: Sequence[str] = ()) -> str:
               f"{len(region.feasible)} of {len(region.candidates)} five-bars feasible (removed by: "
               f"{region.pair_defects}).", "",
               f"NLP: {design.status} in {design.iterations} iterations.", ""]
+    lines += _chosen_poses_markdown(result)
+    lines += ["## Loads (quasi-static, frictionless hinges, a lossless train)", "", *load_markdown(result.loads), "",
+              result.pressure.summary(), ""]
     lines += support_markdown(result.support)
     lines += [f"![{name}]({name})" for name in files if name.endswith(".png")]
     return "\n".join(lines) + "\n"
+
+
+def _chosen_poses_markdown(result: FiveBarResult) -> list[str]:
+    """The key poses the design chose inside their bands, and the pose sets the region was built for."""
+    bands = result.pose_bands
+    if bands is None:
+        return []
+    problem = result.problem
+    lines = ["## Key poses chosen inside their bands", "",
+             "| pose | x (mm) | y (mm) | angle (deg) | carrier turn (deg) | banded |", "|---|---|---|---|---|---|"]
+    for k, row in enumerate(pose_rows_json(problem.poses, problem.carrier_turns)):
+        banded = ", ".join(QUANTITIES[q] for q in np.flatnonzero(bands.banded[k])) or "none"
+        lines.append(f"| {problem.labels[k]} | {row['x']:.3f} | {row['y']:.3f} | {row['angle_deg']:.3f} | "
+                     f"{row['carrier_turn_deg']:.3f} | {banded} |")
+    trials = result.band_trials
+    lines += ["", f"The region was built for {len(trials)} pose set{'s' * (len(trials) > 1)} (the bands' centres "
+              "first): " + "; ".join(f"{k + 1}: {trial.feasible} feasible five-bars" if trial.feasible else
+                                     f"{k + 1}: none ({trial.binding})" for k, trial in enumerate(trials)) + ".", ""]
+    return lines
 
 
 def _bound(bound: ActiveBound) -> str:

@@ -8,13 +8,17 @@ from typing import TYPE_CHECKING, Any
 
 from transplanter.command_result import CommandResult
 from transplanter.fivebar.alternatives import Alternative, Failure
+from transplanter.fivebar.band_search import PoseSetTrial
 from transplanter.fivebar.candidate import Candidate
+from transplanter.fivebar.key_pose_bands import PoseBands
+from transplanter.fivebar.kinetostatics import Kinetostatics
 from transplanter.fivebar.nlp import DesignSolution
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import Region
 from transplanter.fivebar.support import SupportDesign
 from transplanter.fivebar.verification import Verification
 from transplanter.trains.planetary import PlanetaryTrain
+from transplanter.trains.pressure_angle import StagePressureAngles
 from transplanter.trains.toothed_train import ToothedTrain
 
 if TYPE_CHECKING:
@@ -28,7 +32,7 @@ class FiveBarResult(CommandResult):
     Attributes
     ----------
     problem : FiveBarProblem
-        The problem solved (mm, radians).
+        The problem solved (mm, radians), with the key poses the picked design chose where they were bands.
     region : Region
         The solution region: traced B-E and A-F dyads and the five-bars they pair into.
     start : Candidate
@@ -50,6 +54,14 @@ class FiveBarResult(CommandResult):
         The feasible candidates whose refinement failed, with the reason.
     picked : int
         Which alternative was built (1-based).
+    pressure : StagePressureAngles
+        The gear pressure angle of both meshes over the turn (``trains.pressure_angle``).
+    loads : Kinetostatics
+        Forces and torques over the turn for the planting load and the links' weights (``[load]``).
+    pose_bands : PoseBands or None
+        The key poses' bands as the problem gave them (None: all exact).
+    band_trials : tuple of PoseSetTrial
+        The pose sets the region was built for (``fivebar.band_search``): the bands' centres first.
     support : SupportDesign or None
         The seedling support timed to the design (``[support]``), else None.
     """
@@ -64,6 +76,10 @@ class FiveBarResult(CommandResult):
     alternatives: tuple[Alternative, ...]
     failed: tuple[Failure, ...]
     picked: int
+    pressure: StagePressureAngles
+    loads: Kinetostatics
+    pose_bands: PoseBands | None = None
+    band_trials: tuple[PoseSetTrial, ...] = ()
     support: SupportDesign | None = None
 
     @property
@@ -77,8 +93,10 @@ class FiveBarResult(CommandResult):
 
     @property
     def failures(self) -> list[str]:
-        """Every check of the built mechanism it fails: verification, the gears' mesh, then the support."""
-        return [*self.verification.failures, *self.toothed.failures, *(self.support.failures if self.support else [])]
+        """Every check of the built mechanism it fails: verification, the gears' mesh and pressure angle, then the
+        support."""
+        return [*self.verification.failures, *self.toothed.failures, *self.pressure.failures(),
+                *(self.support.failures if self.support else [])]
 
     @property
     def chosen(self) -> Alternative:

@@ -19,12 +19,15 @@ from transplanter.errors import InfeasibleError, ProblemError, SolverError
 from transplanter.fivebar.alternatives import Alternative, Progress, refine_all, with_gear_sizes
 from transplanter.fivebar.band_search import band_starts
 from transplanter.fivebar.design_solver import DesignSolver
+from transplanter.fivebar.kinetostatics import kinetostatics
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import ChainFamily, Region
 from transplanter.fivebar.relaxation import relaxation_hint
 from transplanter.fivebar.result import FiveBarResult
 from transplanter.fivebar.support import design_support
 from transplanter.fivebar.verification import verify
+from transplanter.fivebar.whole_turn import fine_turns
+from transplanter.trains.pressure_angle import stage_pressure_angles
 from transplanter.trains.toothed_train import design_toothed_train
 
 
@@ -99,7 +102,7 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
     progress : callable, optional
         ``progress(step, done, total)``, called with done = 0 when a step starts and after each
         unit of it; steps ``"region"``, ``"refinement"`` (one unit per candidate), ``"gears"``,
-        ``"verification"``, ``"support"`` (with ``[support]``).
+        ``"verification"``, ``"support"`` (with ``[support]``), ``"loads"``.
 
     Returns
     -------
@@ -149,7 +152,7 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
     chosen = pick_alternative(alternatives, pick, problem.source)
     design = chosen.design
 
-    problem = problem.with_poses(design.poses, design.carrier_turns)     # the key poses the design meets
+    given, problem = problem, problem.with_poses(design.poses, design.carrier_turns)  # the key poses the design meets
     start = _step(progress, "gears")
     toothed = design_toothed_train(design.relative_angle, design.mech.carrier_length, problem.gearing, problem.source)
     timings["gears"] = _done(progress, "gears", start)
@@ -163,8 +166,13 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
         support = design_support(problem.support, design.mech, design.relative_angle, problem.carrier_turns,
                                  design.stroke.carrier_turns, problem.source)
         timings["support"] = _done(progress, "support", start)
+    start = _step(progress, "loads")
+    pressure = stage_pressure_angles(design.relative_angle, toothed.train.correction, problem.gearing, fine_turns())
+    loads = kinetostatics(design.mech, design.relative_angle, problem.carrier_turns, problem.load)
+    timings["loads"] = _done(progress, "loads", start)
     return FiveBarResult(problem, region, region.feasible[chosen.starts[0]], design, toothed, verification, timings,
-                         tuple(alternatives), tuple(failed), pick, support)
+                         tuple(alternatives), tuple(failed), pick, pressure, loads, given.pose_bands, starts.trials,
+                         support)
 
 
 def _step(progress: Progress | None, step: str) -> float:
