@@ -77,7 +77,8 @@ def test_designs_reached_from_different_starts_are_merged_and_different_ones_kep
 
 def test_alternatives_are_ranked_by_the_documented_rule(run):
     """Constructed alternatives with known angles, misses and ratio spreads come out in the order the rule gives:
-    the largest smallest transmission angle at E first; near-equal angles by the smaller miss, equal misses by the gentler ratio;
+    the largest smallest transmission angle at E first; near-equal angles by the smaller miss, equal misses by the
+    gentler ratio;
     an angle just outside the tie tolerance is not a tie even with the smallest miss."""
     result, _ = run
     base = result.alternatives[0]
@@ -233,7 +234,8 @@ def test_figures_name_hinges_gears_and_show_the_trade_off(run):
     gear_labels = [text.get_text() for text in figures["gears"].axes[1].get_legend().get_texts()]
     one, two = result.toothed.counts
     assert gear_labels == [f"sun (driver, stage 1), {one} teeth", f"first intermediate (driven, stage 1), {one} teeth",
-                           f"second intermediate (driver, stage 2), {two} teeth", f"planet (driven, stage 2), {two} teeth"]
+                           f"second intermediate (driver, stage 2), {two} teeth",
+                           f"planet (driven, stage 2), {two} teeth"]
 
 
 def test_a_start_whose_curves_cannot_be_held_to_shaper_hollows_fails_with_the_unheld_numbers(run):
@@ -256,7 +258,7 @@ def test_a_start_whose_curves_cannot_be_held_to_shaper_hollows_fails_with_the_un
         HeldFails(problem).refine(start)
     reason = caught.value.reason
     assert "Infeasible_Problem_Detected" in reason and f"{-CONCAVITY_LIMIT:g}" in reason
-    for curve, value in zip(CURVES, unheld.min_curvature):
+    for curve, value in zip(CURVES, unheld.min_curvature, strict=True):
         assert f"{curve} {value:.3f}" in reason
     found, failed, _ = refine_all(problem, HeldFails(problem), [start])
     assert found == [] and failed == [Failure(0, reason)]

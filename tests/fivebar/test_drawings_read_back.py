@@ -46,7 +46,7 @@ def folder(result, tmp_path_factory):
 
 def _table(path: Path):
     header = path.read_text().splitlines()[0].split(",")
-    return dict(zip(header, np.loadtxt(path, delimiter=",", skiprows=1).T))
+    return dict(zip(header, np.loadtxt(path, delimiter=",", skiprows=1).T, strict=True))
 
 
 def test_linkage_dxf_reads_back_in_millimetres_with_named_layers(result, folder):
@@ -91,7 +91,8 @@ def test_trajectory_csv_passes_the_key_poses_in_mm_and_degrees(result, folder):
     size = np.abs(problem.poses[:, :2]).max()
     assert np.abs(np.c_[table["x_mm"], table["y_mm"]][rows] - problem.poses[:, :2]).max() < 1e-9 * size
     assert np.abs(table["plate_angle_deg"][rows] - np.degrees(problem.poses[:, 2])).max() < 1e-9
-    assert np.allclose(table["carrier_angle_deg"], np.degrees(result.design.mech.carrier_angle) - table["carrier_turn_deg"])
+    assert np.allclose(table["carrier_angle_deg"],
+                       np.degrees(result.design.mech.carrier_angle) - table["carrier_turn_deg"])
 
 
 def test_relative_angle_csv_slope_is_the_derivative_of_its_angle(folder):
@@ -112,7 +113,7 @@ def test_pitch_curve_csvs_mesh_at_the_center_distances_and_roll_equal_arcs(resul
         assert np.allclose(np.exp(1j * np.radians(table["angle_deg"])),
                            np.exp(1j * np.arctan2(table["y_mm"], table["x_mm"])))
     stages = (("sun", "first_intermediate"), ("second_intermediate", "planet"))
-    for (driver, driven), distance in zip(stages, result.train.center_distances):
+    for (driver, driven), distance in zip(stages, result.train.center_distances, strict=True):
         one, two = tables[driver], tables[driven]
         assert np.abs(one["radius_mm"] + two["radius_mm"] - distance).max() < 1e-9 * distance
         arcs = [np.linalg.norm(np.diff(np.c_[t["x_mm"], t["y_mm"]], axis=0), axis=1).sum() for t in (one, two)]
@@ -142,7 +143,8 @@ def test_gear_drawings_read_back_with_teeth_pitch_bore_and_mark(tmp_path):
     pair = gears.synthesize(gears.load_problem(ROOT / "examples/gear_ellipse.toml"))
     pitch = (driver_table(pair.design).points, driven_table(pair.design).points)
     drawings = [GearDrawing(name, outline, curve, default_bore_radius(outline), direction)
-                for name, outline, curve, direction in zip(("driver", "driven"), pair.teeth.outlines, pitch, (0.0, np.pi))]
+                for name, outline, curve, direction in zip(("driver", "driven"), pair.teeth.outlines, pitch,
+                                                           (0.0, np.pi), strict=True)]
     written = write_gear_drawings(drawings, tmp_path)
     assert sorted(p.name for p in written) == ["driven.dxf", "driven.svg", "driver.dxf", "driver.svg"]
     for drawing in drawings:
@@ -171,7 +173,7 @@ def test_gear_drawings_read_back_with_teeth_pitch_bore_and_mark(tmp_path):
 def test_five_bar_gear_marks_point_at_the_contact_in_pose_1(result):
     placed = gears_on_carrier(result.train, result.design.mech.carrier_length)
     drawings = gear_drawings(result, {gear.name: gear.pitch_curve for gear in placed})
-    for gear, drawing in zip(placed, drawings):
+    for gear, drawing in zip(placed, drawings, strict=True):
         tip = gear.placed(drawing.mark[1:], 0.0)[0, 0]
         towards = (tip - gear.center) / np.linalg.norm(tip - gear.center)
         mate = (gear.mate_center - gear.center) / np.linalg.norm(gear.mate_center - gear.center)
@@ -255,7 +257,8 @@ def test_fivebar_out_holds_and_lists_the_drawings_tables_and_animation(quick_com
     assert report == json.loads((out / "report.json").read_text())
     gears = [f"{gear}.{kind}" for gear in ("first_intermediate", "planet", "second_intermediate", "sun")
              for kind in ("dxf", "svg")]
-    expected = {"drawing": sorted(["linkage.dxf", *gears]), "figure": ["trajectory.png"], "report": ["report.json", "report.md"],
+    expected = {"drawing": sorted(["linkage.dxf", *gears]), "figure": ["trajectory.png"],
+                "report": ["report.json", "report.md"],
                 "table": ["pitch_curve_first_intermediate.csv", "pitch_curve_planet.csv",
                           "pitch_curve_second_intermediate.csv", "pitch_curve_sun.csv", "relative_angle.csv",
                           "trajectory.csv"]}

@@ -180,7 +180,8 @@ def test_a_feasible_iterate_restarts_the_stall_count(problem):
     lbg, ubg = bounds.lbg, bounds.ubg
     cap.watch(None, lbg, ubg, nlp.layout.row_scales())
     order = ca.nlpsol_out()
-    inside, outside = np.where(np.isfinite(lbg), lbg, np.fmin(ubg, 0.0)), np.where(np.isfinite(lbg), lbg - 1.0, ubg + 1.0)
+    inside = np.where(np.isfinite(lbg), lbg, np.fmin(ubg, 0.0))
+    outside = np.where(np.isfinite(lbg), lbg - 1.0, ubg + 1.0)
 
     def iterate(g):
         values = {"g": g, "f": 0.0, "x": np.zeros(nlp.layout.x.shape[0]), "lam_x": np.zeros(nlp.layout.x.shape[0]),
@@ -205,7 +206,8 @@ def test_gear_stages_close_and_printed_eq12_does_not(result):
     train = result.train
     assert abs(train.stage_one.closure_error) < 1e-10 and abs(train.stage_two.closure_error) < 1e-10
     k_printed, turn = printed_correction(train.relative_angle)
-    # Read as printed, k' = 2 pi / int rho'^(3/2) dc, so the intermediate gear turns 2 pi int rho'^(1/2) / int rho'^(3/2)
+    # Read as printed, k' = 2 pi / int rho'^(3/2) dc, so the intermediate gear turns
+    # 2 pi int rho'^(1/2) / int rho'^(3/2)
     # per sun turn: below a turn whenever rho' varies (its mean is 1). Independent quadrature on a fine grid:
     slope = train.relative_angle.evaluate(np.linspace(0, 2 * np.pi, 72000, endpoint=False), 1)
     expected = 2 * np.pi * np.sqrt(slope).mean() / (slope**1.5).mean()
@@ -273,7 +275,8 @@ def test_ranges_that_empty_the_region_are_named():
     # 210 is a regression pin (the traced B-E dyads within the other ranges); the tracing is checked against the
     # exact curves in tests/fivebar/test_solution_region.py
     problem = parse_problem(_edited(ranges__x_e=[100.0, 200.0]), "f.toml")
-    with pytest.raises(InfeasibleError, match=r"no 2R chain B-E survives: ranges\.x_e removes the last 210 .*closest: B"):
+    with pytest.raises(InfeasibleError,
+                       match=r"no 2R chain B-E survives: ranges\.x_e removes the last 210 .*closest: B"):
         synthesize(problem)
 
 

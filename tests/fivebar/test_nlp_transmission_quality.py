@@ -118,11 +118,11 @@ def test_pitch_curves_keep_hollows_a_shaper_cuts_by_the_gear_library_curves(desi
     distances = (24.0, 31.0)
     train = design_train(design.relative_angle, distances)
     library = [float((a / stage.curvature_radius[side]).min())
-               for a, stage in zip(distances, (train.stage_one, train.stage_two)) for side in (0, 1)]
+               for a, stage in zip(distances, (train.stage_one, train.stage_two), strict=True) for side in (0, 1)]
     assert min(library) >= -CONCAVITY_LIMIT * (1 + CURVATURE_GAP)     # the fine check's gap
     # the library samples each curve 721 times; the design's least a kappa is from 7200 turns and the knots' sides
     assert all(sampled >= least - CURVATURE_GAP * CONCAVITY_LIMIT
-               for sampled, least in zip(library, design.min_curvature))
+               for sampled, least in zip(library, design.min_curvature, strict=True))
     assert [value < 0 for value in library] == [value < 0 for value in design.min_curvature]
     assert design.curvature_floor == -CONCAVITY_LIMIT
     tightest = CURVES[int(np.argmin(design.min_curvature))]
@@ -130,7 +130,8 @@ def test_pitch_curves_keep_hollows_a_shaper_cuts_by_the_gear_library_curves(desi
     active = {(b.name, b.side) for b in design.active_bounds}
     assert ((f"a kappa of the {tightest} pitch curve", "lower") in active) == on_hold
     assert "shaper" in design.convexity_note and f"tightest the {tightest}" in design.convexity_note
-    assert all(f"{curve} {value:.3f}" in design.convexity_note for curve, value in zip(CURVES, design.min_curvature))
+    assert all(f"{curve} {value:.3f}" in design.convexity_note
+               for curve, value in zip(CURVES, design.min_curvature, strict=True))
     assert design.correction == pytest.approx(train.correction, rel=1e-12)
 
 

@@ -43,5 +43,6 @@ def test_the_example_is_built_with_p8_on_its_other_pass(example_result):
     assert _distance(built.design, problem.return_points[j], turn)[0] <= problem.return_tolerance_mm * (1 + 1e-6)
     moved = [a for a in example_result.alternatives if a.restroke]
     for alternative in moved:
-        before, after = (float(v) for v in alternative.restroke.split("smallest transmission angle at E ")[1].rstrip(" deg)").split(" -> "))
+        moved = alternative.restroke.split("smallest transmission angle at E ")[1].rstrip(" deg)")
+        before, after = (float(v) for v in moved.split(" -> "))
         assert after == pytest.approx(np.degrees(alternative.transmission_angle), abs=5e-4) and after > before

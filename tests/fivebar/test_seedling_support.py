@@ -129,7 +129,7 @@ def test_roller_rides_the_cam_as_the_support_moves(support):
     """The arm C-K turned with the rocker puts the roller centre on the cam's pitch curve turned with the carrier."""
     turns = support.carrier_turns[::90]
     roller = support.joints(turns)["K"]
-    for turn, k in zip(turns, roller):
+    for turn, k in zip(turns, roller, strict=True):
         pitch = support.cam_outline(turn, "pitch")
         assert np.min(np.linalg.norm(pitch - k, axis=1)) < 0.2      # pitch sampled every 0.1 deg, ~0.06 mm apart
 
@@ -175,7 +175,8 @@ def test_without_support_nothing_changes(evaluation):
 
 @pytest.mark.parametrize("changes, words", [
     ({"colour": "red"}, r"support\.colour = 'red': expected no such field here"),
-    ({"segments_deg": [110.0, 80.0, 85.0, 80.0]}, r"support\.segments_deg = .*adding up to 360 deg \(these add up to 355"),
+    ({"segments_deg": [110.0, 80.0, 85.0, 80.0]},
+     r"support\.segments_deg = .*adding up to 360 deg \(these add up to 355"),
     ({"plate_x": -90.0}, r"support\.plate_x = -90\.0: expected a line left of the receiving plate's hinge E, which "
                          r"ranges\.x_e puts from x = -100 to 0 mm in pose 1"),
     ({"heights": [-188.0, -307.0]}, r"support\.heights = .*low < high"),
@@ -248,7 +249,7 @@ def test_support_layer_and_figure(support):
     joints = {name: points[0] for name, points in support.joints([0.0]).items()}
     assert np.allclose(polylines[0], [joints[n] for n in "CGHZ"])
     d = support.spec.cam_center
-    for outline, curve in zip(polylines[1:], ("profile", "pitch")):
+    for outline, curve in zip(polylines[1:], ("profile", "pitch"), strict=True):
         expected = np.linalg.norm(getattr(support.cam.geometry, curve), axis=1)
         assert np.allclose(np.linalg.norm(outline - d, axis=1), expected)
     figure = draw_support(support)

@@ -48,7 +48,7 @@ def test_region_equals_the_one_at_a_time_reference_for_every_candidate(problem):
     region = solution_region(problem)
     assert len(region.candidates) == len(reference) == 1664
     assert sum(c.stroke is not None for c in reference) > 100 and len(region.feasible) == 17
-    for old, new in zip(reference, region.candidates):
+    for old, new in zip(reference, region.candidates, strict=True):
         _same_candidate(old, new)
 
 
@@ -81,7 +81,7 @@ def test_return_stroke_by_dynamic_programming_equals_the_exhaustive_search(probl
                                  receiving_length=known.receiving_length * s3)
              for s1, s2, s3 in 1 + 0.03 * rng.normal(size=(40, 3))]
     batch = FiveBar(*(np.stack([np.asarray(v, float) for v in values])[:, None]
-                      for values in zip(*(vars(m).values() for m in mechs))))
+                      for values in zip(*(vars(m).values() for m in mechs), strict=True)))
     rho1, last_rho = np.full(40, relative.rho1), np.full(40, float(relative.evaluate(key)))
     direction = float(last["direction"][0])
     strokes = solve_return_strokes(batch, points, key, rho1, last_rho, direction)
@@ -119,7 +119,8 @@ def test_too_many_pairs_without_ranges_is_one_problem_error():
     data = read_toml(EXAMPLE)
     del data["ranges"]
     problem = parse_problem(data, "f.toml")
-    with pytest.raises(ProblemError, match=r"f\.toml: region\.samples = 2000: expected at most about (\d+) here") as error:
+    with pytest.raises(ProblemError,
+                       match=r"f\.toml: region\.samples = 2000: expected at most about (\d+) here") as error:
         solution_region(problem)
     message = str(error.value)
     fitting = int(message.split("at most about ")[1].split(" ")[0])

@@ -355,7 +355,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> CamProblem:
         title=read.text(data, "title", "", LONGEST_TITLE),
     )
     if base is not None:
-        check_base_radius(problem, base, read.fail)
+        check_base_radius(problem.follower, base, read.fail)
         check_swing(problem, base, read.fail)
         if problem.bore_radius is not None and problem.bore_radius >= base:
             read.fail("cam.bore_radius", problem.bore_radius, f"less than cam.base_radius = {base:g} mm (the profile "
@@ -380,9 +380,8 @@ def check_swing(problem: CamProblem, base_radius: float, fail):
              f"cam centre ({reach + arm:.6g} mm), where the cam cannot turn the arm")
 
 
-def check_base_radius(problem: CamProblem, base_radius: float, fail):
+def check_base_radius(follower: Follower, base_radius: float, fail):
     """Refuse a base circle the follower cannot sit on: ``fail(field, value, expected)``."""
-    follower = problem.follower
     roller = follower.roller_radius
     if follower.kind == "flat_faced":
         return
@@ -392,7 +391,7 @@ def check_base_radius(problem: CamProblem, base_radius: float, fail):
     pitch = base_radius + roller
     if follower.kind == "translating" and abs(follower.offset) >= pitch:
         fail("follower.offset", follower.offset, f"less than base radius + roller radius = {pitch:g} mm in size")
-    if follower.kind == "oscillating":
+    if follower.kind == "oscillating" and follower.pivot is not None:
         reach = float(np.hypot(*follower.pivot))
         if reach <= pitch:
             fail("follower.pivot", [float(v) for v in follower.pivot],

@@ -59,7 +59,8 @@ ANGLE_TIE = 1e-3
 MISS_TIE = 1e-6
 
 #: The ranking rule in words (the reports state it).
-RANKING_RULE = (f"Ranked by the smallest transmission angle at E (between EF and BE) over the turn, largest first; angles within "
+RANKING_RULE = (f"Ranked by the smallest transmission angle at E (between EF and BE) over the turn, largest first; "
+                f"angles within "
                 f"{ANGLE_TIE:.1%} of each other tie, and a tie goes to the smaller largest return-point miss "
                 f"(misses within {MISS_TIE:g} of the reach, the farthest key pose or return point from O, tie), "
                 f"then to the gentler ratio (smaller i0 max / min), then to the earlier start candidate.")
@@ -200,7 +201,9 @@ def active_bounds(problem: FiveBarProblem, design: DesignSolution, min_margin: f
             found.append(ActiveBound(bound.name, bound.side, problem.ratio_bounds[side], ratios[side]))
         elif bound.name.startswith("a kappa of the"):
             curve = CURVES.index(bound.name.removeprefix("a kappa of the ").removesuffix(" pitch curve"))
-            found.append(ActiveBound(bound.name, bound.side, design.curvature_floor, design.min_curvature[curve]))
+            floor = design.curvature_floor
+            assert floor is not None, "a kappa is reported active only where the rows held it"
+            found.append(ActiveBound(bound.name, bound.side, floor, design.min_curvature[curve]))
         elif bound.name in banded and bands is not None:
             i, q = banded[bound.name]
             limit = (bands.low if side == 0 else bands.high)[i, q] * in_file_units[q]
@@ -299,7 +302,8 @@ def mechanism_signature(design: DesignSolution, size: float) -> np.ndarray:
 
 def merge(alternatives: list[Alternative], size: float) -> list[Alternative]:
     """One alternative per mechanism (``MERGE_TOLERANCE``), kept from its first start and listing every start."""
-    merged, signatures = [], []
+    merged: list[Alternative] = []
+    signatures: list[np.ndarray] = []
     for alternative in alternatives:
         signature = mechanism_signature(alternative.design, size)
         same = [k for k, other in enumerate(signatures) if np.abs(signature - other).max() <= MERGE_TOLERANCE]
@@ -340,7 +344,8 @@ def refine_all(problem: FiveBarProblem, solver: DesignSolver, candidates: list[C
     """Refine every candidate in the fixed lanes of ``fivebar.lanes``, lane 0 on ``solver`` (built for
     ``problem``); the ranked, merged alternatives, the failures (by start), and the wall time of each
     refinement (s)."""
-    outcomes, seconds = [None] * len(candidates), [0.0] * len(candidates)
+    outcomes: list[Alternative | Failure | None] = [None] * len(candidates)
+    seconds = [0.0] * len(candidates)
 
     def refine(lane_solver: DesignSolver, index: int) -> Alternative | Failure:
         try:
@@ -350,7 +355,8 @@ def refine_all(problem: FiveBarProblem, solver: DesignSolver, candidates: list[C
         except SolverError as error:
             return Failure(index, f"the design NLP did not converge: {error.status}")
 
-    def finished(index: int, outcome: Alternative | Failure, wall: float):
+    def finished(index: int, outcome: object, wall: float) -> None:
+        assert isinstance(outcome, (Alternative, Failure))
         outcomes[index], seconds[index] = outcome, wall
         if progress:
             progress("refinement", sum(o is not None for o in outcomes), len(candidates))
@@ -358,10 +364,11 @@ def refine_all(problem: FiveBarProblem, solver: DesignSolver, candidates: list[C
     if progress:
         progress("refinement", 0, len(candidates))
     refine_in_lanes(len(candidates), refine, solver, lambda: DesignSolver(problem), finished)
-    found = [outcome for outcome in outcomes if not isinstance(outcome, Failure)]
+    found = [outcome for outcome in outcomes if isinstance(outcome, Alternative)]
     failed = [outcome for outcome in outcomes if isinstance(outcome, Failure)]
     size = reach(problem)
-    merged = merge([_other_strokes(problem, solver, candidates, alternative) for alternative in merge(found, size)], size)
+    merged = merge([_other_strokes(problem, solver, candidates, alternative) for alternative in merge(found, size)],
+                   size)
     merged = [_convex_if_possible(problem, solver, candidates, alternative) for alternative in merged]
     return rank(merge(merged, size), size), failed, seconds
 
@@ -383,7 +390,8 @@ def _other_strokes(problem: FiveBarProblem, solver: DesignSolver, candidates: li
             moved = (f"{problem.return_labels[point]} moved from its pass at carrier turn "
                      f"{np.degrees(alternative.design.stroke.carrier_turns[point]):.1f} deg to the one at "
                      f"{np.degrees(turn):.1f} deg (smallest transmission angle at E "
-                     f"{np.degrees(alternative.transmission_angle):.3f} -> {np.degrees(judged.transmission_angle):.3f} deg)")
+                     f"{np.degrees(alternative.transmission_angle):.3f} -> "
+                     f"{np.degrees(judged.transmission_angle):.3f} deg)")
             best = replace(judged, starts=alternative.starts, restroke=moved)
     return best
 
@@ -407,8 +415,9 @@ def _convex_if_possible(problem: FiveBarProblem, solver: DesignSolver, candidate
 def with_gear_sizes(problem: FiveBarProblem, alternative: Alternative) -> Alternative:
     """The alternative with the whole-tooth sizes of its train, or the reason it has none."""
     design = alternative.design
+    gears: TrainSize | str
     try:
-        gears = train_size(design.relative_angle, design.mech.carrier_length, problem.gearing, problem.source)
+        gears = train_size(design.relative_angle, float(design.mech.carrier_length), problem.gearing, problem.source)
     except TransplanterError as error:
         gears = str(error)
     return replace(alternative, gears=gears)

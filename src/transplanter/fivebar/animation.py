@@ -44,12 +44,12 @@ def _clock_text(c: float) -> str:
     return f"carrier turn {np.degrees(c):5.1f} deg (clockwise from pose 1)"
 
 
-def _draw_frames(result: FiveBarResult, teeth: Teeth | None, frames: int):
+def _draw_frames(result: FiveBarResult, teeth: Teeth | None, frames: int) -> tuple[Figure, Callable[[int], list]]:
     """The Figure and a function that draws frame k."""
     mech, problem, check = result.design.mech, result.problem, result.verification
     turns = np.linspace(0, 2 * np.pi, frames, endpoint=False)
     state = close_loop(mech, turns, result.design.relative_angle.evaluate(turns))
-    gears = gears_on_carrier(result.train, mech.carrier_length)
+    gears = gears_on_carrier(result.train, float(mech.carrier_length))
     outlines = [(g.pitch_curve, g.center, g.angle, g.name.replace("_", " ")) for g in gears]
     toothed = [(outline, center, angle, name) for name, (outline, center, angle) in (teeth or {}).items()]
 
@@ -58,7 +58,7 @@ def _draw_frames(result: FiveBarResult, teeth: Teeth | None, frames: int):
     world.plot(*check.trajectory.T, color="0.75", lw=1, label="P over a turn")
     trace, = world.plot([], [], "k-", lw=1.5, label="P so far", animated=True)
     world.plot(*problem.poses[:, :2].T, "r^", ms=6, label="key poses")
-    for label, pose in zip(problem.labels, problem.poses):
+    for label, pose in zip(problem.labels, problem.poses, strict=True):
         world.annotate(f" {label}", pose[:2], fontsize=8, color="r", parse_math=False)
     chain, = world.plot([], [], "b-o", ms=3, lw=1.5, label="O-A-F-E-B", animated=True)
     plate, = world.fill([], [], color="tab:green", alpha=0.5, label="plate E-F-P", animated=True)
@@ -100,14 +100,14 @@ def _draw_frames(result: FiveBarResult, teeth: Teeth | None, frames: int):
         hinges = np.array([[0.0, 0.0], state["a"][k], state["f"][k], state["e"][k], mech.hinge_b])
         chain.set_data(*hinges.T)
         plate.set_xy(np.array([state["e"][k], state["f"][k], state["p"][k]]))
-        for line, (outline, center, angle, _) in zip(carrier_curves, outlines):
+        for line, (outline, center, angle, _) in zip(carrier_curves, outlines, strict=True):
             line.set_data(*_placed(outline, center, angle, c).T)
-        for line, (outline, center, angle, _) in zip(world_gears, outlines):
+        for line, (outline, center, angle, _) in zip(world_gears, outlines, strict=True):
             line.set_data(*carrier_to_world(mech, _placed(outline, center, angle, c), c).T)
-        for line, (outline, center, angle, _) in zip(carrier_teeth, toothed):
+        for line, (outline, center, angle, _) in zip(carrier_teeth, toothed, strict=True):
             line.set_data(*_placed(outline, center, angle, c).T)
         clock.set_text(_clock_text(c))
-        if moving_support:
+        if support is not None and moving_support:
             moving_support[0].set_data(*np.array([joints[name][k] for name in "CGHZ"]).T)
             moving_support[1].set_data(*np.array([joints["C"][k], joints["K"][k]]).T)
             moving_support[2].set_data(*support.cam_outline(c).T)

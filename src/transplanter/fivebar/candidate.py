@@ -171,8 +171,10 @@ def judge_candidates(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool 
             defects.append(closure_defect(margin[i], problem.min_closure_margin))
         j = at_judged[k]
         candidates.append(Candidate(one, rho[k], defects,
-                                    ReturnStroke(stroke.carrier_turns[j], stroke.relative_angles[j], stroke.directions[j]),
-                                    RelativeAngle(relative.rho1[i, 0], relative.coefficients[i]), margin[i],
+                                    ReturnStroke(stroke.carrier_turns[j], stroke.relative_angles[j],
+                                                 stroke.directions[j]),
+                                    RelativeAngle(np.asarray(relative.rho1)[i, 0], relative.coefficients[i]),
+                                    margin[i],
                                     (float(low[i]), float(high[i]))))
     return candidates
 

@@ -65,7 +65,7 @@ def write_linkage_dxf(result: FiveBarResult, path: Path) -> Path:
             space.add_circle(point.tolist(), HINGE_FRACTION * span, dxfattribs={"layer": "HINGES"})
         space.add_text(name, height=height, dxfattribs={"layer": "LABELS", "insert": (point + height).tolist()})
     space.add_lwpolyline(result.verification.trajectory.tolist(), close=True, dxfattribs={"layer": "TRAJECTORY"})
-    for label, pose in zip(result.problem.labels, result.problem.poses):
+    for label, pose in zip(result.problem.labels, result.problem.poses, strict=True):
         space.add_point(pose[:2].tolist(), dxfattribs={"layer": "KEY_POSES"})
         space.add_text(label, height=height, dxfattribs={"layer": "KEY_POSES", "insert": (pose[:2] - height).tolist()})
     if result.support:
@@ -90,7 +90,8 @@ def _support_entities(support: SupportDesign, space, radius: float, height: floa
 
 
 def _write_table(path: Path, columns: dict[str, np.ndarray]) -> Path:
-    np.savetxt(path, np.column_stack(list(columns.values())) + 0.0, delimiter=",", header=",".join(columns), comments="",
+    np.savetxt(path, np.column_stack(list(columns.values())) + 0.0, delimiter=",", header=",".join(columns),
+               comments="",
                fmt="%.12g")
     return path
 
@@ -108,7 +109,7 @@ def write_tables(result: FiveBarResult, folder: Path) -> list[Path]:
         _write_table(folder / "relative_angle.csv", {
             "carrier_turn_deg": np.degrees(turns), "rho_deg": np.degrees(relative.evaluate(turns)),
             "rho_slope": slope, "total_ratio_i0": 1 / slope})]
-    for gear in gears_on_carrier(result.train, mech.carrier_length):
+    for gear in gears_on_carrier(result.train, float(mech.carrier_length)):
         x, y = gear.pitch_curve.T
         written.append(_write_table(folder / f"pitch_curve_{gear.name}.csv", {
             "angle_deg": np.degrees(np.arctan2(y, x)), "radius_mm": np.hypot(x, y), "x_mm": x, "y_mm": y}))
@@ -132,4 +133,4 @@ def gear_drawings(result: FiveBarResult, outlines: dict[str, np.ndarray]) -> lis
     mark towards the contact point at pose 1."""
     return [GearDrawing(gear.name, outlines[gear.name], gear.pitch_curve, default_bore_radius(outlines[gear.name]),
                         gear.contact_direction)
-            for gear in gears_on_carrier(result.train, result.design.mech.carrier_length)]
+            for gear in gears_on_carrier(result.train, float(result.design.mech.carrier_length))]

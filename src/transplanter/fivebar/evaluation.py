@@ -163,6 +163,7 @@ def load_design(path: str | Path) -> GivenDesign:
     read.keys(data, {"design", "title", "description"}, "")
     table = data.get("design")
     read.keys(table, set(_FIELDS) | {"hinge_b", "hinge_e"}, "design")
+    assert isinstance(table, dict)      # read.keys refuses anything else
     values = {key: read.number(table, key, "design") for key in _FIELDS}
     for key in ("carrier_length", "rod_length", "push_plate_length", "receiving_plate_length"):
         if values[key] <= 0:
@@ -214,22 +215,22 @@ def evaluate_design(problem: FiveBarProblem, design: GivenDesign) -> DesignEvalu
                            "transplanter.fivebar.load_design(path))")
     a1 = design.carrier_length * np.array([np.cos(design.carrier_angle), np.sin(design.carrier_angle)])
     f1 = a1 + design.rod_length * np.array([np.cos(design.rod_angle), np.sin(design.rod_angle)])
-    options = []
+    options: list[tuple[np.ndarray, FiveBar, np.ndarray]] = []
     for side in (1.0, -1.0):
         e1, margin = circle_intersection(design.hinge_b, design.receiving_plate_length, problem.poses[0, :2],
                                          design.push_plate_length, side)
         if margin < 0:
             continue
         mech = from_hinges(problem.poses[0], design.hinge_b, e1, a1, f1)
-        errors = [_closest_pose(mech, pose, turn) for pose, turn in zip(problem.poses, problem.carrier_turns)]
-        options.append((e1, mech, np.array(errors)))
+        options.append((e1, mech, np.array([_closest_pose(mech, pose, turn)
+                                            for pose, turn in zip(problem.poses, problem.carrier_turns, strict=True)])))
     if not options:
         gap = np.linalg.norm(design.hinge_b - problem.poses[0, :2])
         FieldReader(design.source).fail(
             "design.push_plate_length", design.push_plate_length,
             f"a plate that reaches: |B P1| = {gap:.3f} mm cannot be spanned by BE = "
             f"{design.receiving_plate_length:g} and EP = {design.push_plate_length:g}")
-    worst = [float(np.nanmax(o[2][:, 0])) for o in options]
+    worst = [float(np.nanmax(option[2][:, 0])) for option in options]
     if design.hinge_e is not None:
         pick = int(np.argmin([np.linalg.norm(o[0] - design.hinge_e) for o in options]))
     else:
@@ -241,6 +242,7 @@ def evaluate_design(problem: FiveBarProblem, design: GivenDesign) -> DesignEvalu
         if candidate.relative_angle is None:
             raise ProblemError(f"{problem.source}: [support] needs the design's motion over a turn, which "
                                f"{design.source} does not give: {'; '.join(candidate.defects)}")
+        assert candidate.stroke is not None     # a candidate with a relative angle has its return stroke
         support = design_support(problem.support, mech, candidate.relative_angle, problem.carrier_turns,
                                  candidate.stroke.carrier_turns, problem.source)
     return DesignEvaluation(problem, design, mech, candidate, errors[:, 0], errors[:, 1],

@@ -8,6 +8,7 @@ import textwrap
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.layout_engine import ConstrainedLayoutEngine
 
 from transplanter.api_arguments import require_result
 from transplanter.cam.figures import draw_figures as draw_cam_figures
@@ -37,7 +38,7 @@ def draw_region(result: FiveBarResult) -> Figure:
     e, f = mech.plate_points(result.problem.poses[0])
     for point, name in ((mech.hinge_b, "B"), (mech.carrier_point(0.0), "A"), (e, "E"), (f, "F")):
         ax.plot(*point, "k*", ms=11)
-        ax.annotate(f" {name}", point)
+        ax.annotate(f" {name}", (float(point[0]), float(point[1])))
     ax.plot(*result.problem.poses[:, :2].T, "k^", ms=6, label="key poses P1-P4")
     ax.set_aspect("equal")
     ax.set_title("Hinge solution curves; bold: within Table 2 ranges and free of chain defects\n"
@@ -67,7 +68,7 @@ def draw_relative_angle(result: FiveBarResult) -> Figure:
     twin.plot(np.degrees(grid), 1 / relative.evaluate(grid, 1), "g--", lw=1, label="total ratio i0 = dc/drho")
     twin.set_ylabel("total ratio i0 (dimensionless)", color="g")
     lines = ax.get_lines() + twin.get_lines()
-    fig.legend(lines, [line.get_label() for line in lines], fontsize=8, loc="outside right upper")
+    fig.legend(lines, [str(line.get_label()) for line in lines], fontsize=8, loc="outside right upper")
     return fig
 
 
@@ -86,8 +87,8 @@ def draw_gears(result: FiveBarResult) -> Figure:
     ax.set_ylabel("transmission ratio (dimensionless)")
     ax.legend(fontsize=8, **LEGEND_BESIDE)
     outlines = tooth_outlines(result.toothed)
-    for gear, teeth in zip(gears_on_carrier(train, result.design.mech.carrier_length),
-                           np.repeat(result.toothed.counts, 2)):
+    for gear, teeth in zip(gears_on_carrier(train, float(result.design.mech.carrier_length)),
+                           np.repeat(result.toothed.counts, 2), strict=True):
         line, = right.plot(*gear.placed(outlines[gear.name], 0.0)[0].T, lw=0.7,
                            label=f"{gear.name.replace('_', ' ')} ({gear.role}), {teeth} teeth")
         right.plot(*gear.center, "k+")
@@ -116,7 +117,8 @@ def draw_trajectory(result: FiveBarResult) -> Figure:
     ax.plot(*np.array([mech.hinge_b, e[0]]).T, "b-o", ms=3, label="B-E (pose 1)")
     for point, name in ((np.zeros(2), "O"), (a, "A"), (mech.hinge_b, "B"), (e[0], "E"), (f[0], "F"),
                         (problem.poses[0, :2], "P")):
-        ax.annotate(name, point, xytext=(4, 4), textcoords="offset points", fontsize=10, fontweight="bold")
+        ax.annotate(name, (float(point[0]), float(point[1])), xytext=(4, 4), textcoords="offset points", fontsize=10,
+                    fontweight="bold")
     ax.set_aspect("equal")
     ax.legend(fontsize=8, **LEGEND_BESIDE)
     ax.set_xlabel("x (mm)")
@@ -135,7 +137,7 @@ def draw_tradeoff(result: FiveBarResult) -> Figure:
     fig = Figure(figsize=(8, 5.5), layout="constrained")
     ax = fig.subplots()
     ax.plot(angles, misses, "o", color="tab:blue", label="refined alternatives (rank)")
-    for rank, (angle, miss) in enumerate(zip(angles, misses), start=1):
+    for rank, (angle, miss) in enumerate(zip(angles, misses, strict=True), start=1):
         ax.annotate(str(rank), (angle, miss), xytext=(5, 5), textcoords="offset points", fontsize=9)
     picked = result.picked - 1
     ax.plot(angles[picked], misses[picked], "o", mfc="none", mec="tab:red", ms=14, mew=2,
@@ -150,8 +152,11 @@ def draw_tradeoff(result: FiveBarResult) -> Figure:
     ax.set_title(f"{count} distinct design{'s' if count > 1 else ''} refined from {starts} of {starts + failed} "
                  f"region candidates" + (f" ({failed} failed: see the report)" if failed else ""), fontsize=9)
     bounds = ", ".join(map(str, result.chosen.active_bounds)) or "no bound"
-    fig.text(0.01, 0.0, textwrap.fill(f"The picked design sits on: {bounds}", 110), fontsize=8, va="bottom", parse_math=False)
-    fig.get_layout_engine().set(rect=(0, 0.08, 1, 0.92))
+    fig.text(0.01, 0.0, textwrap.fill(f"The picked design sits on: {bounds}", 110), fontsize=8, va="bottom",
+             parse_math=False)
+    engine = fig.get_layout_engine()
+    assert isinstance(engine, ConstrainedLayoutEngine)      # the figure is made with layout="constrained"
+    engine.set(rect=(0, 0.08, 1, 0.92))
     ax.legend(fontsize=8, **LEGEND_BESIDE)
     return fig
 
@@ -183,8 +188,8 @@ def draw_support(support: SupportDesign) -> Figure:
     degrees = np.degrees(turns)
     timing.plot(degrees, support.plate_height, "m-", label="plate height y_Z")
     edges = np.degrees(np.cumsum(np.r_[0.0, support.stages]))
-    for (start, end), name, shade in zip(zip(edges[:-1], edges[1:]), ("push", "receive", "return", "rest"),
-                                         ("0.85", "0.95", "0.85", "0.95")):
+    for (start, end), name, shade in zip(zip(edges[:-1], edges[1:], strict=True), ("push", "receive", "return", "rest"),
+                                         ("0.85", "0.95", "0.85", "0.95"), strict=True):
         timing.axvspan(start, end, color=shade)
         timing.text((start + end) / 2, 1.0, name, transform=timing.get_xaxis_transform(), ha="center", va="bottom",
                      fontsize=8)

@@ -17,6 +17,7 @@ whose P moves towards -x while it pushes).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -36,10 +37,10 @@ class Requirements:
     min_stroke: float | None = None
     max_last_step: float | None = None
 
-    def rows(self, x: list, y: list, direction: float) -> list[tuple[str, object, float, float]]:
+    def rows(self, x: list, y: list, direction: float) -> list[tuple[str, Any, float, float]]:
         """(requirement name, expression, lower, upper) of every requirement on key pose coordinates
         ``x``, ``y`` (numbers or CasADi expressions, in the caller's unit, as are the limits)."""
-        found: list[tuple[str, object, float, float]] = []
+        found: list[tuple[str, Any, float, float]] = []
         if self.max_offset_from_first is not None:
             dx, dy = self.max_offset_from_first
             for k in range(1, len(x)):

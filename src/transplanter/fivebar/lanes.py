@@ -89,6 +89,7 @@ def _stop(pool: ProcessPoolExecutor) -> None:
 
 
 def _forked_lane(index: int) -> tuple[object, float]:
+    assert _forked is not None, "set by refine_in_lanes before the fork"
     refine, solver = _forked
     return _timed(refine, solver, index)
 
@@ -103,5 +104,5 @@ def _collect(pending: dict[Future, int], finished: Finished, timeout: float | No
     """Report the forked lane's candidates that are done (waiting up to ``timeout`` s for one); an
     exception raised in the lane is raised here."""
     done, _ = wait(pending, timeout=timeout, return_when=FIRST_COMPLETED)
-    for future in sorted(done, key=pending.get):
+    for future in sorted(done, key=lambda future: pending[future]):
         finished(pending.pop(future), *future.result())

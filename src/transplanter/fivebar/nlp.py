@@ -382,7 +382,7 @@ def build_nlp(problem: FiveBarProblem, capacity: int = ADDED_CAPACITY) -> Design
                 if not isinstance(row[1], float)]     # one between exact poses was checked when the file was read
     for name in dict.fromkeys(row[0] for row in required):
         rows_of = [row for row in required if row[0] == name]
-        nlp.constraints(name, ca.vertcat(*(row[1] for row in rows_of)), [row[2] for row in rows_of],
+        nlp.constraints(name, ca.vertcat(*[row[1] for row in rows_of]), [row[2] for row in rows_of],
                         [row[3] for row in rows_of], 1.0, ((name, "lower"), (name, "upper")))
 
     e1, f1 = casadi_function(fivebar_plate_hinges)(ca.vertcat(*key[0, :3]), plate)

@@ -265,7 +265,7 @@ def _gearing(read: FieldReader, table: dict) -> Gearing:
         if not all(key in table for key in keys):
             read.fail("gears", {k: table[k] for k in keys if k in table},
                       "both first_center_distance and second_center_distance (mm), or neither")
-        centers = tuple(read.number(table, key, "gears") for key in keys)
+        centers = (read.number(table, keys[0], "gears"), read.number(table, keys[1], "gears"))
         if min(centers) <= 0:
             read.fail("gears", {k: table[k] for k in keys}, "positive center distances (mm)")
     limit = read.number(table, "max_pressure_angle_deg", "gears") if "max_pressure_angle_deg" in table else 45.0
@@ -321,7 +321,8 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
     low, high, labels = read_key_pose_rows(
         read, read.tables(data, "key_poses", "an array of tables [[key_poses]] with x, y, angle_deg, carrier_turn_deg"))
     if len(low) != 4:
-        read.fail("key_poses", f"{len(low)} poses", "exactly 4 key poses (the 4-pose solution region of Wang et al. 2025)")
+        read.fail("key_poses", f"{len(low)} poses",
+                  "exactly 4 key poses (the 4-pose solution region of Wang et al. 2025)")
     rows = (low + high) / 2
     if np.any(np.abs(np.r_[low[:, 2], high[:, 2]]) > 360):
         read.fail("key_poses[].angle_deg", as_given(low[:, 2], high[:, 2]),
@@ -369,7 +370,8 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
     ratio = _pair(read, conditions, "ratio", "conditions") if "ratio" in conditions else (0.25, 4.0)
     if ratio[0] <= 0:
         read.fail("conditions.ratio", list(ratio), "positive bounds (a ratio <= 0 reverses the gears)")
-    tolerance = read.number(conditions, "return_tolerance_mm", "conditions") if "return_tolerance_mm" in conditions else 1.0
+    tolerance = (read.number(conditions, "return_tolerance_mm", "conditions") if "return_tolerance_mm" in conditions
+                 else 1.0)
     if not (np.isfinite(tolerance) and tolerance >= 0):
         read.fail("conditions.return_tolerance_mm", tolerance, "a finite distance >= 0 (mm) from each return point")
 
@@ -400,4 +402,5 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
                           min_transmission_angle=None if transmission is None else float(np.radians(transmission)),
                           return_labels=tuple(return_labels), ranges=ranges, min_closure_margin=margin,
                           ratio_bounds=ratio, spline_count=count, samples=samples, radius_mm=radius,
-                          gearing=gearing, support=support, source=source, title=read.text(data, "title", "", LONGEST_TITLE))
+                          gearing=gearing, support=support, source=source,
+                          title=read.text(data, "title", "", LONGEST_TITLE))

@@ -92,7 +92,8 @@ def chain_families(problem: FiveBarProblem) -> tuple[ChainFamily, ChainFamily]:
     for synthesis, limits in ((receiving, ("ep", "x_e")), (carrier, ("fp", "x_f"))):
         fixed, moving = _family(synthesis)
         measures = {limits[0]: np.linalg.norm(moving - p1, axis=1), limits[1]: moving[:, 0]}
-        reasons, kept = {}, np.ones(len(fixed), bool)
+        reasons: dict[str, int] = {}
+        kept = np.ones(len(fixed), bool)
         for name, values in measures.items():
             kept = _count(reasons, f"ranges.{name}", _within(values, problem.ranges.get(name)), kept)
         if synthesis is carrier:
@@ -138,7 +139,7 @@ def solution_region(problem: FiveBarProblem) -> Region:
         mech = from_hinges(problem.poses[0], receiving.fixed[i], receiving.moving[i], carrier.fixed[j],
                            carrier.moving[j])
         candidates += judge_candidates(problem, mech, check_ranges=False)
-    defects = {}
+    defects: dict[str, int] = {}
     for candidate in candidates:
         if candidate.defects:
             name = candidate.defects[0].split(":")[0]

@@ -40,7 +40,8 @@ def relaxation(problem: FiveBarProblem, region: Region) -> dict:
         kinds = {defect.split(":")[0] for defect in candidate.defects}
         if not kinds or not kinds <= LIMITS or ("closure" in kinds and not candidate.min_margin > 0):
             continue            # a margin <= 0: the loop does not close somewhere, which no floor admits
-        change, cost = {"candidate": index}, 0.0
+        change: dict[str, object] = {"candidate": index}
+        cost = 0.0
         if "ratio" in kinds:
             wanted = (min(low, candidate.ratio_range[0]), max(high, candidate.ratio_range[1]))
             change["conditions.ratio"] = [_outward(wanted[0], False), _outward(wanted[1], True)]

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from transplanter.cam.checks import Extreme
 from transplanter.cam.timing import STAGES
 from transplanter.fivebar.alternatives import RANKING_RULE
 from transplanter.fivebar.key_pose_bands import QUANTITIES
@@ -372,10 +373,15 @@ def support_markdown(support: SupportDesign | None) -> list[str]:
             f"{np.degrees(checks.pressure['rise'].value):.3f} deg, return "
             f"{np.degrees(checks.pressure['return'].value):.3f} deg (limit "
             f"{round(float(np.degrees(cam.problem.pressure_limit)), 9):g}); smallest convex pitch radius "
-            f"{checks.min_pitch_radius.value:.3f} mm; undercut: {'yes' if checks.undercut else 'no'}; "
+            f"{_pitch_radius_text(checks.min_pitch_radius)}; undercut: {'yes' if checks.undercut else 'no'}; "
             f"{len(checks.acceleration_jumps)} acceleration jumps ({', '.join(laws)})",
             "- " + ("; ".join(support.failures) if support.failures else "passes its checks"),
             f"- {table5_line(support.table5)}", ""]
+
+
+def _pitch_radius_text(smallest: Extreme | None) -> str:
+    """The cam's smallest convex pitch radius, or that it has none (a flat-faced follower's cam)."""
+    return "no pitch curve" if smallest is None else f"{smallest.value:.3f} mm"
 
 
 def table5_line(table5: Table5Evaluation) -> str:

@@ -51,7 +51,7 @@ def _options(mech: FiveBar, points: np.ndarray):
         options.append((np.mod(mech.carrier_angle - theta1, TWO_PI),
                         np.arctan2((f - a)[..., 1], (f - a)[..., 0]) - theta1, direction,
                         np.where(assembly_branch(mech.hinge_b, e, f) == mech.branch, 1.0, np.nan)))
-    return np.stack([np.stack(values, -1) for values in zip(*options)])
+    return np.stack([np.stack(values, -1) for values in zip(*options, strict=True)])
 
 
 def _steps(turn_from, rho_from, turn_to, rho_to):
@@ -89,13 +89,13 @@ def solve_return_strokes(mech: FiveBar, points: np.ndarray, last_turn: float, rh
     for j in range(m - 1, 0, -1):
         option[:, j - 1] = np.take_along_axis(previous[:, j], option[:, j, None], axis=1)[:, 0]
     chosen = [np.take_along_axis(values, option[..., None], axis=-1)[..., 0] for values in (c, rho, direction)]
-    return ReturnStroke(*chosen, found=np.isfinite(np.min(cost, axis=1)))
+    return ReturnStroke(chosen[0], chosen[1], chosen[2], found=np.isfinite(np.min(cost, axis=1)))
 
 
 def solve_return_stroke(mech: FiveBar, points: np.ndarray, last_turn: float, rho1: float,
                         last_rho: float, last_direction: float) -> ReturnStroke | None:
     """The consistent option sequence of one mechanism, or None when no sequence meets (i) and (ii)."""
     stroke = solve_return_strokes(mech.as_batch(), points, last_turn, [rho1], [last_rho], last_direction)
-    if not stroke.found[0]:
+    if not np.asarray(stroke.found)[0]:
         return None
     return ReturnStroke(stroke.carrier_turns[0], stroke.relative_angles[0], stroke.directions[0])

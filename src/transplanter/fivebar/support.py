@@ -82,7 +82,8 @@ class SupportDesign:
             found.append(f"support rod G-H cannot reach the plate line at {int(stuck.sum())} of {stuck.size} carrier "
                          f"turns, from {np.degrees(self.carrier_turns[stuck].min()):.1f} deg")
         if not self.clearance_mm >= 0:
-            found.append(f"support plate at x_Z = {self.spec.linkage.plate_x:g} mm is {-self.clearance_mm:.3f} mm right "
+            found.append(f"support plate at x_Z = {self.spec.linkage.plate_x:g} mm is {-self.clearance_mm:.3f} mm "
+                         "right "
                          f"of the receiving plate's hinge E at carrier turn {np.degrees(self.clearance_turn):.1f} deg")
         return found
 
@@ -132,6 +133,7 @@ def rocker_angles(spec: SupportSpec, cam: CamResult, cam_angle) -> np.ndarray:
 def support_cam(spec: SupportSpec, stages: np.ndarray, source: str) -> CamResult:
     """The support's cam from carrier stage angles (rad), designed and checked by the cam tool."""
     follower = spec.follower
+    assert follower.pivot is not None, "the support's follower swings about its pivot C"
     try:
         rows = timed_segments(stages, spec.drive_ratio, abs(spec.swing), spec.law)
     except ProblemError as error:
@@ -155,7 +157,8 @@ def design_support(spec: SupportSpec, mech: FiveBar, relative: RelativeAngle, ke
         The stages times the drive ratio are not one cam turn (the message gives the ratio that would be).
     """
     typed = spec.segments is not None
-    stages = spec.segments / spec.drive_ratio if typed else design_stages(key_turns, return_turns)
+    stages = (np.asarray(spec.segments) / spec.drive_ratio if spec.segments is not None
+              else np.asarray(design_stages(key_turns, return_turns), float))
     cam = support_cam(spec, stages, f"{source} [support]")
     turns = np.linspace(0.0, TWO_PI, TURN_SAMPLES, endpoint=False)
     hinge_e = close_loop(mech, turns, relative.evaluate(turns))["e"]

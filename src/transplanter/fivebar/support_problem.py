@@ -26,7 +26,6 @@ Schema (docs/fivebar.md, "Seedling support"), mm and degrees:
 from __future__ import annotations
 
 from dataclasses import dataclass
-from types import SimpleNamespace
 
 import numpy as np
 
@@ -134,7 +133,8 @@ def parse_support(read: FieldReader, table, hinge_e_range: tuple[float, float] |
         distances = [float(np.linalg.norm(linkage.slider_point(h) - linkage.pivot)) for h in heights]
         read.fail("support.heights", heights.tolist(), f"heights at which C-G-H closes: |CH| = "
                   f"{distances[0]:.2f} and {distances[1]:.2f} mm, while l_CG and l_GH reach {near:g} to {far:g} mm")
-    sides = [np.sign(linkage.slider_point(h)[1] - linkage.joint_g(a)[1]) for a, h in ((low, heights[0]), (high, heights[1]))]
+    sides = [np.sign(linkage.slider_point(h)[1] - linkage.joint_g(a)[1])
+             for a, h in ((low, heights[0]), (high, heights[1]))]
     if sides[0] != sides[1]:
         read.fail("support.assembly", assembly, f"an assembly in which H stays on one side of G between the heights "
                   f"(with this one the rod G-H passes horizontal, a dead point; try assembly = {-assembly})")
@@ -160,7 +160,8 @@ def parse_support(read: FieldReader, table, hinge_e_range: tuple[float, float] |
         read.fail("support.pressure_angle_deg", limit, "an angle between 0 and 90 deg")
     ratio = read.number(table, "drive_ratio", "support") if "drive_ratio" in table else 1.0
     if not ratio > 0:
-        read.fail("support.drive_ratio", ratio, "a positive number of cam turns per carrier turn (1: the paper's chain)")
+        read.fail("support.drive_ratio", ratio,
+                  "a positive number of cam turns per carrier turn (1: the paper's chain)")
     segments = None
     if "segments_deg" in table:
         segments = read.numbers(table, "segments_deg", "support", 4)
@@ -169,7 +170,8 @@ def parse_support(read: FieldReader, table, hinge_e_range: tuple[float, float] |
                       f"rest) adding up to 360 deg (these add up to {float(np.sum(segments)):.6g})")
         segments = np.radians(segments)
     return SupportSpec(linkage, (float(heights[0]), float(heights[1])), index, follower, center, base, law,
-                       float(np.radians(limit)), ratio, segments, low, high, float(np.angle(np.exp(1j * (low - start)))))
+                       float(np.radians(limit)), ratio, segments, low, high,
+                       float(np.angle(np.exp(1j * (low - start)))))
 
 
 def _check_cam_reach(read: FieldReader, follower: Follower, base: float):
@@ -179,4 +181,4 @@ def _check_cam_reach(read: FieldReader, follower: Follower, base: float):
     def fail(field, value, expected):
         read.fail(names.get(field, field), value, expected)
 
-    check_base_radius(SimpleNamespace(follower=follower), base, fail)
+    check_base_radius(follower, base, fail)

@@ -121,7 +121,7 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
         No refinement succeeded (the reason for each candidate is given).
     """
     pick = _checked_pick(pick)
-    timings = {}
+    timings: dict[str, object] = {}
     start = _step(progress, "region")
     starts = band_starts(problem)
     region = starts.region
@@ -154,7 +154,8 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
 
     given, problem = problem, problem.with_poses(design.poses, design.carrier_turns)  # the key poses the design meets
     start = _step(progress, "gears")
-    toothed = design_toothed_train(design.relative_angle, design.mech.carrier_length, problem.gearing, problem.source)
+    toothed = design_toothed_train(design.relative_angle, float(design.mech.carrier_length), problem.gearing,
+                                   problem.source)
     timings["gears"] = _done(progress, "gears", start)
     timings.update((f"gears_{step}", seconds) for step, seconds in toothed.timings_s.items())
     start = _step(progress, "verification")
