@@ -51,7 +51,8 @@ def main():
         return [score(problem, {n: v[k:k + 1] for n, v in variables.items()}, SEARCH_SAMPLES) for k in range(100)]
 
     loop, singles = best_time(one_at_a_time, 2)
-    same = all(np.allclose(s.objectives[0], scores.objectives[k], rtol=1e-12, atol=1e-12) for k, s in enumerate(singles))
+    same = all(np.allclose(s.objectives[0], scores.objectives[k], rtol=1e-12, atol=1e-12)
+               for k, s in enumerate(singles))
     print(f"scoring 100 designs: whole population {whole * 1e3:.1f} ms, one design per call {loop * 1e3:.1f} ms: "
           f"ratio {loop / whole:.1f}x (same objectives: {same})")
 

@@ -44,7 +44,8 @@ def baseline(control: np.ndarray, s: float, l: float, direction: int, start_bran
     points = path(np.mod(u - 1 / n, 1))                              # scipy's segment k is the package's k + 1
     r, phi3 = np.hypot(*points.T), np.arctan2(points[:, 1], points[:, 0])
     elbow = np.arccos(np.clip((s**2 + r**2 - l**2) / (2 * s * r), -1, 1))
-    switches = sorted([int(np.argmax(r)), int(np.argmin(r))])        # the branch changes where the arm straightens or folds
+    # the branch changes where the arm straightens or folds
+    switches = sorted([int(np.argmax(r)), int(np.argmin(r))])
     branch = start_branch * np.where((np.arange(samples) > switches[0]) & (np.arange(samples) <= switches[1]), -1, 1)
     if switches[0] == 0:
         branch = start_branch * np.where(np.arange(samples) <= switches[1], 1, -1)
@@ -89,8 +90,9 @@ def main():
         miss, closure = baseline(result.trajectory.control, s, l, problem.direction, result.motion.start_branch,
                                  result.train.center_distances, samples)
         base = time.perf_counter() - start
-        print(f"baseline with {samples:>6} samples: {base:.3f} s (the package takes {package / base:.0f}x as long); round "
-              f"trip {miss:.2e} mm ({miss / result.verification.max_error_mm:.0e}x the package's), stage 1 closure "
+        print(f"baseline with {samples:>6} samples: {base:.3f} s "
+              f"(the package takes {package / base:.0f}x as long); round trip {miss:.2e} mm "
+              f"({miss / result.verification.max_error_mm:.0e}x the package's), stage 1 closure "
               f"{closure:.1e} rad")
 
     print(f"CLI in a fresh process, with report and figures: {cli_run('reverse', str(EXAMPLE))[0]:.2f} s")

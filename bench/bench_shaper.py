@@ -73,7 +73,8 @@ def _binned_envelope(points, tip, chunks):
     centers = (bins[:-1] + bins[1:]) / 2
     radius = np.interp(centers, tip_angle[order], np.hypot(*tip[order].T), period=2 * np.pi)
     for cloud in chunks:
-        index = np.minimum(((np.arctan2(cloud[:, 1], cloud[:, 0]) + np.pi) * (BINS / (2 * np.pi))).astype(int), BINS - 1)
+        bin_of = ((np.arctan2(cloud[:, 1], cloud[:, 0]) + np.pi) * (BINS / (2 * np.pi))).astype(int)
+        index = np.minimum(bin_of, BINS - 1)
         np.minimum.at(radius, index, np.hypot(cloud[:, 0], cloud[:, 1]))
     outline = radius[:, None] * np.c_[np.cos(centers), np.sin(centers)]
     return outline if orientation(points) > 0 else outline[::-1]

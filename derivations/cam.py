@@ -108,7 +108,8 @@ def _law(law: str) -> Derived:
     return Derived(
         name=f"cam_law_{law}",
         doc=(f"{law.replace('_', ' ')} law: follower displacement, velocity, acceleration and jerk (per rad of cam) "
-             "at angle phi into a segment of angle beta, signed lift h, starting level s0; segment = (phi, beta, h, s0)."),
+             "at angle phi into a segment of angle beta, signed lift h, starting level s0; "
+             "segment = (phi, beta, h, s0)."),
         inputs=(("segment", (angle, segment_angle, lift, start_level)),),
         outputs=(("motion", tuple(_with_float_pi(m) for m in motion)),),
     )
@@ -183,7 +184,8 @@ def _followers() -> list[Derived]:
                 outputs=tuple((name, tuple(v)) for (name, _), v in zip(groups, translating))),
         Derived(name="cam_oscillating_roller",
                 doc=("Roller centre of an oscillating follower, its theta-derivatives and direction of motion; "
-                     "oscillating = (pivot x, pivot y, arm L, start angle b0, sense kappa), motion = (psi, psi', psi'')."),
+                     "oscillating = (pivot x, pivot y, arm L, start angle b0, sense kappa), "
+                     "motion = (psi, psi', psi'')."),
                 inputs=(("oscillating", (pivot_x, pivot_y, arm, start_angle, sense)), ("motion", motion)),
                 outputs=tuple((name, tuple(sp.expand(e) for e in v)) for (name, _), v in zip(groups, oscillating))),
     ]

@@ -96,15 +96,18 @@ def derive() -> list[Derived]:
     pickup_lengths, pickup_angles = symbol_group("pickup_lengths", 3), symbol_group("pickup_angles", 4)
     return [
         Derived(name="two_link_inverse",
-                doc="Carrier and arm directions (theta, psi) of the tip point for lengths (s, l) on a branch (+1 approach, -1 retraction).",
+                doc=("Carrier and arm directions (theta, psi) of the tip point for lengths (s, l) "
+                     "on a branch (+1 approach, -1 retraction)."),
                 inputs=(("point", point), ("lengths", lengths), ("branch", (branch,))),
                 outputs=(("angles", (theta, psi)),)),
         Derived(name="two_link_rates",
-                doc="theta', psi', theta'', psi'', theta''', psi''' along the path from (theta, psi), (s, l) and P', P'', P'''.",
+                doc=("theta', psi', theta'', psi'', theta''', psi''' along the path "
+                     "from (theta, psi), (s, l) and P', P'', P'''."),
                 inputs=(("angles", angles), ("lengths", lengths), ("path", path)),
                 outputs=(("rates", tuple(path_rates(*angles, s, l, path))),)),
         Derived(name="planetary_relative_per_carrier",
-                doc="Monotonicity criterion: d gamma / d theta = -(P . P') / (l P' . e(psi)); the gears never reverse where it keeps one sign.",
+                doc=("Monotonicity criterion: d gamma / d theta = -(P . P') / (l P' . e(psi)); "
+                     "the gears never reverse where it keeps one sign."),
                 inputs=(("angles", angles), ("lengths", lengths), ("path", path[:2])),
                 outputs=(("slope", (relative_per_carrier(*angles, s, l, *path[:2]),)),)),
         Derived(name="arm_lengths_from_extremes",

@@ -164,7 +164,8 @@ class FieldReader:
         """A positive length (mm) from ``SMALLEST_LENGTH`` to ``MAGNITUDE_LIMIT``."""
         value = self.number(table, key, where)
         if not SMALLEST_LENGTH <= value <= MAGNITUDE_LIMIT:
-            self.fail(f"{where}.{key}", value, f"a positive length from {SMALLEST_LENGTH:.0e} to {MAGNITUDE_LIMIT:.0e} mm")
+            self.fail(f"{where}.{key}", value,
+                      f"a positive length from {SMALLEST_LENGTH:.0e} to {MAGNITUDE_LIMIT:.0e} mm")
         return value
 
     def point(self, value, field: str) -> np.ndarray:

@@ -38,8 +38,9 @@ def _published(l1, l2, l3, l4, l5, t1, t2, t5, lib=sp):
 
 def test_printed_eq8_is_the_derived_closure():
     printed = (L[0]**2 + L[1]**2 - L[2]**2 + L[3]**2 + L[4]**2 + 2 * L[0] * L[4] * sp.cos(T1 + T5)
-               + 2 * L[1] * L[4] * sp.cos(T2 + T5) - 2 * L[3] * L[4] * sp.cos(T4 + T5) + 2 * L[0] * L[1] * sp.cos(T1 - T2)
-               - 2 * L[0] * L[3] * sp.cos(T1 - T4) - 2 * L[1] * L[3] * sp.cos(T2 - T4))
+               + 2 * L[1] * L[4] * sp.cos(T2 + T5) - 2 * L[3] * L[4] * sp.cos(T4 + T5)
+               + 2 * L[0] * L[1] * sp.cos(T1 - T2) - 2 * L[0] * L[3] * sp.cos(T1 - T4)
+               - 2 * L[1] * L[3] * sp.cos(T2 - T4))
     assert sp.simplify(sp.expand_trig(fivebar.closure(L, T1, T2, T4, T5) - printed)) == 0
 
 

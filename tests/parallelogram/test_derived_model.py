@@ -63,8 +63,8 @@ def test_closing_center_distance_is_the_gear_library_closure():
 def _uniform_crank(ratio_center, forward, l1=80.0, speed=2 * np.pi, sense="counterclockwise"):
     """b = 0: a circular pair r1 = l, phi2 = phi1 l / (a - l) exactly; alpha 0 from +x at phi1 = 0."""
     return _problem(design={"b": 1e-300, "l": 50.0, "l1": l1, "alpha_deg": 0.0},
-                    machine={"forward_speed_mm_s": forward, "forward": "-x", "driver_speed_rpm": speed * 60 / (2 * np.pi),
-                             "crank_pivot_mm": [7.0, -3.0]},
+                    machine={"forward_speed_mm_s": forward, "forward": "-x",
+                             "driver_speed_rpm": speed * 60 / (2 * np.pi), "crank_pivot_mm": [7.0, -3.0]},
                     conventions={"crank_sense": sense, "alpha_reference_deg": 0.0, "alpha_instant": "driver_zero"})
 
 
@@ -81,7 +81,8 @@ def test_kinematics_of_a_constructed_motion(sense):
     theta = s * phi / 2
     pin, tip, velocity, acceleration = mech.state(phi)
     pivot = np.array([150.0 + 7.0, -3.0])
-    assert np.allclose(pin[:, 0], pivot[:, None] + 80.0 * np.array([np.cos(theta[0]), np.sin(theta[0])]), rtol=0, atol=1e-11 * 80)
+    expected_pin = pivot[:, None] + 80.0 * np.array([np.cos(theta[0]), np.sin(theta[0])])
+    assert np.allclose(pin[:, 0], expected_pin, rtol=0, atol=1e-11 * 80)
     expected_tip = pin[:, 0] + np.array([[254.0 + 61.0], [-119.0]]) + np.array([-250.0 * t[0], 0 * t[0]])
     assert np.allclose(tip[:, 0], expected_tip, rtol=0, atol=1e-10 * 80)
     expected_velocity = np.array([-80 * omega * np.sin(theta[0]) - 250.0, 80 * omega * np.cos(theta[0])])
@@ -161,7 +162,8 @@ def test_driven_angle_sees_only_the_shape_of_the_pair():
     euler = derivation.driven_angle_scale_derivative(phi1, gear)
     rng = np.random.default_rng(3)
     for x in (0.7, 3.5):
-        point = {phi1: x, gear[1]: rng.uniform(40, 60), gear[2]: rng.uniform(5, 15), gear[3]: 1.4, gear[4]: 1 / (2 - 1 / 1.4)}
+        point = {phi1: x, gear[1]: rng.uniform(40, 60), gear[2]: rng.uniform(5, 15),
+                 gear[3]: 1.4, gear[4]: 1 / (2 - 1 / 1.4)}
         point[gear[0]] = point[gear[1]] + point[gear[2]] + 40
         assert abs(float(euler.subs(point))) < 1e-12
     problem = _problem()

@@ -103,7 +103,8 @@ def test_rice_example_reproduces_its_path_by_rolling(rice):
     assert rice.monotonic
     assert stationary_radii(rice.motion) == []         # both extremes touch, the one at the start too
     assert (rice.motion.carrier_length, rice.motion.arm_length) == pytest.approx((92.3, 162.0), abs=1e-9)
-    assert [(t.circle, t.parameter) for t in rice.motion.touches] == [("outer", pytest.approx(np.pi)), ("inner", TWO_PI)]
+    touches = [(t.circle, t.parameter) for t in rice.motion.touches]
+    assert touches == [("outer", pytest.approx(np.pi)), ("inner", TWO_PI)]
     assert rice.verification.max_error_mm < 1e-6
     assert max(abs(rice.train.stage_one.closure_error), abs(rice.train.stage_two.closure_error)) < 1e-9
     ratio = rice.motion.total_ratio()
@@ -176,7 +177,8 @@ def test_idler_rolling_against_the_pitch_point_speeds():
     # the claim of docs/reverse.md on this train: it can only produce ratios with i13(c) i13(c*) = 1
     h, where = 1e-4, np.linspace(0.3, 6.0, 9)
     def rolled_rate(at):
-        return (roll_idler_train(stage_one, planet, at + h)[0] - roll_idler_train(stage_one, planet, at - h)[0]) / (2 * h)
+        ahead, behind = roll_idler_train(stage_one, planet, at + h)[0], roll_idler_train(stage_one, planet, at - h)[0]
+        return (ahead - behind) / (2 * h)
     star = np.interp(np.mod(np.interp(where, c, psi) + np.pi, TWO_PI), psi, c)
     assert rolled_rate(where) * rolled_rate(star) == pytest.approx(1, abs=1e-6)
     assert max(abs(stage_one.closure_error), abs(stage_two.closure_error)) < 1e-9
@@ -187,7 +189,8 @@ def test_self_crossing_path_is_accepted():
     tau = np.linspace(0, TWO_PI, 19, endpoint=False)
     rho = 162 - 92.3 * np.cos(tau)
     alpha = np.radians(-90 + 12 * np.sin(2 * tau))
-    data = {"trajectory": {"kind": "control_points", "points": np.c_[rho * np.cos(alpha), rho * np.sin(alpha)].tolist()},
+    points = np.c_[rho * np.cos(alpha), rho * np.sin(alpha)].tolist()
+    data = {"trajectory": {"kind": "control_points", "points": points},
             "arm": {"direction": "clockwise"}}
     result = synthesize(parse_problem(data))
     x = np.linspace(0, TWO_PI, 400, endpoint=False)

@@ -154,7 +154,8 @@ def parse_problem(data: dict, source: str = "<dict>") -> DyadProblem:
     for k, pose in enumerate(poses_table):
         where = f"poses[{k}]"
         read.keys(pose, _POSE_KEYS, where)
-        rows.append([read.number(pose, "x", where), read.number(pose, "y", where), read.number(pose, "angle_deg", where)])
+        rows.append([read.number(pose, "x", where), read.number(pose, "y", where),
+                     read.number(pose, "angle_deg", where)])
         labels.append(read.text(pose, "label", where, LONGEST_LABEL, f"P{k + 1}"))
     degrees = np.array(rows)
     if np.any(np.abs(degrees[:, 2]) > 360):

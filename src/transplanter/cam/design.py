@@ -83,14 +83,16 @@ def smallest_base_radius(problem: CamProblem) -> tuple[float, int]:
     else:
         pressure, sharpness, overlap = _worst(problem, sizes[-1], problem.samples)
         raise InfeasibleError(
-            f"{problem.source}: limits.pressure_angle_deg = {np.degrees(problem.pressure_limit):g}: no base circle up to "
-            f"{sizes[-1]:.6g} mm meets it without undercut (there the largest pressure angle is {np.degrees(pressure):.3f} "
-            f"deg, the sharpest convex pitch radius less the roller {sharpness:.4g} mm, the roller overlap {overlap:.4g} mm); "
+            f"{problem.source}: limits.pressure_angle_deg = {np.degrees(problem.pressure_limit):g}: "
+            f"no base circle up to {sizes[-1]:.6g} mm meets it without undercut (there the largest pressure angle is "
+            f"{np.degrees(pressure):.3f} deg, the sharpest convex pitch radius less the roller {sharpness:.4g} mm, "
+            f"the roller overlap {overlap:.4g} mm); "
             + ("raise design.max_base_radius or the limit" if high >= problem.max_base_radius else
                "the arm cannot reach a larger base circle: move the pivot or change the arm, or raise the limit")
             + ", or lengthen the rise and return angles")
     failing, passing = previous, size
-    while not _passes(problem, passing, problem.samples) and passing < high:   # the scan's coarser samples missed a peak
+    # the scan's coarser samples missed a peak
+    while not _passes(problem, passing, problem.samples) and passing < high:
         failing, passing = passing, min(passing * 1.01, high)
         evaluated += 1
     while passing - failing > BISECTION_SHARE * passing:
@@ -104,7 +106,8 @@ def smallest_base_radius(problem: CamProblem) -> tuple[float, int]:
     failing, step = passing, BISECTION_SHARE * passing
     while not _passes_polished(problem, min(failing + step, high)):
         if failing + step >= high:
-            raise InfeasibleError(f"{problem.source}: limits.pressure_angle_deg = {np.degrees(problem.pressure_limit):g}: "
+            raise InfeasibleError(f"{problem.source}: "
+                                  f"limits.pressure_angle_deg = {np.degrees(problem.pressure_limit):g}: "
                                   f"no base circle up to {high:.6g} mm meets it without undercut; raise "
                                   "design.max_base_radius or the limit")
         failing, step = failing + step, 2 * step

@@ -195,7 +195,8 @@ def _check_segments(check: ClassFields, segments, follower):
         if not is_finite_number(segment.angle) or not 0 < segment.angle <= 2 * np.pi:
             check.fail(f"segments[{k}].angle", segment.angle, "a positive angle up to 2 pi (rad)")
         if not is_finite_number(segment.lift) or (follower.kind == "oscillating" and abs(segment.lift) >= np.pi):
-            check.fail(f"segments[{k}].lift", segment.lift, "a finite lift (mm), or for a swing an angle (rad) below pi")
+            check.fail(f"segments[{k}].lift", segment.lift,
+                       "a finite lift (mm), or for a swing an angle (rad) below pi")
         object.__setattr__(segment, "angle", float(segment.angle))
         object.__setattr__(segment, "lift", float(segment.lift))
 
@@ -272,8 +273,8 @@ def _segments(read: FieldReader, data: dict, oscillating: bool) -> tuple[Segment
         kind = _choice(read, row, "kind", where, SEGMENT_KINDS)
         angle = np.radians(_positive(read, row, "angle_deg", where))
         if other_key in row:
-            read.fail(f"{where}.{other_key}", row[other_key], f"{amount_key} for {'an oscillating' if oscillating else 'a translating'} "
-                      "follower")
+            follower_kind = "an oscillating" if oscillating else "a translating"
+            read.fail(f"{where}.{other_key}", row[other_key], f"{amount_key} for {follower_kind} follower")
         if kind == "dwell":
             for key in ("law", amount_key):
                 if key in row:
@@ -328,7 +329,8 @@ def parse_problem(data: dict, source: str = "<dict>") -> CamProblem:
     max_base = None
     if design is not None:
         read.keys(design, {"max_base_radius"}, "design")
-        max_base = _positive(read, design, "max_base_radius", "design", default=DESIGN_REACH * _size(follower, segments))
+        max_base = _positive(read, design, "max_base_radius", "design",
+                             default=DESIGN_REACH * _size(follower, segments))
         if "base_radius" in cam:
             read.fail("cam.base_radius", cam["base_radius"], "no base radius with [design], which finds the smallest")
     base = None if design is not None else _positive(read, cam, "base_radius", "cam")
@@ -401,6 +403,6 @@ def check_base_radius(problem: CamProblem, base_radius: float, fail):
         low, high = abs(reach - follower.arm_length), reach + follower.arm_length
         if not low < pitch < high:
             fail("follower.arm_length", follower.arm_length,
-                 f"an arm whose roller reaches the cam: the pivot is {reach:.6g} mm from the cam centre, so the arm must "
-                 f"be from {abs(reach - pitch):.6g} to {reach + pitch:.6g} mm to put the roller centre on the base "
-                 f"pitch circle of radius {pitch:g} mm")
+                 f"an arm whose roller reaches the cam: the pivot is {reach:.6g} mm from the cam centre, "
+                 f"so the arm must be from {abs(reach - pitch):.6g} to {reach + pitch:.6g} mm "
+                 f"to put the roller centre on the base pitch circle of radius {pitch:g} mm")

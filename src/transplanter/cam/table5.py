@@ -68,7 +68,8 @@ def datum_for_swing(assembly: int, swing: float = SWING) -> float | None:
         return support_swing(linkage, y0 + LOW_HEIGHT, y0 + HIGH_HEIGHT).swing[assembly] - swing
 
     values = np.array([excess(y) for y in grid])
-    crossings = np.flatnonzero(np.isfinite(values[:-1]) & np.isfinite(values[1:]) & (np.sign(values[:-1]) != np.sign(values[1:])))
+    crossings = np.flatnonzero(np.isfinite(values[:-1]) & np.isfinite(values[1:])
+                               & (np.sign(values[:-1]) != np.sign(values[1:])))
     if not crossings.size:
         return None
     k = crossings[np.argmin(np.abs(grid[crossings]))]          # the datum nearest y = 0
@@ -192,7 +193,8 @@ def evaluate_table5() -> Table5Evaluation:
         "plate_below_rod": _swing_json(printed_linkage(True), LOW_HEIGHT, HIGH_HEIGHT),
         "heights_from_datum": [],
         "cam_at_d": {"distance_c_to_d_mm": float(np.linalg.norm(CAM_CENTER_D - PIVOT_C)),
-                     "roller_reach_mm": [ARM_LENGTH - BASE_RADIUS - ROLLER_RADIUS, ARM_LENGTH + BASE_RADIUS + ROLLER_RADIUS],
+                     "roller_reach_mm": [ARM_LENGTH - BASE_RADIUS - ROLLER_RADIUS,
+                                         ARM_LENGTH + BASE_RADIUS + ROLLER_RADIUS],
                      "nearest_roller_to_d_mm": float(np.linalg.norm(CAM_CENTER_D - PIVOT_C) - ARM_LENGTH),
                      "base_pitch_radius_mm": BASE_RADIUS + ROLLER_RADIUS},
     }

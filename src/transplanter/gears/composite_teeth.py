@@ -74,7 +74,8 @@ class CornerTooth:
     arches: tuple[CycloidArch, CycloidArch]
     joint_kinks_deg: tuple[float, float]    # turn of the outline where each flank leaves the involute below it
     joint_gaps_mm: tuple[float, float]
-    flanks: tuple[np.ndarray, np.ndarray]   # each side's straight flank and arch from its pitch point, as cut at the tip
+    # each side's straight flank and arch from its pitch point, as cut at the tip
+    flanks: tuple[np.ndarray, np.ndarray]
     pressure_angles_deg: tuple[tuple[float, float], tuple[float, float]]   # each arch's, as cut at the tip
     min_curvature_radius_mm: tuple[float, float]                           # each arch's, as cut at the tip
 
@@ -128,7 +129,8 @@ def _check_layout(plan: Layout, teeth: int, segment_arcs: list[tuple[float, floa
             if zone >= room:
                 raise InfeasibleError(
                     f"{source}: pair.teeth = {teeth}: the cusp zone of {zone:.3f} mm {name} the corner at pitch arc "
-                    f"{corner:.3f} mm is wider than the segment there ({room:.3f} mm); use more teeth or a longer segment")
+                    f"{corner:.3f} mm is wider than the segment there ({room:.3f} mm); "
+                    "use more teeth or a longer segment")
 
 
 def _fits(plan: Layout, teeth: int, candidate: int) -> bool:
@@ -231,7 +233,9 @@ def _largest_corner_pressure(zone: float, alpha: float, tip: float) -> str:
     angles = np.linspace(alpha, np.pi / 2, 2001)[1:]
     low = corner_heights(zone, alpha, 2 * angles) < tip
     fits = angles[:int(np.argmin(low))] if not low.all() else angles
-    return f"use at most {np.floor(np.degrees(fits.max()) * 10) / 10:.1f} deg" if fits.size else "no angle fits: use more teeth"
+    if not fits.size:
+        return "no angle fits: use more teeth"
+    return f"use at most {np.floor(np.degrees(fits.max()) * 10) / 10:.1f} deg"
 
 
 def _check_arch_height(zone: float, alpha: float, corner_pressure: float, tip: float, corner: float, source: str):
@@ -280,7 +284,8 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
     concave = [c for c in corners if c["turn_deg"] < 0]
     if concave:
         raise InfeasibleError(f"{source}: driver.segments: the corner at {concave[0]['phi_deg']:.3f} deg turns "
-                              f"{concave[0]['turn_deg']:.3f} deg (concave): composite teeth stand on convex corners only")
+                              f"{concave[0]['turn_deg']:.3f} deg (concave): "
+                              "composite teeth stand on convex corners only")
     starts = [float(np.mod(s.start, 2 * np.pi)) for s in curve.segments]
     joint_index = [int(np.argmin(np.abs(np.radians(c["phi_deg"]) - np.array(starts)))) for c in corners]
     edge_arc = {float(phi): float(arc) for phi, arc in zip(design.phi1, design.arc)}
@@ -309,8 +314,8 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
             stretch = shaper_profile(table, module, alpha, cutter_teeth, first_tooth_at=end - pitch / 4)[keep]
         if not np.isfinite(stretch).all():
             raise InfeasibleError(
-                f"{source}: pair.teeth = {teeth}: the shaper path (swept_teeth) returned non-finite tooth heights on the "
-                f"stretch after the corner at pitch arc {corner_arc[j]:.3f} mm; try another tooth count")
+                f"{source}: pair.teeth = {teeth}: the shaper path (swept_teeth) returned non-finite tooth heights "
+                f"on the stretch after the corner at pitch arc {corner_arc[j]:.3f} mm; try another tooth count")
         stretches.append(stretch[np.argsort(run[keep])])
 
     def pair_at(corner_pressure: float) -> CompositeTeeth:

@@ -90,7 +90,8 @@ def draw_figures(result: GearResult) -> dict[str, Figure]:
     Returns
     -------
     dict of str to matplotlib.figure.Figure
-        With composite teeth also ``gear_cusps`` (each corner zoomed). Save with ``figure.savefig(f"{stem}.png")`` or show in a notebook.
+        With composite teeth also ``gear_cusps`` (each corner zoomed). Save with
+        ``figure.savefig(f"{stem}.png")`` or show in a notebook.
     """
     require_result(result, GearResult, "gears")
     figures = {"gear_mesh": draw_mesh(result), "gear_kinematics": draw_kinematics(result),

@@ -9,8 +9,8 @@ belongs to a driver tooth (the tooth whose pitch-curve span, from one space cent
 holds the foot of the point on the pitch curve) and to its low-arc or high-arc flank; one flank
 side drives when the driver turns one way, the other when it turns back (the cusp-pitch-curve paper, section 3.2: the
 contact ratio of a cusp gear depends on the direction). A tooth's contact ratio on a side is the
-pitch arc rolled while that flank touches over the tooth's own pitch (the mean spacing to its neighbours' centres); positions where no
-flank of a side touches are listed too (there the next pair has not taken over).
+pitch arc rolled while that flank touches over the tooth's own pitch (the mean spacing to its neighbours'
+centres); positions where no flank of a side touches are listed too (there the next pair has not taken over).
 """
 from __future__ import annotations
 

@@ -60,7 +60,8 @@ def involute_deviation(table: PitchTable, outline: np.ndarray, flanks: np.ndarra
     pitch_curve = shapely.Polygon(table.points)
     flat = points.reshape(-1, 2)
     height = shapely.distance(pitch_curve.exterior, shapely.points(flat))
-    height = np.where(shapely.contains_xy(pitch_curve, flat[:, 0], flat[:, 1]), -height, height).reshape(points.shape[:2])
+    inside = shapely.contains_xy(pitch_curve, flat[:, 0], flat[:, 1])
+    height = np.where(inside, -height, height).reshape(points.shape[:2])
     contact = flanks + sides * q
     perimeter = table.perimeter
     passes = np.zeros(points.shape[:2], bool)

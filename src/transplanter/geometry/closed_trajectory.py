@@ -100,7 +100,8 @@ class ClosedTrajectory:
             slope = np.polynomial.polynomial.polyder(square)
             bend = np.polynomial.polynomial.polyder(slope)
             for root in np.polynomial.polynomial.polyroots(slope):
-                if abs(root.imag) > 1e-9 or not -1e-9 <= root.real <= 1 + 1e-9:   # a root at a joint may fall either side
+                # a root at a joint may fall either side
+                if abs(root.imag) > 1e-9 or not -1e-9 <= root.real <= 1 + 1e-9:
                     continue
                 t = root.real
                 curvature = np.polynomial.polynomial.polyval(t, bend)
@@ -128,7 +129,8 @@ class ClosedTrajectory:
         direction = self.control / radius[:, None]
 
         def miss(ab):
-            radii = [e.radius for e in ClosedTrajectory(direction * (ab[0] + ab[1] * radius)[:, None]).radial_extremes()]
+            remapped = ClosedTrajectory(direction * (ab[0] + ab[1] * radius)[:, None])
+            radii = [e.radius for e in remapped.radial_extremes()]
             return np.array([max(radii) - farthest, min(radii) - nearest])
 
         ab, size = np.array([0.0, 1.0]), farthest

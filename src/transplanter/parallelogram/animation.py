@@ -32,7 +32,8 @@ def _draw_frames(result: ParallelogramResult, frames: int):
     fine = sample_path(mech, 1, 721)
     m = measure(mech, problem.depth_window, 8192)
     a = float(mech.center_distance[0])
-    scale = result.gear.design.driver.scale         # the drawn pair is the toothed one, brought back to the design's size
+    # the drawn pair is the toothed one, brought back to the design's size
+    scale = result.gear.design.driver.scale
     shapes = {name: outline / scale for name, outline in outlines(result.gear).items()}
     pivot = np.array([a, 0.0]) + problem.crank_pivot
     offset = np.array([design["l2"], 0.0])

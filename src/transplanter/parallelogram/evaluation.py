@@ -59,7 +59,8 @@ def parse_design(data: dict, source: str = "<dict>") -> DesignFile:
         read.fail("design", None, "a [design] table with the eight variables")
     design = read_design(read, data["design"])
     return DesignFile(design, read_printed(read, data.get("printed", {}), design),
-                      read_published(read, data.get("published", {})), source, read.text(data, "title", "", LONGEST_TITLE))
+                      read_published(read, data.get("published", {})), source,
+                      read.text(data, "title", "", LONGEST_TITLE))
 
 
 def load_design(path: str | Path) -> DesignFile:

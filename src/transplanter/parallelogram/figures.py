@@ -91,7 +91,8 @@ def draw_pareto(result) -> Figure:
             ax.scatter(p[i], p[j], s=60, marker="P", color="tab:green", label="NLP polish of it")
         if result.pick != 1:
             k = result.pick - 1
-            ax.scatter(f[k, i], f[k, j], s=60, marker="D", facecolor="none", color="k", label=f"picked (rank {result.pick})")
+            ax.scatter(f[k, i], f[k, j], s=60, marker="D", facecolor="none", color="k",
+                       label=f"picked (rank {result.pick})")
         ax.set_xlabel(labels[i])
         ax.set_ylabel(labels[j])
         ax.grid(alpha=0.3)

@@ -1,8 +1,8 @@
 """NLP polish of a Pareto design (IPOPT through CasADi, exact derivatives of the generated functions).
 
 Unknowns: the searched variables but l (the kinematics sees b/l only, so l, the gear's size, would
-be a direction of zero curvature; it stays at the start's value) and three driver angles, the planting instant tau_E and the two
-ends tau_-, tau_+ of the depth run. Conditions, all exact:
+be a direction of zero curvature; it stays at the start's value) and three driver angles, the planting instant
+tau_E and the two ends tau_-, tau_+ of the depth run. Conditions, all exact:
 - the planting instant is a lowest point: V_y(tau_E) = 0, A_y(tau_E) >= 0;
 - true zero-speed planting: V_x(tau_E) = 0 (an equality, not a weight);
 - the run's ends lie on the band's edges, on the sides the start design leaves it:

@@ -49,9 +49,11 @@ def _checks(problem: ParallelogramProblem, search: SearchResult, rank: int, eval
     failures = []
     high = problem.depth_band[1]
     if abs(evaluation.depth - search.depth[rank - 1]) > AGREEMENT * high:
-        failures.append(f"depth {evaluation.depth:.6f} mm on the fine grid, {search.depth[rank - 1]:.6f} mm in the search")
+        failures.append(f"depth {evaluation.depth:.6f} mm on the fine grid, "
+                        f"{search.depth[rank - 1]:.6f} mm in the search")
     if abs(evaluation.vx_release - search.vx_release[rank - 1]) > AGREEMENT * problem.forward_speed:
-        failures.append(f"Vx {evaluation.vx_release:.6f} mm/s on the fine grid, {search.vx_release[rank - 1]:.6f} in the search")
+        failures.append(f"Vx {evaluation.vx_release:.6f} mm/s on the fine grid, "
+                        f"{search.vx_release[rank - 1]:.6f} in the search")
     return tuple(failures) + requirement_failures(problem, evaluation, gear)
 
 

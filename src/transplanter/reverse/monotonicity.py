@@ -52,8 +52,9 @@ def violations(motion: ArmMotion) -> list[Violation]:
                                "at each touch, so an odd count leaves the arm on the other branch after one cycle"))
     elif abs(carrier - 1) > 1e-6 or abs(planet - 1) > 1e-6:
         found.append(Violation("turns", 0.0, 1.0, carrier,
-                               f"per cycle the carrier turns {carrier:+.3f} and the planet {planet:+.3f} turns against "
-                               "it in the carrier's direction; both must turn exactly +1 for the pitch curves to close"))
+                               f"per cycle the carrier turns {carrier:+.3f} and the planet {planet:+.3f} turns "
+                               "against it in the carrier's direction; both must turn exactly +1 "
+                               "for the pitch curves to close"))
     x = motion.grid
     (c1, _, _), (h1, _, _) = motion.path_rates(x)
     with np.errstate(divide="ignore", invalid="ignore"):

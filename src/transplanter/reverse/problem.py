@@ -13,7 +13,8 @@ Schema (docs/reverse.md, "Problem files"):
     direction = "clockwise"       # carrier rotation, or "counterclockwise" (default)
     branch = "auto"               # at the first point: "approach", "retraction" or "auto"
     [train]
-    topology = "sun-intermediate-planet"   # or "sun-idler-planet" (3 gears), "pick-up" (the cusp-pitch-curve paper eq 15)
+    topology = "sun-intermediate-planet"   # or "sun-idler-planet" (3 gears),
+                                           # "pick-up" (the cusp-pitch-curve paper eq 15)
     split = "sqrt"                # or "peak_to_valley" (4 gears), "identical_sun_planet" (3 gears)
     # peak_to_valley = 0.6        # with split = "peak_to_valley" only: its b, in (0, 1)
     center_distances = [46.15, 46.15]      # mm; default s/2 each (collinear carrier)
@@ -233,4 +234,5 @@ def parse_problem(data: dict, source: str = "<dict>") -> ReverseProblem:
     topology, split, coefficient, centers, module = _train(read, data.get("train", {}))
     return ReverseProblem(points=points - pivot, kind=kind, pivot=pivot, lengths=lengths, direction=direction,
                           branch=branch, topology=topology, split=split, peak_to_valley=coefficient,
-                          center_distances=centers, module=module, source=source, title=read.text(data, "title", "", LONGEST_TITLE))
+                          center_distances=centers, module=module, source=source,
+                          title=read.text(data, "title", "", LONGEST_TITLE))
