@@ -44,7 +44,7 @@ def main():
     low = np.array([problem.bounds[n][0] for n in names])
     high = np.array([problem.bounds[n][1] for n in names])
     designs = rng.uniform(low, high, size=(100, len(names)))
-    variables = dict(zip(names, designs.T))
+    variables = dict(zip(names, designs.T, strict=True))
     whole, scores = best_time(lambda: score(problem, variables, SEARCH_SAMPLES), 5)
 
     def one_at_a_time():

@@ -145,7 +145,7 @@ def main():
     module, alpha, cutter_teeth = toothed.module, toothed.pressure_angle, gearing.shaper_teeth
     totals = np.zeros(2)
     for name, design, teeth in zip(("stage 1", "stage 2"), (toothed.train.stage_one, toothed.train.stage_two),
-                                   toothed.teeth):
+                                   toothed.teeth, strict=True):
         if teeth.cutter != "shaper":
             print(f"{name}: rack-cut, not timed")
             continue

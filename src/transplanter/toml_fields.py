@@ -226,8 +226,9 @@ class ClassFields:
             array = np.array(value, float)
         except (TypeError, ValueError):
             self.fail(field, value, expected)
-        if (array.ndim != len(shape) or any(n is not None and n != size for n, size in zip(shape, array.shape))
-                or any(n is None and size < minimum for n, size in zip(shape, array.shape))):
+        if (array.ndim != len(shape)
+                or any(n is not None and n != size for n, size in zip(shape, array.shape, strict=True))
+                or any(n is None and size < minimum for n, size in zip(shape, array.shape, strict=True))):
             self.fail(field, value, expected)
         if not np.all(np.isfinite(array)) or np.any(np.abs(array) > MAGNITUDE_LIMIT):
             self.fail(field, value, f"finite values within ±{MAGNITUDE_LIMIT:.0e}")

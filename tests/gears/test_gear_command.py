@@ -27,7 +27,7 @@ def test_one_example_per_family():
     runs = [subprocess.Popen(_command(path, "--json"), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                              cwd=ROOT) for path in EXAMPLES]
     outputs = [run.communicate() for run in runs]
-    for path, run, (_, stderr) in zip(EXAMPLES, runs, outputs):
+    for path, run, (_, stderr) in zip(EXAMPLES, runs, outputs, strict=True):
         assert run.returncode == 0, (path.name, stderr)
     families = {json.loads(stdout)["driver"]["family"] for stdout, _ in outputs}
     assert families == {"ellipse", "higher_order_ellipse", "denatured_ellipse", "limacon", "denatured_limacon",

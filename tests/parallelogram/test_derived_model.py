@@ -1,6 +1,7 @@
 """The onion transplanter of the onion-transplanter paper, the derived model: gear pair, kinematics, trajectory
 measures."""
 import dataclasses
+from itertools import pairwise
 
 import numpy as np
 import pytest
@@ -43,10 +44,10 @@ def test_driven_angle_against_quadrature_of_the_gear_library_curve(m12, center):
     a = float(mech.center_distance[0])
     phi = np.array([0.3, 1.9, 2 * np.pi / 3, 2.5, 4.0, 2 * np.pi])
     radius = lambda x: float(curve.evaluate(np.array([x]))[0][0])  # noqa: E731
-    for x, value in zip(phi, mech.driven_angle(np.broadcast_to(phi, (1, phi.size)))[0]):
+    for x, value in zip(phi, mech.driven_angle(np.broadcast_to(phi, (1, phi.size)))[0], strict=True):
         pieces = [0.0, min(x, 2 * np.pi / 3), x]
         expected = sum(quad(lambda s: radius(s) / (a - radius(s)), p, q, epsabs=1e-13)[0]
-                       for p, q in zip(pieces, pieces[1:]) if q > p)
+                       for p, q in pairwise(pieces) if q > p)
         assert value == pytest.approx(expected, rel=1e-10, abs=1e-12)
 
 

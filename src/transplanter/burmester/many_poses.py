@@ -33,7 +33,7 @@ def _solver(poses: np.ndarray, radius: float) -> Solver:
 
 def _starts(poses: np.ndarray, radius: float, count: int = 16):
     centers, circles = burmester_points(poses[:5])
-    starts = list(zip(centers, circles))
+    starts = list(zip(centers, circles, strict=True))
     family = trace_dyads(poses[:4], directions=4 * count, radius=radius)
     pick = np.linspace(0, len(family[0]) - 1, min(count, len(family[0]))).astype(int) if len(family[0]) else []
     starts += [(family[0][k], family[1][k]) for k in pick]

@@ -124,7 +124,7 @@ def runs(mask: np.ndarray) -> list[np.ndarray]:
     shift = int(np.argmin(mask))                      # start the cycle on a False
     rolled = np.roll(mask, -shift)
     edges = np.flatnonzero(np.diff(np.concatenate([[0], rolled.astype(int), [0]])))
-    return [(np.arange(a, b) + shift) % mask.size for a, b in zip(edges[::2], edges[1::2])]
+    return [(np.arange(a, b) + shift) % mask.size for a, b in zip(edges[::2], edges[1::2], strict=True)]
 
 
 def _polish(problem, base_radius, geometry, k, quantity, bounds_segment) -> Extreme:
@@ -201,9 +201,9 @@ def interference(geometry: CamGeometry, roller_radius: float) -> tuple[Stretch, 
 def acceleration_jumps(problem: CamProblem) -> tuple[AccelerationJump, ...]:
     """Jumps of the follower's acceleration where one segment meets the next (and at the end of the turn)."""
     segments, starts, levels = problem.segments, segment_starts(problem.segments), segment_levels(problem.segments)
-    ends = [segment_motion(s, level, [0.0, s.angle])[2] for s, level in zip(segments, levels)]
+    ends = [segment_motion(s, level, [0.0, s.angle])[2] for s, level in zip(segments, levels, strict=True)]
     scale = max(np.abs(segment_motion(s, level, np.linspace(0, s.angle, 65))[2]).max()
-                for s, level in zip(segments, levels))
+                for s, level in zip(segments, levels, strict=True))
     jumps = []
     for k in range(len(segments)):
         after = (k + 1) % len(segments)

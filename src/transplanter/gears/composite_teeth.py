@@ -101,7 +101,8 @@ class Layout:
     def space_centers(self, perimeter: float) -> np.ndarray:
         """Pitch arcs (mm, ascending in [0, perimeter)) of the driver's tooth-space centres."""
         ends = self.corners + self.after
-        centers = [end + self.pitch / 4 + i * self.pitch for end, k in zip(ends, self.between) for i in range(k + 1)]
+        centers = [end + self.pitch / 4 + i * self.pitch
+                   for end, k in zip(ends, self.between, strict=True) for i in range(k + 1)]
         return np.sort(np.mod(centers, perimeter))
 
 
@@ -124,7 +125,7 @@ def _check_layout(plan: Layout, teeth: int, segment_arcs: list[tuple[float, floa
             f"{ratios[k]:.3f} pitches thick, outside [{low}, {high}] (the cusp-pitch-curve paper, section 2.3); tooth "
             f"counts that keep every corner tooth in the band: {', '.join(map(str, fits)) or 'none within 12 of it'} "
             f"(whether they mesh is checked when they are cut)")
-    for k, (corner, (before, after)) in enumerate(zip(plan.corners, segment_arcs)):
+    for k, (corner, (before, after)) in enumerate(zip(plan.corners, segment_arcs, strict=True)):
         for zone, room, name in ((plan.before[k], before, "before"), (plan.after[k], after, "after")):
             if zone >= room:
                 raise InfeasibleError(
@@ -184,7 +185,7 @@ class CompositeTeeth:
         if self.contact.minimum < 1:
             found.append(f"contact ratio {self.contact.minimum:.3f} below 1 on the {where.flank} flank of the "
                          f"tooth at {where.phi_deg:.2f} deg")
-        for flank, angles in zip(("low-arc", "high-arc"), self.contact.uncovered_deg):
+        for flank, angles in zip(("low-arc", "high-arc"), self.contact.uncovered_deg, strict=True):
             if angles.size:
                 found.append(f"no {flank} flank touches (contact ratio below 1) at {angles.size} of the sampled "
                              f"positions, first at driver angle {angles[0]:.2f} deg")
@@ -288,7 +289,7 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
                               "composite teeth stand on convex corners only")
     starts = [float(np.mod(s.start, 2 * np.pi)) for s in curve.segments]
     joint_index = [int(np.argmin(np.abs(np.radians(c["phi_deg"]) - np.array(starts)))) for c in corners]
-    edge_arc = {float(phi): float(arc) for phi, arc in zip(design.phi1, design.arc)}
+    edge_arc = {float(phi): float(arc) for phi, arc in zip(design.phi1, design.arc, strict=True)}
     segment_start = np.array([edge_arc[min(edge_arc, key=lambda e: abs(e - start))] for start in starts])
     segment_length = np.mod(np.roll(segment_start, -1) - segment_start, perimeter)
     segment_length[segment_length == 0] = perimeter
@@ -429,7 +430,7 @@ def carved_mate(design: GearPairDesign, driver: np.ndarray, module: float) -> np
     discs = shapely.buffer(shapely.points(centers), CARVE_REACH_PITCHES * np.pi * module, quad_segs=8)
     teeth = shapely.intersection(body, discs)
     placed = []
-    for tooth, a, b in zip(teeth, phi1, phi2):
+    for tooth, a, b in zip(teeth, phi1, phi2, strict=True):
         points = shapely.get_coordinates(tooth)
         c1, s1 = np.cos(-a), np.sin(-a)
         world = points @ np.array([[c1, s1], [-s1, c1]]) - [design.center_distance, 0.0]
@@ -458,5 +459,5 @@ def _corner_tooth(outline, corner, start, end, pitch, arches, rising) -> CornerT
             gaps.append(float(np.linalg.norm(outline[at - 1] - points[0])))
     used = [len(points) - STRAIGHT_POINTS for points in rising]
     return CornerTooth(float(corner), float(start), float(end), pitch, arches, tuple(kinks), tuple(gaps), tuple(rising),
-                       tuple(arch_pressure_range(a, n) for a, n in zip(arches, used)),
+                       tuple(arch_pressure_range(a, n) for a, n in zip(arches, used, strict=True)),
                        tuple(polyline_min_curvature_radius(points[STRAIGHT_POINTS:]) for points in rising))

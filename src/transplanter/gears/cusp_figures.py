@@ -21,7 +21,7 @@ def draw_cusps(result: GearResult) -> Figure:
     corners = teeth.corner_teeth
     fig = Figure(figsize=(5 * len(corners) + 2, 5), layout="constrained")
     axes = np.atleast_1d(fig.subplots(1, len(corners)))
-    for ax, tooth in zip(axes, corners):
+    for ax, tooth in zip(axes, corners, strict=True):
         phi1 = float(np.interp(tooth.corner_arc, d.arc, d.phi1))
         phi2 = float(driven_angle(d, np.array([phi1]))[0])
         place = (lambda points: rotate_about(points, (0.0, 0.0), -phi1))

@@ -130,7 +130,7 @@ def generate_teeth(design: GearPairDesign, module: float, alpha: float, source: 
     tables = (driver_table(design), driven_table(design))
     if cutter == "rack":    # one rack cuts both: its two sides are complementary, so the pair is conjugate
         outlines = [rack_profile(table, count, module, alpha, first)
-                    for table, count, first in zip(tables, counts, (0.0, pitch / 2))]
+                    for table, count, first in zip(tables, counts, (0.0, pitch / 2), strict=True)]
     else:                   # the shaper cuts the driver; the driver's teeth cut the driven gear (conjugate)
         driver = shaper_profile(tables[0], module, alpha, cutter_teeth)
         outlines = [driver, mate_profile(design, driver, tables[1], module)]

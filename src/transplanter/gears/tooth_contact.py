@@ -99,7 +99,7 @@ def measure_contact_ratio(design: GearPairDesign, outlines: tuple[np.ndarray, np
     phi1 = np.interp(np.mod(rolled, perimeter), design.arc, design.phi1) + 2 * np.pi * np.floor(rolled / perimeter)
     phi2 = driven_angle(design, phi1)
     touching = np.zeros((2, len(space_centers), len(rolled)), bool)
-    for k, (s, a, b) in enumerate(zip(np.mod(rolled, perimeter), phi1, phi2)):
+    for k, (s, a, b) in enumerate(zip(np.mod(rolled, perimeter), phi1, phi2, strict=True)):
         near = np.flatnonzero(np.abs(np.mod(arc - s + perimeter / 2, perimeter) - perimeter / 2)
                               <= REACH_PITCHES * pitch)
         c1, s1, c2, s2 = np.cos(a), np.sin(a), np.cos(b), np.sin(b)

@@ -113,7 +113,7 @@ class ClosedTrajectory:
         extremes.sort(key=lambda e: e.parameter)
         # a root at a joint is found by both segments that meet there: keep one
         gaps = np.diff([e.parameter for e in extremes] + [extremes[0].parameter + TWO_PI]) if extremes else []
-        return [e for e, gap in zip(extremes, gaps) if gap > 1e-8]
+        return [e for e, gap in zip(extremes, gaps, strict=True) if gap > 1e-8]
 
     def sample_misses(self, samples: np.ndarray) -> np.ndarray:
         """Distance of each sample (N, 2), sample k taken at x = 2 pi k / N, from the curve there (mm)."""

@@ -47,7 +47,7 @@ def _time_plot(problem, design, pick, ylabel_x: str, ylabel_y: str, unit: str) -
     values = pick(path)
     fig = Figure(figsize=(7, 5.5), layout="constrained")
     axes = fig.subplots(2, 1, sharex=True)
-    for ax, series, label in zip(axes, values, (ylabel_x, ylabel_y)):
+    for ax, series, label in zip(axes, values, (ylabel_x, ylabel_y), strict=True):
         ax.plot(path.time, series, lw=1.0)
         ax.axvline(m.planting_time[0], color="tab:red", lw=0.8, ls="--", label="planting instant t_E")
         ax.axhline(0.0, color="k", lw=0.5)
@@ -80,7 +80,7 @@ def draw_pareto(result) -> Figure:
     labels = ("f1 = |Vx(t_E)| / mm s⁻¹", "f2 = |H − H_target| / mm", "f3 = |Y − Y_target| / mm")
     fig = Figure(figsize=(12, 4), layout="constrained")
     axes = fig.subplots(1, 3)
-    for ax, (i, j) in zip(axes, ((0, 1), (0, 2), (1, 2))):
+    for ax, (i, j) in zip(axes, ((0, 1), (0, 2), (1, 2)), strict=True):
         ax.scatter(f[:, i], f[:, j], s=14, color="tab:blue", label="Pareto designs")
         ax.scatter(f[0, i], f[0, j], s=90, marker="*", color="tab:red", label="knee (rank 1)")
         ax.set_xscale("symlog", linthresh=1e-3)

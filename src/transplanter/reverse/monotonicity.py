@@ -32,7 +32,7 @@ def _runs(failing: np.ndarray) -> list[tuple[int, int]]:
     if not failing.any():
         return []
     edges = np.flatnonzero(np.diff(np.r_[0, failing.astype(int), 0]))
-    runs = [(int(a), int(b) - 1) for a, b in zip(edges[::2], edges[1::2])]
+    runs = [(int(a), int(b) - 1) for a, b in zip(edges[::2], edges[1::2], strict=True)]
     if len(runs) > 1 and runs[0][0] == 0 and runs[-1][1] == len(failing) - 1:
         runs = [(runs[-1][0], runs[0][1])] + runs[1:-1]
     return runs

@@ -93,7 +93,8 @@ def choose_motion(trajectory: ClosedTrajectory, s: float, l: float, direction: i
     starts = {"approach": (1,), "retraction": (-1,), "auto": (1, -1)}[branch]
     motions = [solve_arm(trajectory, s, l, direction, b) for b in starts]
     counts = [len(violations(m)) for m in motions]
-    judged = [(count, np.inf if count else _ratio_spread(m), k) for k, (m, count) in enumerate(zip(motions, counts))]
+    judged = [(count, np.inf if count else _ratio_spread(m), k)
+              for k, (m, count) in enumerate(zip(motions, counts, strict=True))]
     return motions[min(judged)[2]]
 
 

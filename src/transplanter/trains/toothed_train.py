@@ -185,7 +185,7 @@ class ToothedTrain:
     @property
     def failures(self) -> list[str]:
         pairs = ("sun -> first intermediate", "second intermediate -> planet")
-        return [f"{pair}: {text}" for pair, check in zip(pairs, self.mesh) for text in check.failures]
+        return [f"{pair}: {text}" for pair, check in zip(pairs, self.mesh, strict=True) for text in check.failures]
 
     @property
     def passed(self) -> bool:
@@ -197,9 +197,9 @@ def stage_shape(design: GearPairDesign, gearing: Gearing) -> StageShape:
     count (module docstring)."""
     a = design.center_distance
     convex = [c > 0 for c in design.convexity]
-    rho = min(float(r[c].min()) for c, r in zip(convex, design.curvature_radius)) / a
+    rho = min(float(r[c].min()) for c, r in zip(convex, design.curvature_radius, strict=True)) / a
     concave = tuple(float(np.abs(r[~c]).min()) / a if (~c).any() else np.inf
-                    for c, r in zip(convex, design.curvature_radius))
+                    for c, r in zip(convex, design.curvature_radius, strict=True))
     perimeter = design.perimeters[0] / a
     least = math.ceil(ADDENDUM * perimeter / (np.pi * rho * np.sin(gearing.pressure_angle) ** 2) * (1 + WHOLE))
     cutter = "rack" if gearing.cutter == "rack" and np.isinf(concave).all() else "shaper"
@@ -222,14 +222,14 @@ def cutting_reasons(train: PlanetaryTrain, stage: int, cutter: str, gearing: Gea
     convex = [c > 0 for c in design.convexity]
     if cutter == "rack":
         return tuple(f"convex; smallest radius of curvature {float(r[c].min()):.3f} mm >= the rack's undercut limit "
-                     f"m / sin^2(alpha) = {limit:.3f} mm" for c, r in zip(convex, design.curvature_radius))
+                     f"m / sin^2(alpha) = {limit:.3f} mm" for c, r in zip(convex, design.curvature_radius, strict=True))
     fit = (f"{gearing.shaper_teeth}-tooth shaper, pitch radius {module * gearing.shaper_teeth / 2:.3f} mm; convex "
            f"stretches keep radii of curvature >= {limit:.3f} mm")
     if gearing.cutter == "shaper":
         why = f"cutter = \"shaper\" asked ({fit})"
     else:
         g = int(np.argmin([np.abs(r[~c]).min() if (~c).any() else np.inf
-                           for c, r in zip(convex, design.curvature_radius)]))
+                           for c, r in zip(convex, design.curvature_radius, strict=True)]))
         k = int(np.argmin(design.convexity[g]))
         hollow = float(np.abs(design.curvature_radius[g][~convex[g]]).min())
         why = (f"the {names[g]}'s pitch curve is concave: convexity r^2 + 2 r'^2 - r r'' = "
@@ -291,7 +291,7 @@ def _given_counts(shapes, gearing: Gearing, length: float, source: str) -> tuple
     m = gearing.module
     counts = []
     for j, (a, shape, key) in enumerate(zip(gearing.center_distances, shapes,
-                                            ("first_center_distance", "second_center_distance"))):
+                                            ("first_center_distance", "second_center_distance"), strict=True)):
         z = a * shape.perimeter / (np.pi * m)
         step = np.pi * m / shape.perimeter
         if abs(z - round(z)) > WHOLE * z:
@@ -359,7 +359,7 @@ def _sizes(relative: RelativeMotion, carrier_length: float, gearing: Gearing, so
             counts = _bent_counts(shapes, module, carrier_length)
         except InfeasibleError as error:
             raise InfeasibleError(f"{source}: {error}") from None
-    for stage, (count, shape) in enumerate(zip(counts, shapes)):
+    for stage, (count, shape) in enumerate(zip(counts, shapes, strict=True)):
         most = MAX_SHAPER_TEETH if shape.cutter == "shaper" else MAX_TEETH
         if count > most:
             coarser = ("a coarser module" if module < MODULE_RANGE[1] else
@@ -367,7 +367,7 @@ def _sizes(relative: RelativeMotion, carrier_length: float, gearing: Gearing, so
             raise ProblemError(f"{source}: gears.module = {module:g}: gives {count} teeth on the "
                                f"{GEAR_NAMES[2 * stage]} ({shape.cutter}-cut); expected at most {most} (every tooth "
                                f"is cut and checked, in time and memory growing with the count); {coarser}")
-    a1, a2 = (z * np.pi * module / s.perimeter for z, s in zip(counts, shapes))
+    a1, a2 = (z * np.pi * module / s.perimeter for z, s in zip(counts, shapes, strict=True))
     if gearing.layout == "straight":
         a2 = carrier_length - a1
     return shapes, counts, (a1, a2), module, unit
@@ -379,7 +379,7 @@ def train_size(relative: RelativeMotion, carrier_length: float, gearing: Gearing
     raises as it does."""
     shapes, counts, distances, module, unit = _sizes(relative, carrier_length, gearing, source)
     largest = [a * max(float(np.max(r)) for r in stage.radius)
-               for a, stage in zip(distances, (unit.stage_one, unit.stage_two))]
+               for a, stage in zip(distances, (unit.stage_one, unit.stage_two), strict=True)]
     return TrainSize(tuple(int(z) for z in counts), tuple(float(a) for a in distances), float(module),
                      tuple(shape.cutter for shape in shapes), tuple(largest))
 
