@@ -103,8 +103,8 @@ module = 2.53
 def main():
     rice = recipe(-90.0, 16.0, 5.0, 254.3, 69.7)
     (HERE / "rice_hoe_reverse.toml").write_text(RICE.format(title=RICE_TITLE, points=toml_points(rice)))
-    s, l = 173.88, 207.81
-    pickup = recipe(-120.0, 22.0, 6.0, s + l, l - s)
+    carrier, arm = 173.88, 207.81       # the reverse-gear-design paper's s and l
+    pickup = recipe(-120.0, 22.0, 6.0, carrier + arm, arm - carrier)
     (HERE / "pickup_arm_reverse.toml").write_text(PICKUP.format(title=PICKUP_TITLE, points=toml_points(pickup)))
 
 

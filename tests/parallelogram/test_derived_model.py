@@ -26,12 +26,12 @@ def _problem(**changes):
 
 def test_antiderivative_of_the_rolling_law():
     """dF/du = r1 / (a - r1) for r1 = l + b cos u (the closed form behind phi2), at seeded points."""
-    u, a, l, b = sp.symbols("u a l b", real=True)
-    residual = derivation.driven_antiderivative_residual(u, a, l, b)
+    u, a, base, b = sp.symbols("u a l b", real=True)
+    residual = derivation.driven_antiderivative_residual(u, a, base, b)
     rng = np.random.default_rng(1)
     for _ in range(6):
-        point = {u: rng.uniform(0, np.pi), l: rng.uniform(30, 60), b: rng.uniform(1, 20)}
-        point[a] = point[l] + point[b] + rng.uniform(5, 60)
+        point = {u: rng.uniform(0, np.pi), base: rng.uniform(30, 60), b: rng.uniform(1, 20)}
+        point[a] = point[base] + point[b] + rng.uniform(5, 60)
         assert abs(float(residual.subs(point))) < 1e-12
 
 
@@ -43,7 +43,9 @@ def test_driven_angle_against_quadrature_of_the_gear_library_curve(m12, center):
     curve = denatured_limacon(53.0, 13.0, 1.5, float(mech.m12[0]))
     a = float(mech.center_distance[0])
     phi = np.array([0.3, 1.9, 2 * np.pi / 3, 2.5, 4.0, 2 * np.pi])
-    radius = lambda x: float(curve.evaluate(np.array([x]))[0][0])  # noqa: E731
+    def radius(x):
+        return float(curve.evaluate(np.array([x]))[0][0])
+
     for x, value in zip(phi, mech.driven_angle(np.broadcast_to(phi, (1, phi.size)))[0], strict=True):
         pieces = [0.0, min(x, 2 * np.pi / 3), x]
         expected = sum(quad(lambda s: radius(s) / (a - radius(s)), p, q, epsabs=1e-13)[0]
@@ -99,7 +101,9 @@ def test_velocity_and_acceleration_are_the_derivatives_of_the_positions():
     phi = np.array([0.4, 1.3, 3.0, 4.4, 5.9, 7.1])
     h = 1e-4
     dt = h / mech.driver_speed
-    tip = lambda x: mech.state(x[None, :])[1][:, 0]  # noqa: E731
+    def tip(x):
+        return mech.state(x[None, :])[1][:, 0]
+
     velocity = mech.state(phi[None, :])[2][:, 0]
     acceleration = mech.state(phi[None, :])[3][:, 0]
     differences = (tip(phi + h) - tip(phi - h)) / (2 * dt)
@@ -131,7 +135,9 @@ def test_depth_and_release_speed_of_a_trochoid(speed_ratio):
     m = measure(mech, problem.depth_window, 1024)
     assert m.vx_release[0] == pytest.approx(radius * w - v, abs=1e-9 * radius * w)
     window = problem.depth_window
-    gap = lambda s: abs(radius * np.sin(s) - v / w * s) - window  # noqa: E731
+    def gap(s):
+        return abs(radius * np.sin(s) - v / w * s) - window
+
     ends = [brentq(gap, side * 1e-9, side * np.pi) for side in (-1, 1)]
     expected = max(radius * (1 - np.cos(s)) for s in ends)
     assert m.depth[0] == pytest.approx(expected, rel=1e-9)

@@ -100,7 +100,7 @@ def evaluate(problem: ParallelogramProblem, design: dict, label: str = "closed",
         problem = dataclasses.replace(problem, conventions=conventions)
     mech = mechanisms(problem, design, m12=m12, center_distance=center_distance)
     m = measure(mech, problem.depth_window, EVALUATION_SAMPLES)
-    gear = gear_margins(mech.m11, mech.m12, mech.b, mech.l, mech.center_distance)
+    gear = gear_margins(mech.m11, mech.m12, mech.amplitude, mech.base_radius, mech.center_distance)
     limit = undercut_limit(problem.module, problem.pressure_angle)
     rho = (float(gear.driver_curvature[0]), float(gear.driven_curvature[0]))
     convex = bool(gear.driver_convexity[0] > 0 and gear.driven_convexity[0] > 0)

@@ -56,8 +56,8 @@ class Mechanisms:
 
     m11: np.ndarray
     m12: np.ndarray
-    b: np.ndarray
-    l: np.ndarray
+    amplitude: np.ndarray           # the driver's b: r1 = l + b cos(m phi1) on each half
+    base_radius: np.ndarray         # the driver's l
     center_distance: np.ndarray
     l1: np.ndarray
     l2: np.ndarray
@@ -74,7 +74,7 @@ class Mechanisms:
         return self.m11.size
 
     def pitch(self, ndim: int) -> np.ndarray:
-        return _group(*(_column(v, ndim) for v in (self.l, self.b, self.m11, self.m12)))
+        return _group(*(_column(v, ndim) for v in (self.base_radius, self.amplitude, self.m11, self.m12)))
 
     def driven_angle(self, phi1) -> np.ndarray:
         """phi2 at driver angles within one turn (design on the first axis)."""
@@ -134,6 +134,7 @@ def mechanisms(problem: ParallelogramProblem, variables: dict | None = None, m12
     m12 = denatured_partner(arrays["m11"]) if m12 is None else np.broadcast_to(float(m12), (count,)).copy()
     a = (closing_center_distance(arrays["l"], arrays["b"]) if center_distance is None
          else np.broadcast_to(float(center_distance), (count,)).copy())
-    return Mechanisms(m12=m12, center_distance=a, conventions=problem.conventions,
-                      driver_speed=problem.driver_speed, forward_velocity=problem.forward_velocity,
-                      pivot_offset=np.asarray(problem.crank_pivot, float), **arrays)
+    return Mechanisms(m11=arrays["m11"], m12=m12, amplitude=arrays["b"], base_radius=arrays["l"], center_distance=a,
+                      l1=arrays["l1"], l2=arrays["l2"], l5=arrays["l5"], l6=arrays["l6"], alpha=arrays["alpha"],
+                      conventions=problem.conventions, driver_speed=problem.driver_speed,
+                      forward_velocity=problem.forward_velocity, pivot_offset=np.asarray(problem.crank_pivot, float))

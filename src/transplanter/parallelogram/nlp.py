@@ -57,8 +57,9 @@ class Polish:
     seconds: float
 
 
-def _gear_constraints(m11, m12, b, l, a, limit):
-    """Convexity (scale-free) and curvature margin (rho / limit - 1) of both curves, both halves, on COSINES."""
+def _gear_constraints(m11, m12, b, base, a, limit):
+    """Convexity (scale-free) and curvature margin (rho / limit - 1) of both curves, both halves, on COSINES;
+    the driver's half is r1 = base + b cos(m phi1) (the onion-transplanter paper's l and b)."""
     driver = casadi_function(limacon_driver_convexity)
     driven = casadi_function(limacon_driven_convexity)
     curvature = casadi_function(polar_curvature)
@@ -66,8 +67,8 @@ def _gear_constraints(m11, m12, b, l, a, limit):
     rows = []
     for m in (m11, m12):
         for c in COSINES:
-            rows += [driver(b / l, m, c), driven(b / l, m, a / l, c)]
-            radius, slope, bend = l + b * c, b * m * np.sqrt(max(1 - c * c, 0.0)), -b * m**2 * c
+            rows += [driver(b / base, m, c), driven(b / base, m, a / base, c)]
+            radius, slope, bend = base + b * c, b * m * np.sqrt(max(1 - c * c, 0.0)), -b * m**2 * c
             rows.append(curvature(radius, slope, bend)[0] / limit - 1)
             r2, s2, b2, _ = conjugate(a, radius, slope, bend)
             rows.append(curvature(r2, s2, b2)[0] / limit - 1)

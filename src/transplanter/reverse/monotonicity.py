@@ -80,11 +80,12 @@ def stationary_radii(motion: ArmMotion) -> list[str]:
 
 def fix_hints(trajectory: ClosedTrajectory, motion: ArmMotion, derived_lengths: tuple[float, float]) -> list[str]:
     """Changes that would pass the criterion, each tried on the same path."""
-    s, l, d, b = motion.carrier_length, motion.arm_length, motion.direction, motion.start_branch
-    trials = [(f"start on the {BRANCH_NAMES[-b]} branch", (s, l, d, -b)),
-              (f"turn the carrier {DIRECTION_NAMES[-d]}", (s, l, -d, b)),
-              (f"turn the carrier {DIRECTION_NAMES[-d]} and start on the {BRANCH_NAMES[-b]} branch", (s, l, -d, -b))]
-    if not np.allclose(derived_lengths, (s, l), rtol=1e-9, atol=0):
+    lengths, d, b = (motion.carrier_length, motion.arm_length), motion.direction, motion.start_branch
+    trials = [(f"start on the {BRANCH_NAMES[-b]} branch", (*lengths, d, -b)),
+              (f"turn the carrier {DIRECTION_NAMES[-d]}", (*lengths, -d, b)),
+              (f"turn the carrier {DIRECTION_NAMES[-d]} and start on the {BRANCH_NAMES[-b]} branch",
+               (*lengths, -d, -b))]
+    if not np.allclose(derived_lengths, lengths, rtol=1e-9, atol=0):
         trials += [(f"carrier_length = {derived_lengths[0]:.4f} and arm_length = {derived_lengths[1]:.4f} mm "
                     "(the rice-transplanter paper eq 1-2: the arm straightens at the farthest point and folds "
                     "at the nearest), "
