@@ -18,6 +18,7 @@ mesh check passing.
 from __future__ import annotations
 
 import time
+from functools import partial
 from pathlib import Path
 from unittest import mock
 
@@ -150,10 +151,10 @@ def main():
             print(f"{name}: rack-cut, not timed")
             continue
         tables = driver_table(design), driven_table(design)
-        ours_driver_s, driver = timed(lambda: shaper_profile(tables[0], module, alpha, cutter_teeth))
-        ours_mate_s, mate = timed(lambda: mate_profile(design, driver, tables[1], module))
-        old_driver_s, old_driver = timed(lambda: cloud_shaper_profile(tables[0], module, alpha, cutter_teeth))
-        old_mate_s, old_mate = timed(lambda: cloud_mate_profile(design, old_driver, tables[1], module))
+        ours_driver_s, driver = timed(partial(shaper_profile, tables[0], module, alpha, cutter_teeth))
+        ours_mate_s, mate = timed(partial(mate_profile, design, driver, tables[1], module))
+        old_driver_s, old_driver = timed(partial(cloud_shaper_profile, tables[0], module, alpha, cutter_teeth))
+        old_mate_s, old_mate = timed(partial(cloud_mate_profile, design, old_driver, tables[1], module))
         converged = shaper_profile(tables[0], module, alpha, cutter_teeth, step=module / 80)
         with mock.patch.object(swept_teeth, "SIMPLIFY_MODULES", 0.0):
             converged_mate = mate_profile(design, converged, tables[1], module, step=module / 80)

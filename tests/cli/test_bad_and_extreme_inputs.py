@@ -24,7 +24,7 @@ def _variant(tmp_path, example: str, *replacements) -> str:
     text = (EXAMPLES / example).read_text()
     for pattern, new in replacements:
         assert re.search(pattern, text, flags=re.M), pattern
-        text = re.sub(pattern, lambda _: new, text, count=1, flags=re.M)
+        text = re.sub(pattern, new.replace("\\", "\\\\"), text, count=1, flags=re.M)   # new taken literally
     path = tmp_path / example
     path.write_text(text)
     return str(path)

@@ -435,12 +435,17 @@ def carved_mate(design: GearPairDesign, driver: np.ndarray, module: float) -> np
         c1, s1 = np.cos(-a), np.sin(-a)
         world = points @ np.array([[c1, s1], [-s1, c1]]) - [design.center_distance, 0.0]
         c2, s2 = np.cos(-b), np.sin(-b)
-        placed.append(shapely.transform(tooth, lambda _: world @ np.array([[c2, s2], [-s2, c2]])))
+        placed.append(_with_coordinates(tooth, world @ np.array([[c2, s2], [-s2, c2]])))
     blank = shapely.Polygon(design.points[1][:-1]).buffer(ADDENDUM * module, quad_segs=64)
     driven = blank.difference(shapely.union_all(placed))
     if driven.geom_type == "MultiPolygon":
         driven = max(driven.geoms, key=lambda g: g.area)
     return shapely.get_coordinates(driven.exterior)[:-1]
+
+
+def _with_coordinates(geometry, coordinates: np.ndarray):
+    """``geometry`` with its coordinates replaced by ``coordinates`` (same count, same order)."""
+    return shapely.transform(geometry, lambda _: coordinates)
 
 
 def _corner_tooth(outline, corner, start, end, pitch, arches, rising) -> CornerTooth:

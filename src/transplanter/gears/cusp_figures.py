@@ -2,6 +2,8 @@
 the shaper's involute flanks in two colours, the pitch curve, and the driven gear in mesh as the corner passes."""
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 from matplotlib.figure import Figure
 
@@ -24,7 +26,7 @@ def draw_cusps(result: GearResult) -> Figure:
     for ax, tooth in zip(axes, corners, strict=True):
         phi1 = float(np.interp(tooth.corner_arc, d.arc, d.phi1))
         phi2 = float(driven_angle(d, np.array([phi1]))[0])
-        place = (lambda points: rotate_about(points, (0.0, 0.0), -phi1))
+        place = partial(rotate_about, pivot=(0.0, 0.0), angle=-phi1)
         driver, pitch = place(teeth.outlines[0]), place(d.points[0])
         driven = rotate_about(teeth.outlines[1], (0.0, 0.0), phi2) + [d.center_distance, 0.0]
         corner = place(d.driver.evaluate(np.array([phi1]))[0][:1, None] * np.array([[np.cos(phi1), np.sin(phi1)]]))[0]

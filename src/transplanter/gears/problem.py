@@ -222,8 +222,8 @@ def _between_samples(evaluate, phi: np.ndarray, values: np.ndarray, slopes: np.n
             return (f"is not resolved near phi = {np.degrees(middle[k]):.6f} deg: between values {width[k]:.2g} rad "
                     f"apart it is {miss[k]:.3g} off the cubic through them; expected a ratio smooth all round (a "
                     "pole or a jump is there)")
-        keep = lambda array: np.concatenate([array[unresolved]] * 2)  # noqa: E731
-        left, width = np.concatenate([left[unresolved], middle[unresolved]]), keep(width) / 2
+        left = np.concatenate([left[unresolved], middle[unresolved]])
+        width = np.concatenate([width[unresolved]] * 2) / 2
         ends = (np.concatenate([v0[unresolved], value[unresolved]]),
                 np.concatenate([s0[unresolved], slope[unresolved]]),
                 np.concatenate([value[unresolved], v1[unresolved]]),
