@@ -75,8 +75,9 @@ def smallest_base_radius(problem: CamProblem) -> tuple[float, int]:
                               f"above {low:.6g} mm fits the roller and the follower; expected more than {low:.6g}")
     sizes = np.geomspace(low, high, SCAN_SIZES + 1)[1:]
     sizes[-1] = high * (1 - 1e-9)
-    previous = low
-    for evaluated, size in enumerate(sizes, 1):
+    previous, evaluated = low, 0
+    for size in sizes:
+        evaluated += 1
         if _passes(problem, size, SCAN_SAMPLES):
             break
         previous = size

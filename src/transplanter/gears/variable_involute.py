@@ -62,7 +62,6 @@ def involute_deviation(table: PitchTable, outline: np.ndarray, flanks: np.ndarra
     height = shapely.distance(pitch_curve.exterior, shapely.points(flat))
     inside = shapely.contains_xy(pitch_curve, flat[:, 0], flat[:, 1])
     height = np.where(inside, -height, height).reshape(points.shape[:2])
-    contact = flanks + sides * q
     perimeter = table.perimeter
     passes = np.zeros(points.shape[:2], bool)
     for corner in corners:      # a corner strictly between the flank's pitch point and the contact
