@@ -77,9 +77,9 @@ def _multistart(poses, starts, rng):
     found = []
     for _ in range(starts):
         fit = least_squares(residual, rng.normal(size=4) * 3, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15)
-        if np.abs(fit.fun).max() < 1e-11 and np.abs(fit.x).max() < 1e3:
-            if all(np.linalg.norm(fit.x - f) > 1e-5 for f in found):
-                found.append(fit.x)
+        converged = np.abs(fit.fun).max() < 1e-11 and np.abs(fit.x).max() < 1e3
+        if converged and all(np.linalg.norm(fit.x - f) > 1e-5 for f in found):
+            found.append(fit.x)
     return found
 
 

@@ -210,5 +210,7 @@ def test_a_profile_margin_of_zero_is_the_default_written_out(run, tmp_path):
     plain.write_text(TRANSLATING)
     (code, out, _), (code_plain, out_plain, _) = run(path, "--json"), run(plain, "--json")
     assert code == code_plain == 0
-    drop = lambda report: {k: v for k, v in report.items() if k not in ("source", "timings_s")}  # noqa: E731
+    def drop(report):
+        return {k: v for k, v in report.items() if k not in ("source", "timings_s")}
+
     assert drop(_strict_json(out)) == drop(_strict_json(out_plain))
