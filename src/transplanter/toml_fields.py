@@ -13,6 +13,7 @@ import os
 import tomllib
 import warnings
 from pathlib import Path
+from typing import NoReturn
 
 import numpy as np
 
@@ -120,7 +121,7 @@ class FieldReader:
     def __init__(self, source: str):
         self.source = source
 
-    def fail(self, field: str, value, expected: str):
+    def fail(self, field: str, value, expected: str) -> NoReturn:
         raise ProblemError(f"{self.source}: {field} = {shown(value)!r}: expected {expected}")
 
     def keys(self, table, allowed: set[str], where: str):
@@ -186,7 +187,7 @@ class FieldReader:
                 raise ProblemError(f"{self.source}: {field} is missing: expected a whole number from {low} to {high}")
             return default
         value = table[key]
-        if not is_number(value) or not isinstance(value, numbers.Integral) or not low <= value <= high:
+        if not is_number(value) or not isinstance(value, numbers.Integral) or not low <= int(value) <= high:
             self.fail(field, value, f"a whole number from {low} to {high}")
         return int(value)
 
@@ -212,7 +213,7 @@ class ClassFields:
         self.problem = problem
         self.owner = type(problem).__name__
 
-    def fail(self, field: str, value, expected: str):
+    def fail(self, field: str, value, expected: str) -> NoReturn:
         raise ProblemError(f"{self.owner}.{field} = {shown(value)!r}: expected {expected} ({self.owner} takes mm "
                            "and radians; parse_problem and load_problem take the file's mm and degrees)")
 
@@ -266,7 +267,7 @@ class ClassFields:
         value = getattr(self.problem, field)
         if optional and value is None:
             return
-        if not is_number(value) or not isinstance(value, numbers.Integral) or not low <= value <= high:
+        if not is_number(value) or not isinstance(value, numbers.Integral) or not low <= int(value) <= high:
             self.fail(field, value, f"a whole number from {low} to {high}" + (" or None" if optional else ""))
         object.__setattr__(self.problem, field, int(value))
 
