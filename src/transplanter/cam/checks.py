@@ -194,7 +194,7 @@ def interference(geometry: CamGeometry, roller_radius: float) -> tuple[Stretch, 
     would cut into the cam there. Distances to the profile's vertices bound those to the profile from
     above, so an overlap found is real."""
     distance, _ = cKDTree(geometry.profile).query(geometry.pitch)
-    overlap = roller_radius - distance
+    overlap = roller_radius - np.asarray(distance)      # an array for an array of points
     return _stretches(geometry, overlap > INTERFERENCE_SHARE * roller_radius, overlap, np.max)
 
 

@@ -74,8 +74,9 @@ def _draw_follower(ax, result: CamResult, k: int):
     ax.plot(center[0] + follower.roller_radius * np.cos(circle), center[1] + follower.roller_radius * np.sin(circle),
             color="tab:orange", lw=1.2)
     if follower.kind == "oscillating":
-        ax.plot(*np.array([follower.pivot, center]).T, **style)
-        ax.plot(*follower.pivot, "k^", ms=7)
+        pivot, _ = follower.arm
+        ax.plot(*np.array([pivot, center]).T, **style)
+        ax.plot(*pivot, "k^", ms=7)
     else:
         ax.plot([center[0], center[0]], [center[1], np.abs(g.center[:, 1]).max() + follower.roller_radius], **style)
 

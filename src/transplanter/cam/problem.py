@@ -33,6 +33,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -100,6 +101,13 @@ class Follower:
     arm_length: float | None = None
     pulled: bool = True
 
+    @property
+    def arm(self) -> tuple[np.ndarray, float]:
+        """(pivot, arm_length) of an oscillating follower (mm)."""
+        if self.pivot is None or self.arm_length is None:
+            raise TypeError(f"a {self.kind} follower has no arm")
+        return self.pivot, self.arm_length
+
 
 @dataclass(frozen=True)
 class CamProblem:
@@ -166,7 +174,7 @@ def _check_follower(check: ClassFields, follower):
     """CamProblem.follower: a Follower of a known kind with positive sizes (mm) and, when it swings, a pivot."""
     if not isinstance(follower, Follower) or follower.kind not in _FOLLOWER_KEYS:
         check.fail("follower", follower, f"a Follower of kind {', '.join(map(repr, _FOLLOWER_KEYS))}")
-    sizes = [("roller_radius", follower.roller_radius)] if follower.kind != "flat_faced" else []
+    sizes: list[tuple[str, Any]] = [("roller_radius", follower.roller_radius)] if follower.kind != "flat_faced" else []
     if follower.kind == "oscillating":
         sizes.append(("arm_length", follower.arm_length))
         pivot = np.asarray(follower.pivot, float) if is_sequence(follower.pivot) else None
@@ -240,7 +248,8 @@ def _size(follower: Follower, segments: tuple[Segment, ...]) -> float:
     """The cam's largest given length (mm): a translating lift, the roller, the offset, the pivot's reach."""
     lengths = [follower.roller_radius, abs(follower.offset)]
     if follower.kind == "oscillating":
-        lengths.append(float(np.hypot(*follower.pivot)) + follower.arm_length)
+        pivot, arm = follower.arm
+        lengths.append(float(np.hypot(*pivot)) + arm)
     else:
         lengths += [abs(s.lift) for s in segments]
     return max(lengths)
@@ -373,7 +382,8 @@ def check_swing(problem: CamProblem, base_radius: float, fail):
     follower = problem.follower
     if follower.kind != "oscillating":
         return
-    reach, arm, pitch = float(np.hypot(*follower.pivot)), follower.arm_length, base_radius + follower.roller_radius
+    pivot, arm = follower.arm
+    reach, pitch = float(np.hypot(*pivot)), base_radius + follower.roller_radius
     rest = np.arccos(np.clip((reach**2 + arm**2 - pitch**2) / (2 * reach * arm), -1.0, 1.0))
     peak = float(np.max(np.cumsum([segment.lift for segment in problem.segments])))
     if peak >= np.pi - rest:
@@ -382,8 +392,14 @@ def check_swing(problem: CamProblem, base_radius: float, fail):
              f"cam centre ({reach + arm:.6g} mm), where the cam cannot turn the arm")
 
 
-def check_base_radius(problem: CamProblem, base_radius: float, fail):
-    """Refuse a base circle the follower cannot sit on: ``fail(field, value, expected)``."""
+class _WithFollower(Protocol):
+    @property
+    def follower(self) -> Follower: ...
+
+
+def check_base_radius(problem: _WithFollower, base_radius: float, fail):
+    """Refuse a base circle the follower of ``problem`` (a CamProblem, or anything with a ``follower``) cannot
+    sit on: ``fail(field, value, expected)``."""
     follower = problem.follower
     roller = follower.roller_radius
     if follower.kind == "flat_faced":
@@ -395,14 +411,15 @@ def check_base_radius(problem: CamProblem, base_radius: float, fail):
     if follower.kind == "translating" and abs(follower.offset) >= pitch:
         fail("follower.offset", follower.offset, f"less than base radius + roller radius = {pitch:g} mm in size")
     if follower.kind == "oscillating":
-        reach = float(np.hypot(*follower.pivot))
+        pivot, arm = follower.arm
+        reach = float(np.hypot(*pivot))
         if reach <= pitch:
-            fail("follower.pivot", [float(v) for v in follower.pivot],
+            fail("follower.pivot", [float(v) for v in pivot],
                  f"a pivot outside the base pitch circle (more than {pitch:g} mm from the cam centre; it is "
                  f"{reach:.6g} mm away): within it the arm turns with the cam's profile")
-        low, high = abs(reach - follower.arm_length), reach + follower.arm_length
+        low, high = abs(reach - arm), reach + arm
         if not low < pitch < high:
-            fail("follower.arm_length", follower.arm_length,
+            fail("follower.arm_length", arm,
                  f"an arm whose roller reaches the cam: the pivot is {reach:.6g} mm from the cam centre, "
                  f"so the arm must be from {abs(reach - pitch):.6g} to {reach + pitch:.6g} mm "
                  f"to put the roller centre on the base pitch circle of radius {pitch:g} mm")

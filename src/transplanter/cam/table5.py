@@ -19,6 +19,7 @@ Readings tried where the print does not close:
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from scipy.optimize import brentq
@@ -187,7 +188,7 @@ def evaluate_table5() -> Table5Evaluation:
     printed = printed_linkage()
     reach = printed.reach()
     distances = [float(np.linalg.norm(printed.slider_point(h) - PIVOT_C)) for h in (LOW_HEIGHT, HIGH_HEIGHT)]
-    report = {
+    report: dict[str, Any] = {
         "printed": {"distance_c_to_h_mm": distances, "reach_mm": list(reach),
                     **_swing_json(printed, LOW_HEIGHT, HIGH_HEIGHT)},
         "plate_below_rod": _swing_json(printed_linkage(True), LOW_HEIGHT, HIGH_HEIGHT),
@@ -202,7 +203,7 @@ def evaluate_table5() -> Table5Evaluation:
     rise_senses = []
     for index, assembly in enumerate(ASSEMBLIES):
         datum = datum_for_swing(index)
-        entry = {"assembly": assembly, "datum_y0_mm": datum}
+        entry: dict[str, Any] = {"assembly": assembly, "datum_y0_mm": datum}
         if datum is not None:
             swing = support_swing(printed, datum + LOW_HEIGHT, datum + HIGH_HEIGHT)
             entry.update(theta_cg_deg={"low": _degrees(swing.low_angle[index])[0],
