@@ -54,13 +54,11 @@ def fitted_polygon(samples: np.ndarray) -> np.ndarray:
     while count < last:
         counts.append(int(round(count)))
         count *= factor
-    best = None
+    scored = []
     for count in sorted(set(counts)):
         control, squares = _least_squares_polygon(samples, count)
-        score = squares / n / (1 - count / n) ** 2
-        if best is None or score < best[0]:
-            best = (score, control)
-    return best[1]
+        scored.append((squares / n / (1 - count / n) ** 2, control))
+    return min(scored, key=lambda item: item[0])[1]
 
 
 @dataclass(frozen=True)
@@ -110,9 +108,11 @@ class ClosedTrajectory:
                 radius = float(np.sqrt(np.polynomial.polynomial.polyval(t, square)))
                 extremes.append(RadialExtreme(float(np.mod(TWO_PI * (k + t) / self.count, TWO_PI)), radius,
                                               "farthest" if curvature < 0 else "nearest"))
+        if not extremes:
+            return []
         extremes.sort(key=lambda e: e.parameter)
         # a root at a joint is found by both segments that meet there: keep one
-        gaps = np.diff([e.parameter for e in extremes] + [extremes[0].parameter + TWO_PI]) if extremes else []
+        gaps = np.diff([e.parameter for e in extremes] + [extremes[0].parameter + TWO_PI])
         return [e for e, gap in zip(extremes, gaps, strict=True) if gap > 1e-8]
 
     def sample_misses(self, samples: np.ndarray) -> np.ndarray:
