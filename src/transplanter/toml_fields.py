@@ -13,7 +13,7 @@ import os
 import tomllib
 import warnings
 from pathlib import Path
-from typing import NoReturn
+from typing import NoReturn, TypeGuard
 
 import numpy as np
 
@@ -106,7 +106,7 @@ def is_finite_number(value) -> bool:
         return False
 
 
-def is_sequence(value) -> bool:
+def is_sequence(value) -> TypeGuard[list | tuple | np.ndarray]:
     """A list, a tuple or a numpy array of at least one dimension."""
     return isinstance(value, (list, tuple)) or (isinstance(value, np.ndarray) and value.ndim >= 1)
 

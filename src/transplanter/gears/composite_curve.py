@@ -136,10 +136,10 @@ def composite(segments: list[Segment], source: str = "<gear>", where: str = "dri
             raise ProblemError(f"{source}: {where}[{(k + 1) % len(segments)}]: starts at r = {r_start:.9g} mm where "
                                f"segment {k} ends at r = {r_end:.9g} mm (phi = {np.degrees(b.start):g} deg): "
                                f"expected the segments to join (within {JOIN_TOLERANCE * size:.2g} mm)")
-    segments = tuple(segments)
-    joints = tuple(float(np.mod(s.start, TWO_PI)) for s in segments)
-    parameters = {"segments": [s.kind for s in segments]}
-    return CompositeCurve("composite", parameters, 1, _Piecewise(segments), joints, joints, segments=segments)
+    ordered = tuple(segments)
+    joints = tuple(float(np.mod(s.start, TWO_PI)) for s in ordered)
+    parameters = {"segments": [s.kind for s in ordered]}
+    return CompositeCurve("composite", parameters, 1, _Piecewise(ordered), joints, joints, segments=ordered)
 
 
 @dataclass(frozen=True)

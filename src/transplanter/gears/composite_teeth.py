@@ -27,7 +27,7 @@ import shapely
 import shapely.affinity
 
 from transplanter import progress
-from transplanter.errors import InfeasibleError
+from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.gears.composite_curve import CompositeCurve, cusps
 from transplanter.gears.cycloid_teeth import (
     STRAIGHT_POINTS,
@@ -200,7 +200,7 @@ class CompositeTeeth:
 
 def _pitch_heights(points: np.ndarray, pitch_curve: shapely.Polygon) -> np.ndarray:
     """Distance (mm) of points outside the pitch curve from it (0 inside)."""
-    return shapely.distance(pitch_curve, shapely.points(points))
+    return np.asarray(shapely.distance(pitch_curve, shapely.points(points)))
 
 
 def _to_tip(arch_points: np.ndarray, heights: np.ndarray, tip: float) -> np.ndarray:
@@ -279,7 +279,10 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
         or, at the given corner pressure angle (at every one tried), an arch stands above the tip over its corner or
         a corner tooth's two cycloid flanks cross.
     """
-    curve: CompositeCurve = design.driver
+    curve = design.driver
+    if not isinstance(curve, CompositeCurve):
+        raise ProblemError(f"{source}: driver.family = {curve.family!r}: expected \"composite\" (composite teeth "
+                           "stand on the corners of a composite pitch curve)")
     perimeter, pitch = design.perimeters[0], np.pi * module
     corners = sorted(cusps(curve), key=lambda c: c["phi_deg"])
     concave = [c for c in corners if c["turn_deg"] < 0]
@@ -320,7 +323,7 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
         stretches.append(stretch[np.argsort(run[keep])])
 
     def pair_at(corner_pressure: float) -> CompositeTeeth:
-        pieces, corner_teeth = [], []
+        pieces, corner_parts = [], []
         for j, k in enumerate(joint_index):
             start, end = corner_arc[j] - plan.before[j], corner_arc[j] + plan.after[j]
             zone = max(plan.before[j], plan.after[j])
@@ -332,11 +335,11 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
                                 source)
             pieces += [np.r_[rising[0], _tip(rising[0][-1], rising[1][-1], pitch_curve, tip), rising[1][::-1]],
                        stretches[j]]
-            corner_teeth.append((j, start, end, (left, right), rising))
+            corner_parts.append((j, start, end, (left, right), rising))
         driver = np.concatenate(pieces)
         _check_outline_simple(driver, corners, corner_pressure, source)
         corner_teeth = tuple(_corner_tooth(driver, corner_arc[j], start, end, pitch, arches, rising)
-                             for j, start, end, arches, rising in corner_teeth)
+                             for j, start, end, arches, rising in corner_parts)
         driven = carved_mate(design, driver, module)
         built = int(plan.between.sum()) + len(corners)
         outlines = (driver, driven)
@@ -373,13 +376,14 @@ def _check_outline_simple(driver: np.ndarray, corners: list[dict], corner_pressu
 def _first_that_passes(pair_at, angles: list[float]) -> CompositeTeeth:
     """``pair_at(corner pressure angle)`` over ``angles`` (deg): the first pair that passes, else the one with the
     smallest transmission error, with every trial's outcome; the first refusal when every angle is refused."""
-    trials, built, refusal = [], [], None
+    trials, built = [], []
+    refusals: list[InfeasibleError] = []
     for degrees in angles:
         try:
             with progress.step(f"corner pressure angle {degrees:g} deg"):
                 teeth = pair_at(float(np.radians(degrees)))
         except InfeasibleError as error:
-            refusal = refusal or error
+            refusals.append(error)
             trials.append(CornerPressureTrial(degrees, refused=str(error).split(": ", 1)[-1]))
             continue
         trials.append(CornerPressureTrial(degrees, failures=tuple(teeth.failures),
@@ -388,7 +392,7 @@ def _first_that_passes(pair_at, angles: list[float]) -> CompositeTeeth:
         if teeth.passed:
             break
     if not built:
-        raise refusal
+        raise refusals[0]
     best = built[-1] if built[-1].passed else min(built, key=lambda t: t.mesh.max_transmission_error_mm)
     return dataclasses.replace(best, trials=tuple(trials))
 
@@ -438,9 +442,8 @@ def carved_mate(design: GearPairDesign, driver: np.ndarray, module: float) -> np
         placed.append(_with_coordinates(tooth, world @ np.array([[c2, s2], [-s2, c2]])))
     blank = shapely.Polygon(design.points[1][:-1]).buffer(ADDENDUM * module, quad_segs=64)
     driven = blank.difference(shapely.union_all(placed))
-    if driven.geom_type == "MultiPolygon":
-        driven = max(driven.geoms, key=lambda g: g.area)
-    return shapely.get_coordinates(driven.exterior)[:-1]
+    largest = max(shapely.get_parts(driven), key=lambda g: g.area)     # the carved blank may fall apart
+    return shapely.get_coordinates(shapely.get_exterior_ring(largest))[:-1]
 
 
 def _with_coordinates(geometry, coordinates: np.ndarray):
@@ -450,19 +453,22 @@ def _with_coordinates(geometry, coordinates: np.ndarray):
 
 def _corner_tooth(outline, corner, start, end, pitch, arches, rising) -> CornerTooth:
     """The joints of a corner tooth's arches with the involute below them: the outline's turn and gap there."""
-    kinks, gaps = [], []
     n = len(outline)
-    for points, after in ((rising[0], False), (rising[1], True)):
+
+    def joint(points: np.ndarray, after: bool) -> tuple[float, float]:
         at = int(np.argmin(np.linalg.norm(outline - points[0], axis=1)))      # the arch's pitch point in the outline
         if after:       # outline runs down the arch to D, then down the involute
             arch_way, involute_way = points[0] - points[1], outline[(at + 4) % n] - outline[(at + 1) % n]
-            kinks.append(abs(_turn_deg(arch_way, involute_way)))
-            gaps.append(float(np.linalg.norm(outline[(at + 1) % n] - points[0])))
-        else:           # outline runs up the involute to A, then up the arch
-            involute_way, arch_way = outline[at - 1] - outline[at - 4], points[1] - points[0]
-            kinks.append(abs(_turn_deg(involute_way, arch_way)))
-            gaps.append(float(np.linalg.norm(outline[at - 1] - points[0])))
-    used = [len(points) - STRAIGHT_POINTS for points in rising]
-    return CornerTooth(float(corner), float(start), float(end), pitch, arches, tuple(kinks), tuple(gaps), tuple(rising),
-                       tuple(arch_pressure_range(a, n) for a, n in zip(arches, used, strict=True)),
-                       tuple(polyline_min_curvature_radius(points[STRAIGHT_POINTS:]) for points in rising))
+            return abs(_turn_deg(arch_way, involute_way)), float(np.linalg.norm(outline[(at + 1) % n] - points[0]))
+        # outline runs up the involute to A, then up the arch
+        involute_way, arch_way = outline[at - 1] - outline[at - 4], points[1] - points[0]
+        return abs(_turn_deg(involute_way, arch_way)), float(np.linalg.norm(outline[at - 1] - points[0]))
+
+    (kink_a, gap_a), (kink_d, gap_d) = joint(rising[0], False), joint(rising[1], True)
+    left, right = rising
+    return CornerTooth(float(corner), float(start), float(end), pitch, arches, (kink_a, kink_d), (gap_a, gap_d),
+                       (left, right),
+                       (arch_pressure_range(arches[0], len(left) - STRAIGHT_POINTS),
+                        arch_pressure_range(arches[1], len(right) - STRAIGHT_POINTS)),
+                       (polyline_min_curvature_radius(left[STRAIGHT_POINTS:]),
+                        polyline_min_curvature_radius(right[STRAIGHT_POINTS:])))

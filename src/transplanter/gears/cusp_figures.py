@@ -15,11 +15,11 @@ from transplanter.gears.result import GearResult
 from transplanter.geometry.poses import rotate_about
 
 
-def draw_cusps(result: GearResult) -> Figure:
-    """One panel per corner, in the pair's frame at the instant the corner is on the line of centres (mm)."""
-    teeth: CompositeTeeth = result.teeth
+def draw_cusps(result: GearResult, teeth: CompositeTeeth) -> Figure:
+    """One panel per corner of ``teeth`` (the result's), in the pair's frame at the instant the corner is on the
+    line of centres (mm)."""
     d = result.design
-    module = result.problem.module
+    module = teeth.plan.pitch / np.pi
     corners = teeth.corner_teeth
     fig = Figure(figsize=(5 * len(corners) + 2, 5), layout="constrained")
     axes = np.atleast_1d(fig.subplots(1, len(corners)))

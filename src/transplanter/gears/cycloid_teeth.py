@@ -80,7 +80,7 @@ def arch(curve: CompositeCurve, arc_to_phi, corner_arc: float, zone: float, segm
                        np.r_[theta[near], np.full(PIVOT_POINTS, corner_angle), theta[~near]])
 
 
-def corner_heights(zone: float, alpha: float, corner_angles: np.ndarray) -> np.ndarray:
+def corner_heights(zone: float, alpha: float, corner_angles: float | np.ndarray) -> np.ndarray:
     """Height (mm, above a straight pitch line) of the arch's point as its circle reaches the corner,
     for each theta_J."""
     angles = np.atleast_1d(np.asarray(corner_angles, float))

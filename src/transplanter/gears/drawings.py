@@ -115,7 +115,8 @@ def write_dxf(outline: np.ndarray, path: Path, *, outline_layer: str = "OUTLINE"
         _polyline(space, np.asarray(pitch_curve), LAYERS["pitch"], close=False)
     if mark is not None:
         document.layers.add(LAYERS["mark"])
-        space.add_line(*np.asarray(mark).tolist(), dxfattribs={"layer": LAYERS["mark"]})
+        start, end = np.asarray(mark).tolist()
+        space.add_line(start, end, dxfattribs={"layer": LAYERS["mark"]})
     document.saveas(path)
 
 

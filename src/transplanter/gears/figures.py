@@ -99,5 +99,5 @@ def draw_figures(result: GearResult) -> dict[str, Figure]:
     if isinstance(result.teeth, CompositeTeeth):
         from transplanter.gears.cusp_figures import draw_cusps
 
-        figures["gear_cusps"] = draw_cusps(result)
+        figures["gear_cusps"] = draw_cusps(result, result.teeth)
     return figures

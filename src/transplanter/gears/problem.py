@@ -274,7 +274,7 @@ def _denatured_pair(read, table, where="driver"):
 def read_driver(read: FieldReader, table: dict, where: str = "driver", families=FAMILIES):
     """A driver pitch curve from its table (any family of ``families``); a ratio gives (evaluator, breaks)."""
     family = table.get("family") if isinstance(table, dict) else None
-    if family not in families:
+    if not isinstance(family, str) or family not in families:
         read.keys(table, _DRIVER_KEYS, where)
         read.fail(f"{where}.family", family, "one of " + ", ".join(families))
     read.keys(table, _FAMILY_KEYS[family] | {"family"}, where)

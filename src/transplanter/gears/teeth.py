@@ -78,7 +78,7 @@ def self_intersections(outline: np.ndarray) -> int:
     if shapely.is_simple(shapely.linearrings(outline)):
         return 0
     a, b = outline, np.roll(outline, -1, axis=0)
-    segments = shapely.linestrings(np.stack([a, b], axis=1))
+    segments = np.asarray(shapely.linestrings(np.stack([a, b], axis=1)))     # an array of them
     first, second = shapely.STRtree(segments).query(segments)
     i, j = first[first < second], second[first < second]
     crossing = ((_side(a[i], b[i], a[j]) * _side(a[i], b[i], b[j]) < 0)
@@ -125,17 +125,17 @@ def generate_teeth(design: GearPairDesign, module: float, alpha: float, source: 
                               f"got {teeth[0]:.6f} and {teeth[1]:.6f} for module {module:g}: "
                               "give pair.teeth to scale the curves to pi m Z")
     _refuse_what_the_cutter_cannot_cut(design, module, alpha, cutter, cutter_teeth, source)
-    counts = [int(round(z)) for z in teeth]
+    counts = (int(round(teeth[0])), int(round(teeth[1])))
     pitch = design.perimeters[0] / counts[0]
     tables = (driver_table(design), driven_table(design))
     if cutter == "rack":    # one rack cuts both: its two sides are complementary, so the pair is conjugate
-        outlines = [rack_profile(table, count, module, alpha, first)
-                    for table, count, first in zip(tables, counts, (0.0, pitch / 2), strict=True)]
+        driver, driven = (rack_profile(table, count, module, alpha, first)
+                          for table, count, first in zip(tables, counts, (0.0, pitch / 2), strict=True))
     else:                   # the shaper cuts the driver; the driver's teeth cut the driven gear (conjugate)
         driver = shaper_profile(tables[0], module, alpha, cutter_teeth)
-        outlines = [driver, mate_profile(design, driver, tables[1], module)]
+        driven = mate_profile(design, driver, tables[1], module)
     both = (design.convexity[0] > 0) & (design.convexity[1] > 0)
     ratio = local_contact_ratio(design.curvature_radius[0][both], design.curvature_radius[1][both], module, alpha)
-    return PairTeeth(tuple(outlines), tuple(counts), cutter,
+    return PairTeeth((driver, driven), counts, cutter,
                      (float(ratio.min()), float(ratio.max())) if ratio.size else None,
-                     tuple(self_intersections(o) for o in outlines))
+                     (self_intersections(driver), self_intersections(driven)))

@@ -78,7 +78,7 @@ def involute_deviation(table: PitchTable, outline: np.ndarray, flanks: np.ndarra
 
 def _distances(outline: np.ndarray, points: np.ndarray) -> np.ndarray:
     """Distance (mm) from each point to the closed polyline ``outline``, through a tree of its edges."""
-    edges = shapely.linestrings(np.stack([outline, np.roll(outline, -1, axis=0)], axis=1))
+    edges = np.asarray(shapely.linestrings(np.stack([outline, np.roll(outline, -1, axis=0)], axis=1)))
     tree = shapely.STRtree(edges)
     (_, _), distance = tree.query_nearest(shapely.points(points), return_distance=True, all_matches=False)
     return distance
