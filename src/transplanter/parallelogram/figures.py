@@ -26,7 +26,7 @@ def draw_trajectory(problem: ParallelogramProblem, design: dict, title: str = ""
     ax.plot(*path.tip, lw=1.0, label="planting point E")
     for turn in range(TURNS):
         shift = np.array([problem.forward_velocity * turn * problem.period, 0.0])
-        window = np.linspace(*m.window[:, 0], 200)[None, :] + turn * 2 * np.pi
+        window = np.linspace(m.window[0, 0], m.window[1, 0], 200)[None, :] + turn * 2 * np.pi
         segment = mech.state(window)[1][:, 0]
         ax.plot(*segment, color="tab:red", lw=2.5, label="depth window" if turn == 0 else None)
         ax.plot(*(m.lowest[:, 0] + shift), "kv", ms=6, label="planting instant t_E" if turn == 0 else None)

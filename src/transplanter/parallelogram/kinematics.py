@@ -8,6 +8,7 @@ crank (2 pi when the pair closes).
 """
 from __future__ import annotations
 
+import dataclasses
 import functools
 from dataclasses import dataclass
 
@@ -46,6 +47,10 @@ def _column(value, ndim: int) -> np.ndarray:
     return value.reshape(value.shape + (1,) * (ndim - value.ndim))
 
 
+#: The attributes of ``Mechanisms`` that hold one value per design.
+_PER_DESIGN = ("m11", "m12", "amplitude", "base_radius", "center_distance", "l1", "l2", "l5", "l6", "alpha")
+
+
 @dataclass(frozen=True)
 class Mechanisms:
     """P designs of the mechanism (mm, rad, s); every attribute has shape (P,).
@@ -72,6 +77,10 @@ class Mechanisms:
     @property
     def count(self) -> int:
         return self.m11.size
+
+    def first(self) -> Mechanisms:
+        """The first design alone: every per-design attribute cut to shape (1,)."""
+        return dataclasses.replace(self, **{name: getattr(self, name)[:1] for name in _PER_DESIGN})
 
     def pitch(self, ndim: int) -> np.ndarray:
         return _group(*(_column(v, ndim) for v in (self.base_radius, self.amplitude, self.m11, self.m12)))
@@ -114,7 +123,8 @@ class Mechanisms:
         angle, pitch, center, links, crank = self._groups(phi1)
         ones = np.ones_like(crank[0])
         motion = _group(self.driver_speed * ones, self.forward_velocity * ones)
-        return _tip(angle, [phi1 / self.driver_speed], pitch, center, links, crank, motion)
+        pin, tip, velocity, acceleration = _tip(angle, [phi1 / self.driver_speed], pitch, center, links, crank, motion)
+        return pin, tip, velocity, acceleration
 
     def position(self, phi1) -> np.ndarray:
         """E in the machine's frame (no forward motion), shape (2, *phi1.shape): for dense grids."""

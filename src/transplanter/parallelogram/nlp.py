@@ -92,7 +92,8 @@ def polish(problem: ParallelogramProblem, start: dict, measures: TrajectoryMeasu
     # each angle stays within its whole turn and within a quarter turn of its start
     tau = nlp.variables("angles", 3, np.maximum(TWO_PI * laps, start_angles - np.pi / 2),
                         np.minimum(TWO_PI * (laps + 1), start_angles + np.pi / 2))
-    v = {**{k: float(val) for k, val in start.items()}, **{n: searched[i] for i, n in enumerate(names)}}
+    v: dict[str, float | ca.SX] = {**{k: float(val) for k, val in start.items()},
+                                   **{n: searched[i] for i, n in enumerate(names)}}
     m12 = 1 / (2 - 1 / v["m11"])
     a = casadi_function(limacon_center_distance)(v["l"], v["b"], 1.0)
     pitch = ca.vertcat(v["l"], v["b"], v["m11"], m12)

@@ -9,6 +9,7 @@ import numpy as np
 from transplanter.api_arguments import require_problem
 from transplanter.errors import ProblemError, SolverError, TransplanterError
 from transplanter.gears.result import GearResult
+from transplanter.gears.synthesis import tooth_counts
 from transplanter.parallelogram.evaluation import (
     EVALUATION_SAMPLES,
     DesignFile,
@@ -62,7 +63,7 @@ def toothed_pair(problem: ParallelogramProblem, design: dict):
     tooth outlines (the trajectory is unchanged: b/l is kept); the unscaled pair and the reason when the
     teeth cannot be cut."""
     pair = gear_pair(design, problem.module, problem.pressure_angle, problem.driver_speed, source=problem.source)
-    teeth = pair.tooth_counts.counts[0]
+    teeth = tooth_counts(pair.design, problem.module).counts[0]
     try:
         return gear_pair(design, problem.module, problem.pressure_angle, problem.driver_speed, teeth,
                          problem.source), ()
