@@ -196,12 +196,12 @@ def _train(read: FieldReader, table: dict):
     if not 0 < coefficient < 1:
         read.fail("train.peak_to_valley", coefficient, "a number in (0, 1): the share of the total ratio's swing "
                   "that stage 1 carries")
-    centers = None
+    centers: tuple[float, float] | None = None
     if "center_distances" in table:
-        centers = read.numbers(table, "center_distances", "train", 2)
-        if len(centers) != 2 or centers.min() < SMALLEST_LENGTH:
+        given = read.numbers(table, "center_distances", "train", 2)
+        if len(given) != 2 or given.min() < SMALLEST_LENGTH:
             read.fail("train.center_distances", table["center_distances"], "two positive center distances (mm)")
-        centers = (float(centers[0]), float(centers[1]))
+        centers = (float(given[0]), float(given[1]))
     module = read.length(table, "module", "train") if "module" in table else 2.5
     return topology, split, coefficient, centers, module
 

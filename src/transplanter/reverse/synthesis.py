@@ -86,6 +86,12 @@ def _unreachable(problem: ReverseProblem, trajectory: ClosedTrajectory, carrier_
                 f"at ({p[2, 0]:.6g}, {p[2, 1]:.6g}); carrier_length = {carrier_length:g}, arm_length = {arm_length:g}")
 
 
+def _lengths_from(extremes: tuple[float, float]) -> tuple[float, float]:
+    """(s, l) from the path's farthest and nearest distances to the pivot (the rice-transplanter paper eq 1-2)."""
+    carrier_length, arm_length = _arm_lengths(np.array(extremes))[0]
+    return float(carrier_length), float(arm_length)
+
+
 def _ratio_spread(motion: ArmMotion) -> float:
     ratio = motion.total_ratio()
     return float(ratio.max() / ratio.min())
@@ -152,8 +158,10 @@ def synthesize(problem: ReverseProblem) -> ReverseResult:
     radii = [e.radius for e in trajectory.radial_extremes()]
     extremes = (max(radii), min(radii))
     derived = problem.lengths is None
-    carrier_length, arm_length = (float(v) for v in _arm_lengths(np.array(extremes))[0]) if derived else problem.lengths
-    if not derived:
+    if problem.lengths is None:
+        carrier_length, arm_length = _lengths_from(extremes)
+    else:
+        carrier_length, arm_length = problem.lengths
         trajectory = touching_reach(problem, trajectory, carrier_length, arm_length)
         radii = [e.radius for e in trajectory.radial_extremes()]
         extremes = (max(radii), min(radii))
@@ -161,15 +169,14 @@ def synthesize(problem: ReverseProblem) -> ReverseResult:
     motion = choose_motion(trajectory, carrier_length, arm_length, problem.direction, problem.branch)
     found = violations(motion)
     if found:
-        derived_lengths = tuple(float(v) for v in _arm_lengths(np.array(extremes))[0])
         return ReverseResult(problem, trajectory, extremes, derived, motion, found,
-                             fix_hints(trajectory, motion, derived_lengths))
+                             fix_hints(trajectory, motion, _lengths_from(extremes)))
     geometry = carrier_geometry(problem, carrier_length)
     relative = CarrierFrameMotion(motion)
     if problem.topology == "sun-idler-planet":
-        train = design_idler_train(relative, carrier_length / 2, problem.source)
-        return ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, None, train,
-                             verify_idler_train(motion, train))
+        idler = design_idler_train(relative, carrier_length / 2, problem.source)
+        return ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, None, idler,
+                             verify_idler_train(motion, idler))
     halves = (carrier_length / 2, carrier_length / 2)
     centers = (geometry.first, geometry.second) if geometry else (problem.center_distances or halves)
     exponent = problem.peak_to_valley if problem.split == "peak_to_valley" else 0.5
