@@ -154,6 +154,17 @@ def test_design_mode_from_the_command_line(run):
                                                              30.0, rel_tol=1e-5)
 
 
+def test_designing_the_base_circle_of_a_cam_whose_base_radius_is_given_names_the_field():
+    """smallest_base_radius called on a problem with a base radius (no max_base_radius): a ProblemError."""
+    from transplanter import cam
+    from transplanter.cam.design import smallest_base_radius
+    from transplanter.errors import ProblemError
+
+    with pytest.raises(ProblemError, match=r"cam_seedling_support.toml: max_base_radius = None: expected the "
+                                           r"largest base radius to try \(mm\)"):
+        smallest_base_radius(cam.load_problem(EXAMPLE))
+
+
 def test_dict_with_numpy_values_gives_the_report_of_the_file():
     """As for every job (tests/api/test_python_api.py): a script's dict of numpy values reads as the file does."""
     from tests.api.test_python_api import from_dict, without_timings

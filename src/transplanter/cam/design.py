@@ -73,8 +73,8 @@ def smallest_base_radius(problem: CamProblem) -> tuple[float, int]:
     """
     largest = problem.max_base_radius
     if largest is None:
-        raise ProblemError(f"{problem.source}: design.max_base_radius is missing: expected the largest base radius "
-                           "to try (mm), as design mode has")
+        raise ProblemError(f"{problem.source}: max_base_radius = None: expected the largest base radius to try (mm); "
+                           "a problem with its base radius given has no base circle to design")
     low, high = base_radius_range(problem, largest)
     if not low < high:
         raise InfeasibleError(f"{problem.source}: design.max_base_radius = {largest:g}: no base circle "
