@@ -20,19 +20,19 @@ import sys
 from pathlib import Path
 
 import numpy as np
+from best_time import best_time  # bench/ is the script's own folder
 from scipy.optimize import least_squares
+
+from transplanter.burmester.five_poses import burmester_points
+from transplanter.burmester.four_poses import trace_dyads
+from transplanter.burmester.problem import load_problem
+from transplanter.burmester.synthesis import synthesize
+from transplanter.geometry.poses import Frame, carry, pole, rotation
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
-from best_time import best_time  # noqa: E402  (bench/ is the script's own folder)
-from ground_truth import dyad_poses  # noqa: E402
-
-from transplanter.burmester.five_poses import burmester_points  # noqa: E402
-from transplanter.burmester.four_poses import trace_dyads  # noqa: E402
-from transplanter.burmester.problem import load_problem  # noqa: E402
-from transplanter.burmester.synthesis import synthesize  # noqa: E402
-from transplanter.geometry.poses import Frame, carry, pole, rotation  # noqa: E402
+from ground_truth import dyad_poses  # noqa: E402  (tests/ joins sys.path just above)
 
 SAMPLES = 2000
 

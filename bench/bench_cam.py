@@ -87,9 +87,11 @@ def main():
           f"{np.degrees(pressure.max()):.6f} deg  (same undercut: {undercut == bool(result.checks.undercut)}, "
           f"same interference: {interference == bool(result.checks.interference)})")
     print(f"  ratio ours / baseline        {ours / theirs:7.2f}")
-    print(f"  baseline off ours, away from segment ends: pressure angle on rises and returns {np.degrees(np.abs(pressure - exact)[moving].max()):.2e} "
-          f"deg, curvature {np.abs(1 / radius - 1 / g.curvature_radius)[~ends].max():.2e} 1/mm; at segment ends (jumps of "
-          f"acceleration) curvature off by up to {np.abs(1 / radius - 1 / g.curvature_radius)[ends].max():.2e} 1/mm")
+    pressure_off = np.degrees(np.abs(pressure - exact)[moving].max())
+    curvature_off = np.abs(1 / radius - 1 / g.curvature_radius)
+    print(f"  baseline off ours, away from segment ends: pressure angle on rises and returns {pressure_off:.2e} "
+          f"deg, curvature {curvature_off[~ends].max():.2e} 1/mm; at segment ends (jumps of "
+          f"acceleration) curvature off by up to {curvature_off[ends].max():.2e} 1/mm")
 
 
 if __name__ == "__main__":

@@ -32,8 +32,9 @@ def main() -> None:
     mesh = report["mesh_check"]
     print(f"  contact ratio min {report['contact_ratio_min']:.3f} at {report['contact_ratio_where']}; positions "
           f"without contact: {sum(len(v) for v in report['contact_lost_at_deg'].values())}")
-    print(f"  mesh check: overlap {mesh['max_overlap_mm']:.4f} mm, transmission error {mesh['transmission_error_mm']:.4f}"
-          f" mm ({mesh['transmission_error_deg']:.4f} deg), passed {mesh['passed']}")
+    print(f"  mesh check: overlap {mesh['max_overlap_mm']:.4f} mm, "
+          f"transmission error {mesh['transmission_error_mm']:.4f} mm "
+          f"({mesh['transmission_error_deg']:.4f} deg), passed {mesh['passed']}")
     start = time.perf_counter()
     baseline = mate_profile(result.design, result.teeth.outlines[0], driven_table(result.design), problem.module)
     elapsed = time.perf_counter() - start

@@ -23,13 +23,13 @@ before numpy loads, for this process and the fresh one of part 4).
 from __future__ import annotations
 
 import os
+import time
+from pathlib import Path
 
 for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS"):
     os.environ[_variable] = "1"
 
-import time  # noqa: E402
-from pathlib import Path  # noqa: E402
-
+# Below, each import may load numpy: after the thread counts are set (E402).
 import casadi as ca  # noqa: E402
 import numpy as np  # noqa: E402
 from fresh_process import cli_run  # noqa: E402  (bench/ is the script's own folder)

@@ -38,7 +38,8 @@ def windowed_self_intersections(outline: np.ndarray, window: int = 400) -> int:
     gap = np.abs(i - j)
     i, j = i[overlap & (gap > 1) & (gap < n - 1)], j[overlap & (gap > 1) & (gap < n - 1)]
     side = teeth._side
-    crossing = (side(a[i], b[i], a[j]) * side(a[i], b[i], b[j]) < 0) & (side(a[j], b[j], a[i]) * side(a[j], b[j], b[i]) < 0)
+    crossing = ((side(a[i], b[i], a[j]) * side(a[i], b[i], b[j]) < 0)
+                & (side(a[j], b[j], a[i]) * side(a[j], b[j], b[i]) < 0))
     return int(crossing.sum())
 
 

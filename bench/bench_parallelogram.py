@@ -44,14 +44,15 @@ def main():
     low = np.array([problem.bounds[n][0] for n in names])
     high = np.array([problem.bounds[n][1] for n in names])
     designs = rng.uniform(low, high, size=(100, len(names)))
-    variables = dict(zip(names, designs.T))
+    variables = dict(zip(names, designs.T, strict=True))
     whole, scores = best_time(lambda: score(problem, variables, SEARCH_SAMPLES), 5)
 
     def one_at_a_time():
         return [score(problem, {n: v[k:k + 1] for n, v in variables.items()}, SEARCH_SAMPLES) for k in range(100)]
 
     loop, singles = best_time(one_at_a_time, 2)
-    same = all(np.allclose(s.objectives[0], scores.objectives[k], rtol=1e-12, atol=1e-12) for k, s in enumerate(singles))
+    same = all(np.allclose(s.objectives[0], scores.objectives[k], rtol=1e-12, atol=1e-12)
+               for k, s in enumerate(singles))
     print(f"scoring 100 designs: whole population {whole * 1e3:.1f} ms, one design per call {loop * 1e3:.1f} ms: "
           f"ratio {loop / whole:.1f}x (same objectives: {same})")
 

@@ -53,8 +53,10 @@ def scaling(problem: FiveBarProblem, baseline_up_to: int = 4000):
     counts, package, former = (np.array([row[k] for row in rows], float) for k in (1, 3, 4))
     big = counts >= 400            # below that, the dyad tracing (linear in samples) dominates
     both = big & np.isfinite(former)
-    print(f"exponent of region time against five-bars (>= 400 of them): package {_exponent(counts[big], package[big]):.2f}"
-          f", former loop {_exponent(counts[both], former[both]):.2f}; at {int(counts[both][-1])} five-bars the "
+    print(f"exponent of region time against five-bars (>= 400 of them): "
+          f"package {_exponent(counts[big], package[big]):.2f}, "
+          f"former loop {_exponent(counts[both], former[both]):.2f}; "
+          f"at {int(counts[both][-1])} five-bars the "
           f"package takes {package[both][-1] / former[both][-1]:.3f} of the former loop's time")
 
 

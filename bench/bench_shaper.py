@@ -18,6 +18,7 @@ mesh check passing.
 from __future__ import annotations
 
 import time
+from functools import partial
 from pathlib import Path
 from unittest import mock
 
@@ -73,7 +74,8 @@ def _binned_envelope(points, tip, chunks):
     centers = (bins[:-1] + bins[1:]) / 2
     radius = np.interp(centers, tip_angle[order], np.hypot(*tip[order].T), period=2 * np.pi)
     for cloud in chunks:
-        index = np.minimum(((np.arctan2(cloud[:, 1], cloud[:, 0]) + np.pi) * (BINS / (2 * np.pi))).astype(int), BINS - 1)
+        bin_of = ((np.arctan2(cloud[:, 1], cloud[:, 0]) + np.pi) * (BINS / (2 * np.pi))).astype(int)
+        index = np.minimum(bin_of, BINS - 1)
         np.minimum.at(radius, index, np.hypot(cloud[:, 0], cloud[:, 1]))
     outline = radius[:, None] * np.c_[np.cos(centers), np.sin(centers)]
     return outline if orientation(points) > 0 else outline[::-1]
@@ -144,15 +146,15 @@ def main():
     module, alpha, cutter_teeth = toothed.module, toothed.pressure_angle, gearing.shaper_teeth
     totals = np.zeros(2)
     for name, design, teeth in zip(("stage 1", "stage 2"), (toothed.train.stage_one, toothed.train.stage_two),
-                                   toothed.teeth):
+                                   toothed.teeth, strict=True):
         if teeth.cutter != "shaper":
             print(f"{name}: rack-cut, not timed")
             continue
         tables = driver_table(design), driven_table(design)
-        ours_driver_s, driver = timed(lambda: shaper_profile(tables[0], module, alpha, cutter_teeth))
-        ours_mate_s, mate = timed(lambda: mate_profile(design, driver, tables[1], module))
-        old_driver_s, old_driver = timed(lambda: cloud_shaper_profile(tables[0], module, alpha, cutter_teeth))
-        old_mate_s, old_mate = timed(lambda: cloud_mate_profile(design, old_driver, tables[1], module))
+        ours_driver_s, driver = timed(partial(shaper_profile, tables[0], module, alpha, cutter_teeth))
+        ours_mate_s, mate = timed(partial(mate_profile, design, driver, tables[1], module))
+        old_driver_s, old_driver = timed(partial(cloud_shaper_profile, tables[0], module, alpha, cutter_teeth))
+        old_mate_s, old_mate = timed(partial(cloud_mate_profile, design, old_driver, tables[1], module))
         converged = shaper_profile(tables[0], module, alpha, cutter_teeth, step=module / 80)
         with mock.patch.object(swept_teeth, "SIMPLIFY_MODULES", 0.0):
             converged_mate = mate_profile(design, converged, tables[1], module, step=module / 80)

@@ -66,9 +66,12 @@ def print_function(derived: Derived) -> str:
     replacements, reduced = sp.cse(outputs, symbols=sp.numbered_symbols("_t"), order="canonical")
     args = ", ".join(["lib", *(name for name, _ in derived.inputs)])
     lines = [f"def {derived.name}({args}):", f'    """{derived.doc}"""']
+    # Unpack only the inputs the expressions read: an unused local would be dead code.
+    used = set().union(*(e.free_symbols for e in (*(expr for _, expr in replacements), *reduced)))
     for name, group in derived.inputs:
         for k, symbol in enumerate(group):
-            lines.append(f"    {symbol.name} = {name}[{k}]")
+            if symbol in used:
+                lines.append(f"    {symbol.name} = {name}[{k}]")
     for symbol, expr in replacements:
         lines.append(f"    {symbol.name} = {printer.doprint(expr)}")
     results, start = [], 0

@@ -17,8 +17,8 @@ from derivations._printer import print_function, print_signatures
 
 DERIVATIONS = Path(__file__).resolve().parent
 GENERATED = DERIVATIONS.parent / "src" / "transplanter" / "_generated"
-MODULES = ("burmester", "cam", "cam_support", "cusp", "fivebar", "fivebar_statics", "gears", "parallelogram", "planetary",
-           "train_pitch_curvature", "train_pitch_tangent")
+MODULES = ("burmester", "cam", "cam_support", "cusp", "fivebar", "fivebar_statics", "gears", "parallelogram",
+           "planetary", "train_pitch_curvature", "train_pitch_tangent")
 # Files the derivations share, besides each module's own derivation: every stamp records them.
 SHARED_SOURCES = ("_printer.py", "planar.py", "spec.py")
 
@@ -89,8 +89,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"transplanter: error: derive: {error}", file=sys.stderr)
         return 2
     if args.check and drifted:
-        print("transplanter: failed: derive --check: generated code is out of step with derivations/: " + ", ".join(drifted)
-              + " (run `python -m derivations.build`)", file=sys.stderr)
+        print("transplanter: failed: derive --check: generated code is out of step with derivations/: "
+              + ", ".join(drifted) + " (run `python -m derivations.build`)", file=sys.stderr)
         return 1
     print("generated code is in step with derivations/" if args.check else f"wrote {', '.join(MODULES)} to {args.out}")
     return 0

@@ -102,7 +102,7 @@ def consistency_determinant(poses, solve_for: str, point):
 
 def _pose_symbols(count):
     xs, ys, angles = symbol_group("pose_x", count), symbol_group("pose_y", count), symbol_group("pose_angle", count)
-    return (xs, ys, angles), [tuple(p) for p in zip(xs, ys, angles)]
+    return (xs, ys, angles), [tuple(p) for p in zip(xs, ys, angles, strict=True)]
 
 
 def _cubic_curve(solve_for: str) -> Derived:

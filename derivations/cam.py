@@ -54,7 +54,7 @@ def _integrate_acceleration(pieces, breaks):
     breaks[k+1]], with y and y' continuous, y(0) = y'(0) = 0, and A fixed by y(1) = 1."""
     amplitude = sp.Symbol("A")
     velocity_start, displacement_start, displacements = 0, 0, []
-    for shape, (low, high) in zip(pieces, zip(breaks[:-1], breaks[1:])):
+    for shape, (low, high) in zip(pieces, zip(breaks[:-1], breaks[1:], strict=True), strict=True):
         x = sp.Symbol("x", real=True)
         velocity = velocity_start + sp.integrate(amplitude * shape.subs(tau, x), (x, low, tau))
         displacement = displacement_start + sp.integrate(velocity.subs(tau, x), (x, low, tau))
@@ -67,7 +67,7 @@ def _integrate_acceleration(pieces, breaks):
 def _piecewise(displacements, breaks):
     if len(displacements) == 1:
         return displacements[0]
-    return sp.Piecewise(*[(d, tau < b) for d, b in zip(displacements[:-1], breaks[1:-1])],
+    return sp.Piecewise(*[(d, tau < b) for d, b in zip(displacements[:-1], breaks[1:-1], strict=True)],
                         (displacements[-1], True))
 
 
@@ -108,7 +108,8 @@ def _law(law: str) -> Derived:
     return Derived(
         name=f"cam_law_{law}",
         doc=(f"{law.replace('_', ' ')} law: follower displacement, velocity, acceleration and jerk (per rad of cam) "
-             "at angle phi into a segment of angle beta, signed lift h, starting level s0; segment = (phi, beta, h, s0)."),
+             "at angle phi into a segment of angle beta, signed lift h, starting level s0; "
+             "segment = (phi, beta, h, s0)."),
         inputs=(("segment", (angle, segment_angle, lift, start_level)),),
         outputs=(("motion", tuple(_with_float_pi(m) for m in motion)),),
     )
@@ -180,12 +181,14 @@ def _followers() -> list[Derived]:
                 doc=("Roller centre of a translating follower, its theta-derivatives and direction of motion; "
                      "translating = (offset e, s_base), motion = (s, s', s'')."),
                 inputs=(("translating", (offset, base_height)), ("motion", motion)),
-                outputs=tuple((name, tuple(v)) for (name, _), v in zip(groups, translating))),
+                outputs=tuple((name, tuple(v)) for (name, _), v in zip(groups, translating, strict=True))),
         Derived(name="cam_oscillating_roller",
                 doc=("Roller centre of an oscillating follower, its theta-derivatives and direction of motion; "
-                     "oscillating = (pivot x, pivot y, arm L, start angle b0, sense kappa), motion = (psi, psi', psi'')."),
+                     "oscillating = (pivot x, pivot y, arm L, start angle b0, sense kappa), "
+                     "motion = (psi, psi', psi'')."),
                 inputs=(("oscillating", (pivot_x, pivot_y, arm, start_angle, sense)), ("motion", motion)),
-                outputs=tuple((name, tuple(sp.expand(e) for e in v)) for (name, _), v in zip(groups, oscillating))),
+                outputs=tuple((name, tuple(sp.expand(e) for e in v))
+                              for (name, _), v in zip(groups, oscillating, strict=True))),
     ]
 
 

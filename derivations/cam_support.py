@@ -43,7 +43,8 @@ def derive() -> list[Derived]:
                 inputs=(("linkage", (cx, cy, rocker, rod)), ("slider_point", (hx, hy)), ("rocker_angle", (angle,))),
                 outputs=(("residual", (rocker_closure((cx, cy), rocker, rod, (hx, hy), angle),)),)),
         Derived(name="support_rocker_parts",
-                doc="P, Q, R of the closure P + Q cos(theta_CG) + R sin(theta_CG) = 0; linkage = (x_C, y_C, l_CG, l_GH).",
+                doc=("P, Q, R of the closure P + Q cos(theta_CG) + R sin(theta_CG) = 0; "
+                     "linkage = (x_C, y_C, l_CG, l_GH)."),
                 inputs=(("linkage", (cx, cy, rocker, rod)), ("slider_point", (hx, hy))),
                 outputs=(("parts", parts),)),
     ]

@@ -183,7 +183,8 @@ def shaper_contact(alpha, rolled, cutter_radius, side):
     sense = -side                                   # the cutter involute unwinds counterclockwise for side -1
     involute_function = sp.tan(alpha) - alpha
     beta = -sp.pi / 2 + rolled / cutter_radius - sense * involute_function   # pitch point rolled along from M2
-    t = sense * (-sp.pi / 2 + sense * alpha - beta)  # the root of r_j sin(beta + sense t) + r_b = 0 near the pitch point
+    # the root of r_j sin(beta + sense t) + r_b = 0 near the pitch point
+    t = sense * (-sp.pi / 2 + sense * alpha - beta)
     angle = beta + sense * t
     involute = base * sp.Matrix([sp.cos(angle) + sense * t * sp.sin(angle), sp.sin(angle) - sense * t * sp.cos(angle)])
     point = sp.Matrix([0, cutter_radius]) + involute
@@ -198,7 +199,8 @@ def shaper_reach(alpha, cutter_radius, tip_radius, lowest_radius):
     # sqrt((radius / base)^2 - 1) as a product, so that the base circle itself (radius == base, the lowest radius of a
     # cutter with many teeth) gives an exact 0 in floating point, not the square root of a rounding below it
     roll = [sp.sqrt((radius - base) * (radius + base)) / base for radius in (tip_radius, lowest_radius)]
-    return tuple(cutter_radius * (sp.sin(alpha) / sp.cos(alpha) - t) for t in roll)   # sines and cosines for the printer
+    # tan written as sin / cos: the printer maps sines and cosines only
+    return tuple(cutter_radius * (sp.sin(alpha) / sp.cos(alpha) - t) for t in roll)
 
 
 def _variable_involute() -> list[Derived]:
@@ -214,8 +216,8 @@ def _variable_involute() -> list[Derived]:
                 inputs=(("pressure_angle", (alpha,)), ("rolled", (rolled,)), ("side", (side,))),
                 outputs=(("offset", (along, -side * normal)),)),
         Derived(name="shaper_reach",
-                doc=("Range (low, high) of q = -side (s_f - s) over which a pinion cutter's involute, from lowest_radius "
-                     "to tip_radius, generates the variable involute."),
+                doc=("Range (low, high) of q = -side (s_f - s) over which a pinion cutter's involute, "
+                     "from lowest_radius to tip_radius, generates the variable involute."),
                 inputs=(("pressure_angle", (alpha,)), ("cutter_radius", (cutter,)), ("tip_radius", (tip,)),
                         ("lowest_radius", (lowest,))),
                 outputs=(("reach", shaper_reach(alpha, cutter, tip, lowest)),)),

@@ -89,7 +89,8 @@ def derive() -> list[Derived]:
     chain, chain_angles = symbol_group("chain_lengths", 3), symbol_group("chain_angles", 2)
     return [
         Derived(name="fivebar_closure",
-                doc="Eq (8): |OA + AF - OB - BE|^2 - L3^2 for lengths L1..L5 and angles theta1, theta2, theta4, theta5.",
+                doc=("Eq (8): |OA + AF - OB - BE|^2 - L3^2 for lengths L1..L5 "
+                     "and angles theta1, theta2, theta4, theta5."),
                 inputs=(("lengths", lengths), ("angles", angles)),
                 outputs=(("residual", (closure(lengths, angles[0], angles[1], angles[2], angles[3]),)),)),
         Derived(name="fivebar_half_angle_quadratic",
@@ -101,7 +102,8 @@ def derive() -> list[Derived]:
                 inputs=(("lengths", lengths), ("crank_angles", crank)),
                 outputs=(("discriminant", (4 * (q**2 + r**2 - p**2),)),)),
         Derived(name="fivebar_closure_margin",
-                doc="(Q^2 + R^2 - P^2) / (Q^2 + R^2) = sin^2(angle EBF): eq (10) without its scale, in [0, 1] where it closes.",
+                doc=("(Q^2 + R^2 - P^2) / (Q^2 + R^2) = sin^2(angle EBF): eq (10) without its scale, "
+                     "in [0, 1] where it closes."),
                 inputs=(("lengths", lengths), ("crank_angles", crank)),
                 outputs=(("margin", ((q**2 + r**2 - p**2) / (q**2 + r**2),)),)),
         Derived(name="fivebar_transmission_margin",

@@ -143,7 +143,8 @@ def limacon_center_distance_expr(base, amplitude, order_ratio):
 
 
 def _closed_forms() -> list[Derived]:
-    a_axis, e, q = symbol_group("semi_major_axis", 1)[0], symbol_group("eccentricity", 1)[0], symbol_group("order_ratio", 1)[0]
+    a_axis, e = symbol_group("semi_major_axis", 1)[0], symbol_group("eccentricity", 1)[0]
+    q = symbol_group("order_ratio", 1)[0]
     base, amplitude = symbol_group("base", 1)[0], symbol_group("amplitude", 1)[0]
     return [
         Derived(name="ellipse_center_distance",
@@ -151,7 +152,8 @@ def _closed_forms() -> list[Derived]:
                 inputs=(("semi_major_axis", (a_axis,)), ("eccentricity", (e,)), ("order_ratio", (q,))),
                 outputs=(("center_distance", (ellipse_center_distance_expr(a_axis, e, q),)),)),
         Derived(name="limacon_center_distance",
-                doc="Center distance that closes a limacon driver b + c cos(n phi) with orders n1, n2; order_ratio = n2/n1.",
+                doc=("Center distance that closes a limacon driver b + c cos(n phi) with orders n1, n2; "
+                     "order_ratio = n2/n1."),
                 inputs=(("base", (base,)), ("amplitude", (amplitude,)), ("order_ratio", (q,))),
                 outputs=(("center_distance", (limacon_center_distance_expr(base, amplitude, q),)),)),
     ]

@@ -29,21 +29,22 @@ from derivations.planar import unit
 from derivations.spec import Derived, symbol_group
 
 
-def inverse_angles(x, y, s, l, branch):
-    """(theta, psi) of the tip (x, y) on the given branch."""
+def inverse_angles(x, y, carrier_length, arm_length, branch):
+    """(theta, psi) of the tip (x, y) on the given branch, for carrier length s and arm length l."""
     r = sp.sqrt(x**2 + y**2)
-    product = (l - s + r) * (l + s - r) * (r + s - l) * (r + s + l)
-    elbow = sp.atan2(sp.sqrt(sp.Max(product, 0)), s**2 + r**2 - l**2)
+    product = ((arm_length - carrier_length + r) * (arm_length + carrier_length - r)
+               * (r + carrier_length - arm_length) * (r + carrier_length + arm_length))
+    elbow = sp.atan2(sp.sqrt(sp.Max(product, 0)), carrier_length**2 + r**2 - arm_length**2)
     theta = sp.atan2(y, x) + branch * elbow
-    psi = sp.atan2(y - s * sp.sin(theta), x - s * sp.cos(theta))
+    psi = sp.atan2(y - carrier_length * sp.sin(theta), x - carrier_length * sp.cos(theta))
     return theta, psi
 
 
-def path_rates(theta, psi, s, l, path_derivatives, order=3):
+def path_rates(theta, psi, carrier_length, arm_length, path_derivatives, order=3):
     """theta^(k), psi^(k) for k = 1..order from P', P'', P''' by implicit differentiation."""
     u = sp.Symbol("u", real=True)
     th, ps = sp.Function("th")(u), sp.Function("ps")(u)
-    closure = s * unit(th) + l * unit(ps)
+    closure = carrier_length * unit(th) + arm_length * unit(ps)
     unknowns = [(sp.Symbol(f"dth{k}"), sp.Symbol(f"dps{k}")) for k in range(1, order + 1)]
     known = {}
     for k in range(1, order + 1):
@@ -56,17 +57,18 @@ def path_rates(theta, psi, s, l, path_derivatives, order=3):
     return [known[symbol] for pair in unknowns for symbol in pair]
 
 
-def relative_per_carrier(theta, psi, s, l, dx, dy):
+def relative_per_carrier(theta, psi, carrier_length, arm_length, dx, dy):
     """d gamma / d theta = psi' / theta' - 1 along the path."""
-    theta1, psi1 = path_rates(theta, psi, s, l, (dx, dy), order=1)
+    theta1, psi1 = path_rates(theta, psi, carrier_length, arm_length, (dx, dy), order=1)
     return sp.simplify(psi1 / theta1 - 1)
 
 
 def arm_lengths(farthest, nearest):
     """(s, l) with s + l = Lmax and l - s = Lmin (the arm the longer link, as the rice-transplanter paper takes it)."""
-    s, l = sp.symbols("s l", positive=True)
-    solution = sp.solve([s + l - farthest, l - s - nearest], [s, l], dict=True)[0]
-    return solution[s], solution[l]
+    carrier_length, arm_length = sp.symbols("s l", positive=True)
+    solution = sp.solve([carrier_length + arm_length - farthest, arm_length - carrier_length - nearest],
+                        [carrier_length, arm_length], dict=True)[0]
+    return solution[carrier_length], solution[arm_length]
 
 
 def idler_total_ratio(sun_radius, planet_radius, center_distance):
@@ -89,24 +91,27 @@ def derive() -> list[Derived]:
     branch = sp.Symbol("branch", real=True)
     angles = symbol_group("angles", 2)
     path = symbol_group("path", 6)
-    s, l = lengths
-    theta, psi = inverse_angles(*point, s, l, branch)
+    carrier_length, arm_length = lengths
+    theta, psi = inverse_angles(*point, carrier_length, arm_length, branch)
     extremes = symbol_group("extremes", 2)
     radii, center = symbol_group("radii", 2), sp.Symbol("center_distance", positive=True)
     pickup_lengths, pickup_angles = symbol_group("pickup_lengths", 3), symbol_group("pickup_angles", 4)
     return [
         Derived(name="two_link_inverse",
-                doc="Carrier and arm directions (theta, psi) of the tip point for lengths (s, l) on a branch (+1 approach, -1 retraction).",
+                doc=("Carrier and arm directions (theta, psi) of the tip point for lengths (s, l) "
+                     "on a branch (+1 approach, -1 retraction)."),
                 inputs=(("point", point), ("lengths", lengths), ("branch", (branch,))),
                 outputs=(("angles", (theta, psi)),)),
         Derived(name="two_link_rates",
-                doc="theta', psi', theta'', psi'', theta''', psi''' along the path from (theta, psi), (s, l) and P', P'', P'''.",
+                doc=("theta', psi', theta'', psi'', theta''', psi''' along the path "
+                     "from (theta, psi), (s, l) and P', P'', P'''."),
                 inputs=(("angles", angles), ("lengths", lengths), ("path", path)),
-                outputs=(("rates", tuple(path_rates(*angles, s, l, path))),)),
+                outputs=(("rates", tuple(path_rates(*angles, carrier_length, arm_length, path))),)),
         Derived(name="planetary_relative_per_carrier",
-                doc="Monotonicity criterion: d gamma / d theta = -(P . P') / (l P' . e(psi)); the gears never reverse where it keeps one sign.",
+                doc=("Monotonicity criterion: d gamma / d theta = -(P . P') / (l P' . e(psi)); "
+                     "the gears never reverse where it keeps one sign."),
                 inputs=(("angles", angles), ("lengths", lengths), ("path", path[:2])),
-                outputs=(("slope", (relative_per_carrier(*angles, s, l, *path[:2]),)),)),
+                outputs=(("slope", (relative_per_carrier(*angles, carrier_length, arm_length, *path[:2]),)),)),
         Derived(name="arm_lengths_from_extremes",
                 doc=("The rice-transplanter paper's eq (1-2): carrier s and arm l from the farthest and nearest path "
                      "points (Lmax, Lmin)."),

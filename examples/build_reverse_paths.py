@@ -52,7 +52,8 @@ def toml_points(points: np.ndarray) -> str:
     return "[\n" + "".join(f"    [{float(x)!r}, {float(y)!r}],\n" for x, y in points) + "]"
 
 
-RICE = '''title = "Rice transplanter hoe path, the rice-transplanter paper (Lmax 254.3 mm, Lmin 69.7 mm), four-gear train"
+RICE_TITLE = "Rice transplanter hoe path, the rice-transplanter paper (Lmax 254.3 mm, Lmin 69.7 mm), four-gear train"
+RICE = '''title = "{title}"
 description = """
 A loop hanging below the gear box, made by examples/build_reverse_paths.py (the rice-transplanter paper prints
 no coordinates). The arm lengths are left out, so they come from the path's farthest and
@@ -72,7 +73,9 @@ split = "sqrt"
 module = 2.0
 '''
 
-PICKUP = '''title = "Seedling pick-up arm, the reverse-gear-design paper (s = 173.88 mm, l = 207.81 mm), bent carrier of the cusp-pitch-curve paper eq (15)"
+PICKUP_TITLE = ("Seedling pick-up arm, the reverse-gear-design paper (s = 173.88 mm, l = 207.81 mm), "
+                "bent carrier of the cusp-pitch-curve paper eq (15)")
+PICKUP = '''title = "{title}"
 description = """
 A loop reaching from next to the carrier pivot out to s + l, made by
 examples/build_reverse_paths.py (the reverse-gear-design paper prints no coordinates). Four gears on a bent
@@ -99,10 +102,10 @@ module = 2.53
 
 def main():
     rice = recipe(-90.0, 16.0, 5.0, 254.3, 69.7)
-    (HERE / "rice_hoe_reverse.toml").write_text(RICE.format(points=toml_points(rice)))
-    s, l = 173.88, 207.81
-    pickup = recipe(-120.0, 22.0, 6.0, s + l, l - s)
-    (HERE / "pickup_arm_reverse.toml").write_text(PICKUP.format(points=toml_points(pickup)))
+    (HERE / "rice_hoe_reverse.toml").write_text(RICE.format(title=RICE_TITLE, points=toml_points(rice)))
+    carrier, arm = 173.88, 207.81       # the reverse-gear-design paper's s and l
+    pickup = recipe(-120.0, 22.0, 6.0, carrier + arm, arm - carrier)
+    (HERE / "pickup_arm_reverse.toml").write_text(PICKUP.format(title=PICKUP_TITLE, points=toml_points(pickup)))
 
 
 if __name__ == "__main__":

@@ -120,7 +120,9 @@ def wang_gear_train() -> list[Finding]:
     relative = fixed_relative_angle()
     k = correction_factor(relative)
     k_printed, turn_printed = printed_correction(relative)
-    ratio = lambda c: 1 / (k * np.sqrt(relative.evaluate(c, 1)))   # noqa: E731
+    def ratio(c):
+        return 1 / (k * np.sqrt(relative.evaluate(c, 1)))
+
     rate = numpy_twin(ratio_pair_pitch)
     rolled = TurnMap(lambda c: rate([1.0], ratio(c)[None])[1][0], relative.knots).total
     eq13_printed = TurnMap(ratio, relative.knots).total
@@ -252,7 +254,9 @@ def cusp_eq15(samples: int = 200, seed: int = EQ10_SEED) -> list[Finding]:
     carrier, bend, planet, mounting = rng.uniform(-3, 3, (4, samples))
     first, second, arm = 90.0, 90.0, 207.81
     tip = numpy_twin(pickup_tip)([first, second, arm], [carrier, bend, planet, mounting])[0]
-    unit = lambda t: np.array([np.cos(t), np.sin(t)])   # noqa: E731
+    def unit(t):
+        return np.array([np.cos(t), np.sin(t)])
+
     arm_tip = first * unit(carrier) + second * unit(carrier + bend) + arm * unit(carrier + bend + planet + mounting)
     return [Finding("cusp_eq15", CUSP, "eq (15): phi0 + phi1 is the carrier's angle (tip vs two-link arm)",
                     "phi1: planet's turn (Table 1)", f"agree to {np.abs(tip - arm_tip).max():.0e} mm")]

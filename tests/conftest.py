@@ -14,7 +14,8 @@ def derived():
 
     from derivations.build import MODULES
 
-    return {(module, d.name): d for module in MODULES for d in importlib.import_module(f"derivations.{module}").derive()}
+    return {(module, d.name): d
+            for module in MODULES for d in importlib.import_module(f"derivations.{module}").derive()}
 
 
 @pytest.fixture(scope="session")

@@ -272,12 +272,12 @@ def _run(args) -> int:
         if threading.current_thread() is threading.main_thread() else {}
     try:
         quiet = getattr(args, "json", False) or getattr(args, "quiet", False)
-        with _stderr_until_interrupted(), progress.showing(sys.stderr, enabled=sys.stderr.isatty() and not quiet):
-            with staged(out) as args.folder:
-                code = args.run(args)
-                if _STOP.is_set():          # a solver that caught the interrupt and went on
-                    raise KeyboardInterrupt
-                return code
+        with (_stderr_until_interrupted(), progress.showing(sys.stderr, enabled=sys.stderr.isatty() and not quiet),
+              staged(out) as args.folder):
+            code = args.run(args)
+            if _STOP.is_set():          # a solver that caught the interrupt and went on
+                raise KeyboardInterrupt
+            return code
     except TransplanterError as error:
         _say(f"transplanter: error: {error}", args.warned)
         return 2

@@ -66,7 +66,8 @@ def check_target(out: str | Path):
         raise ProblemError(f"--out = {out}: a file is there; expected a folder to write the results into")
     if target.is_dir() and any(target.iterdir()) and not _earlier_output(target):
         raise ProblemError(f"--out = {out}: the folder holds files that are not an earlier output of this command "
-                           f"(its report.json does not list them); expected a new or empty folder, or an earlier output")
+                           "(its report.json does not list them); expected a new or empty folder, "
+                           "or an earlier output")
 
 
 def check_file(path: str | Path, option: str, suffixes: set[str], out: str | Path | None = None) -> Path:

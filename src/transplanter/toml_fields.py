@@ -13,6 +13,7 @@ import os
 import tomllib
 import warnings
 from pathlib import Path
+from typing import NoReturn, TypeGuard
 
 import numpy as np
 
@@ -105,7 +106,7 @@ def is_finite_number(value) -> bool:
         return False
 
 
-def is_sequence(value) -> bool:
+def is_sequence(value) -> TypeGuard[list | tuple | np.ndarray]:
     """A list, a tuple or a numpy array of at least one dimension."""
     return isinstance(value, (list, tuple)) or (isinstance(value, np.ndarray) and value.ndim >= 1)
 
@@ -120,7 +121,7 @@ class FieldReader:
     def __init__(self, source: str):
         self.source = source
 
-    def fail(self, field: str, value, expected: str):
+    def fail(self, field: str, value, expected: str) -> NoReturn:
         raise ProblemError(f"{self.source}: {field} = {shown(value)!r}: expected {expected}")
 
     def keys(self, table, allowed: set[str], where: str):
@@ -164,7 +165,8 @@ class FieldReader:
         """A positive length (mm) from ``SMALLEST_LENGTH`` to ``MAGNITUDE_LIMIT``."""
         value = self.number(table, key, where)
         if not SMALLEST_LENGTH <= value <= MAGNITUDE_LIMIT:
-            self.fail(f"{where}.{key}", value, f"a positive length from {SMALLEST_LENGTH:.0e} to {MAGNITUDE_LIMIT:.0e} mm")
+            self.fail(f"{where}.{key}", value,
+                      f"a positive length from {SMALLEST_LENGTH:.0e} to {MAGNITUDE_LIMIT:.0e} mm")
         return value
 
     def point(self, value, field: str) -> np.ndarray:
@@ -185,7 +187,7 @@ class FieldReader:
                 raise ProblemError(f"{self.source}: {field} is missing: expected a whole number from {low} to {high}")
             return default
         value = table[key]
-        if not is_number(value) or not isinstance(value, numbers.Integral) or not low <= value <= high:
+        if not is_number(value) or not isinstance(value, numbers.Integral) or not low <= int(value) <= high:
             self.fail(field, value, f"a whole number from {low} to {high}")
         return int(value)
 
@@ -211,7 +213,7 @@ class ClassFields:
         self.problem = problem
         self.owner = type(problem).__name__
 
-    def fail(self, field: str, value, expected: str):
+    def fail(self, field: str, value, expected: str) -> NoReturn:
         raise ProblemError(f"{self.owner}.{field} = {shown(value)!r}: expected {expected} ({self.owner} takes mm "
                            "and radians; parse_problem and load_problem take the file's mm and degrees)")
 
@@ -225,8 +227,9 @@ class ClassFields:
             array = np.array(value, float)
         except (TypeError, ValueError):
             self.fail(field, value, expected)
-        if (array.ndim != len(shape) or any(n is not None and n != size for n, size in zip(shape, array.shape))
-                or any(n is None and size < minimum for n, size in zip(shape, array.shape))):
+        if (array.ndim != len(shape)
+                or any(n is not None and n != size for n, size in zip(shape, array.shape, strict=True))
+                or any(n is None and size < minimum for n, size in zip(shape, array.shape, strict=True))):
             self.fail(field, value, expected)
         if not np.all(np.isfinite(array)) or np.any(np.abs(array) > MAGNITUDE_LIMIT):
             self.fail(field, value, f"finite values within ±{MAGNITUDE_LIMIT:.0e}")
@@ -264,7 +267,7 @@ class ClassFields:
         value = getattr(self.problem, field)
         if optional and value is None:
             return
-        if not is_number(value) or not isinstance(value, numbers.Integral) or not low <= value <= high:
+        if not is_number(value) or not isinstance(value, numbers.Integral) or not low <= int(value) <= high:
             self.fail(field, value, f"a whole number from {low} to {high}" + (" or None" if optional else ""))
         object.__setattr__(self.problem, field, int(value))
 

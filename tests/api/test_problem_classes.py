@@ -18,7 +18,8 @@ EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
 def _gear():
-    return gears.parse_problem({"driver": {"family": "limacon", "base": 50.0, "amplitude": 16.0}, "pair": {"driven_order": 2}})
+    return gears.parse_problem({"driver": {"family": "limacon", "base": 50.0, "amplitude": 16.0},
+                                "pair": {"driven_order": 2}})
 
 
 def _cam():
@@ -40,7 +41,8 @@ CASES = {
     "cam negative roller": (_cam, "follower", lambda p: dataclasses.replace(p.follower, roller_radius=-6.0),
                             "follower.roller_radius = -6.0"),
     "cam segment of no kind": (_cam, "segments", (Segment("zzz", 2 * np.pi, "harmonic", 1.0),), "segments[0]"),
-    "cam swing in degrees": (_cam, "segments", lambda p: (dataclasses.replace(p.segments[0], lift=36.0),) + p.segments[1:],
+    "cam swing in degrees": (_cam, "segments",
+                             lambda p: (dataclasses.replace(p.segments[0], lift=36.0),) + p.segments[1:],
                              "segments[0].lift = 36.0"),
     "cam samples as text": (_cam, "samples", "3600", "CamProblem.samples = '3600'"),
     "five-bar design angle in degrees": (lambda: fivebar.load_design(EXAMPLES / "vegetable_planting_table4.toml"),

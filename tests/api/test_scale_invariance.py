@@ -144,9 +144,9 @@ def test_fivebar_design_nlp_scales_with_the_poses():
         problems[scale] = fivebar.parse_problem(data)
         assert length_unit(problems[scale]) == pytest.approx(100.0 * scale, rel=1e-12)
     starts = solution_region(problems[1.0]).feasible
-    for index, start in enumerate(starts):
+    for index in range(len(starts)):      # the first start that refines; every scale refines its own
         try:
-            one = DesignSolver(problems[1.0]).refine(start)
+            one = DesignSolver(problems[1.0]).refine(starts[index])
             break
         except SolverError:
             continue

@@ -97,7 +97,8 @@ def _harmonic_pressure_closed_form():
     (cosine,) = sp.solve(numerator.subs(sp.sin(x) ** 2, 1 - c**2).subs(sp.cos(x), c), c)
     assert sp.simplify(cosine - h / (2 * r0 + h)) == 0
     at_peak = sp.atan(tan_alpha.subs(x, sp.acos(cosine)))
-    return sp.lambdify((r0, h, beta), at_peak, "numpy"), sp.lambdify((r0, h, beta), beta * sp.acos(cosine) / sp.pi, "numpy")
+    return (sp.lambdify((r0, h, beta), at_peak, "numpy"),
+            sp.lambdify((r0, h, beta), beta * sp.acos(cosine) / sp.pi, "numpy"))
 
 
 def test_pressure_angle_of_radial_harmonic_rise_is_its_closed_form():

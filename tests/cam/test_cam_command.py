@@ -102,29 +102,34 @@ CASES = {
                     ["segments[0].law", "parabolic", "harmonic"]),
     "swing on a translating follower": (TRANSLATING.replace("lift = 20.0", "swing_deg = 20.0", 1),
                                         ["segments[0].swing_deg", "lift for a translating"]),
-    "offset beyond the pitch circle": (TRANSLATING.replace('kind = "translating"', 'kind = "translating"\noffset = 40.0'),
+    "offset beyond the pitch circle": (TRANSLATING.replace('kind = "translating"',
+                                                           'kind = "translating"\noffset = 40.0'),
                                        ["follower.offset", "40.0", "less than base radius + roller radius = 36"]),
     "arm cannot reach": (EXAMPLE.read_text().replace("arm_length = 58.0", "arm_length = 20.0"),
                          ["follower.arm_length", "20.0", "from 34 to 106 mm"]),
     "pivot at the cam centre": (EXAMPLE.read_text().replace("pivot = [70.0, 0.0]", "pivot = [0.0, 0.0]"),
                                 ["follower.pivot", "[0.0, 0.0]", "a pivot outside the base pitch circle"]),
-    "no rise": (TRANSLATING.replace('kind = "rise"', 'kind = "dwell"', 1).replace('law = "cycloidal"\nlift = 20.0\n', "", 1),
+    "no rise": (TRANSLATING.replace('kind = "rise"', 'kind = "dwell"', 1)
+                .replace('law = "cycloidal"\nlift = 20.0\n', "", 1),
                 ["segments[2].lift", "20.0", "at most 0"]),
-    "limit of 90": (TRANSLATING + "[limits]\npressure_angle_deg = 95.0\n", ["limits.pressure_angle_deg", "95.0", "below 90"]),
+    "limit of 90": (TRANSLATING + "[limits]\npressure_angle_deg = 95.0\n",
+                    ["limits.pressure_angle_deg", "95.0", "below 90"]),
     "swing past the farthest point": (EXAMPLE.read_text().replace("swing_deg = 36.0", "swing_deg = 150.0"),
                                       ["segments.swing_deg", "largest swing of 150", "less than 149.1", "128 mm"]),
     "negative profile margin": (TRANSLATING + "[limits]\nprofile_radius_mm = -1.0\n",
                                 ["limits.profile_radius_mm", "-1.0", "a radius of 0"]),
-    "bore beyond the base circle": (TRANSLATING.replace("base_radius = 30.0", "base_radius = 30.0\nbore_radius = 100.0"),
+    "bore beyond the base circle": (TRANSLATING.replace("base_radius = 30.0",
+                                                        "base_radius = 30.0\nbore_radius = 100.0"),
                                     ["cam.bore_radius", "100.0", "less than cam.base_radius = 30 mm"]),
     "pressure limit on a flat face": ((ROOT / "examples/cam_flat_faced.toml").read_text()
                                       .replace("[limits]\n", "[limits]\npressure_angle_deg = 20.0\n"),
                                       ["limits.pressure_angle_deg", "20.0", "none for a flat-faced follower"]),
     "base radius in design mode": (TRANSLATING + "[design]\nmax_base_radius = 100.0\n",
                                    ["cam.base_radius", "30.0", "no base radius with [design]"]),
-    "no base circle meets the limit": (TRANSLATING.replace("base_radius = 30.0", "") + "[limits]\npressure_angle_deg = 5.0\n"
-                                       "[design]\nmax_base_radius = 60.0\n",
-                                       ["limits.pressure_angle_deg = 5", "no base circle up to 60", "raise design.max_base_radius"]),
+    "no base circle meets the limit": (TRANSLATING.replace("base_radius = 30.0", "")
+                                       + "[limits]\npressure_angle_deg = 5.0\n[design]\nmax_base_radius = 60.0\n",
+                                       ["limits.pressure_angle_deg = 5", "no base circle up to 60",
+                                        "raise design.max_base_radius"]),
 }
 
 
@@ -147,6 +152,17 @@ def test_design_mode_from_the_command_line(run):
     assert report["designed_base_radius"] and math.isclose(max(report["max_pressure_angle_deg"]["rise"],
                                                                  report["max_pressure_angle_deg"]["return"]),
                                                              30.0, rel_tol=1e-5)
+
+
+def test_designing_the_base_circle_of_a_cam_whose_base_radius_is_given_names_the_field():
+    """smallest_base_radius called on a problem with a base radius (no max_base_radius): a ProblemError."""
+    from transplanter import cam
+    from transplanter.cam.design import smallest_base_radius
+    from transplanter.errors import ProblemError
+
+    with pytest.raises(ProblemError, match=r"cam_seedling_support.toml: max_base_radius = None: expected the "
+                                           r"largest base radius to try \(mm\)"):
+        smallest_base_radius(cam.load_problem(EXAMPLE))
 
 
 def test_dict_with_numpy_values_gives_the_report_of_the_file():
@@ -185,7 +201,8 @@ def test_design_mode_fails_a_bore_the_smallest_cam_cannot_hold(tmp_path, run):
     """Design mode sizes the cam by its checks; a given bore wider than the designed profile's nearest approach to
     the centre (the base circle, for a roller follower) fails the result (exit 1) naming cam.bore_radius."""
     path = tmp_path / "bore.toml"
-    path.write_text((ROOT / "examples/cam_translating_design.toml").read_text().replace("[cam]", "[cam]\nbore_radius = 100.0"))
+    example = (ROOT / "examples/cam_translating_design.toml").read_text()
+    path.write_text(example.replace("[cam]", "[cam]\nbore_radius = 100.0"))
     code, stdout, stderr = run(path, "--json")
     report = _strict_json(stdout)
     assert code == 1 and report["status"] == "FAILED"
@@ -204,5 +221,7 @@ def test_a_profile_margin_of_zero_is_the_default_written_out(run, tmp_path):
     plain.write_text(TRANSLATING)
     (code, out, _), (code_plain, out_plain, _) = run(path, "--json"), run(plain, "--json")
     assert code == code_plain == 0
-    drop = lambda report: {k: v for k, v in report.items() if k not in ("source", "timings_s")}  # noqa: E731
+    def drop(report):
+        return {k: v for k, v in report.items() if k not in ("source", "timings_s")}
+
     assert drop(_strict_json(out)) == drop(_strict_json(out_plain))

@@ -1,4 +1,6 @@
 """The seedling-support rocker-slider (Wang et al. 2025, eq 14-15) and the evaluation of Table 5."""
+from itertools import pairwise
+
 import numpy as np
 import pytest
 from scipy.optimize import brentq
@@ -34,7 +36,8 @@ def _independent_angles(h, pivot=table5.PIVOT_C):
         return np.linalg.norm(g - h) - table5.ROD_LENGTH
     grid = np.linspace(-np.pi, np.pi, 3601)
     values = np.array([gap(t) for t in grid])
-    return [brentq(gap, a, b, xtol=1e-14) for a, b, va, vb in zip(grid, grid[1:], values, values[1:]) if va * vb < 0]
+    return [brentq(gap, a, b, xtol=1e-14)
+            for (a, b), (va, vb) in zip(pairwise(grid), pairwise(values), strict=True) if va * vb < 0]
 
 
 @pytest.fixture(scope="module")
@@ -44,7 +47,7 @@ def report():
 
 def test_table5_as_printed_does_not_assemble(report):
     """With H = Z + (0, l_HZ) (eq 14 as printed), |C - H| is 280.3 and 374.9 mm, beyond l_CG + l_GH = 230."""
-    for height, distance in zip((5.0, 124.0), report["printed"]["distance_c_to_h_mm"]):
+    for height, distance in zip((5.0, 124.0), report["printed"]["distance_c_to_h_mm"], strict=True):
         h = np.array([-130.0, height + 116.0])
         assert distance == pytest.approx(np.hypot(*(h - table5.PIVOT_C)), rel=1e-12) and distance > 230.0
         assert not _independent_angles(h)

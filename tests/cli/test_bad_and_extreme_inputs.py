@@ -24,7 +24,7 @@ def _variant(tmp_path, example: str, *replacements) -> str:
     text = (EXAMPLES / example).read_text()
     for pattern, new in replacements:
         assert re.search(pattern, text, flags=re.M), pattern
-        text = re.sub(pattern, lambda _: new, text, count=1, flags=re.M)
+        text = re.sub(pattern, new.replace("\\", "\\\\"), text, count=1, flags=re.M)   # new taken literally
     path = tmp_path / example
     path.write_text(text)
     return str(path)
@@ -35,7 +35,8 @@ RICE_POINT_2 = r"\[22.307237065475743, -85.18514875915126\]"
 # name: (command, example, replacements, extra arguments, fragments of the one error line)
 BAD = {
     "file is a folder": ("burmester", None, (), (), ["cannot be read", "Is a directory"]),
-    "out unwritable": ("burmester", "burmester_4poses.toml", (), ("--out", "/proc/x"), ["--out = /proc/x", "cannot write"]),
+    "out unwritable": ("burmester", "burmester_4poses.toml", (), ("--out", "/proc/x"),
+                       ["--out = /proc/x", "cannot write"]),
     "plot unknown format": ("burmester", "burmester_4poses.toml", (), ("--plot", "{tmp}/x.xyz"), ["--plot", ".png"]),
     "plot is a folder": ("burmester", "burmester_4poses.toml", (), ("--plot", "{tmp}/figure.png"),
                          ["--plot", "a folder is there"]),
@@ -58,17 +59,21 @@ BAD = {
                           ["pair.module = 1e-300", "from 1e-09 to 1e+09 mm"]),
     "design length overflows": ("fivebar", "vegetable_planting.toml", (), ("--design", "{design}"),
                                 ["design.carrier_length = 1e+308"]),
-    "ratio formula not finite": ("gear", "gear_ratio_formula.toml", (('expression = ".*"', 'expression = "1e308*(2+cos(phi))"'),),
-                                 (), ["driver.expression = '1e308*(2+cos(phi))' reaches inf", "finite ratio"]),
-    "ratio formula too large": ("gear", "gear_ratio_formula.toml", (('expression = ".*"', 'expression = "1e300*(2+cos(phi))"'),),
-                                (), ["driver.expression", "from 0.001 to 1000"]),
-    "ratio formula negative": ("gear", "gear_ratio_formula.toml", (('expression = ".*"', 'expression = "cos(phi)"'),), (),
+    "ratio formula not finite": ("gear", "gear_ratio_formula.toml",
+                                 (('expression = ".*"', 'expression = "1e308*(2+cos(phi))"'),), (),
+                                 ["driver.expression = '1e308*(2+cos(phi))' reaches inf", "finite ratio"]),
+    "ratio formula too large": ("gear", "gear_ratio_formula.toml",
+                                (('expression = ".*"', 'expression = "1e300*(2+cos(phi))"'),), (),
+                                ["driver.expression", "from 0.001 to 1000"]),
+    "ratio formula negative": ("gear", "gear_ratio_formula.toml",
+                               (('expression = ".*"', 'expression = "cos(phi)"'),), (),
                                ["driver.expression = 'cos(phi)' reaches -1 at phi = 180.00 deg", "reverses"]),
     "ratio formula too long": ("gear", "gear_ratio_formula.toml", (('expression = ".*"', 'expression = "' + "(" * 3000
                                                                    + "phi" + ")" * 3000 + '"'),),
                                (), ["driver.expression = '(((", "(6005 characters)", "at most 1000"]),
-    "ratio samples far beyond a turn": ("gear", "gear_ratio.toml", (("phi_deg = \\[[^\\]]*\\]", "phi_deg = [1e308, 90, 180, 270]"),),
-                                        (), ["driver.phi_deg", "within ±1e+06"]),
+    "ratio samples far beyond a turn": ("gear", "gear_ratio.toml",
+                                        (("phi_deg = \\[[^\\]]*\\]", "phi_deg = [1e308, 90, 180, 270]"),), (),
+                                        ["driver.phi_deg", "within ±1e+06"]),
     "limacon amplitude reaches the base": ("gear", "gear_limacon.toml", (("amplitude = 8.0", "amplitude = 50.0"),), (),
                                            ["driver.amplitude = 50.0", "below driver.base = 50"]),
     "teeth beyond what is cut": ("gear", "gear_ellipse.toml", (("teeth = 30", "teeth = 20001"),), (),
@@ -116,7 +121,8 @@ def test_cam_and_parallelogram_synthesis_name_what_they_were_given(job, value):
         job.synthesize(value)
 
 
-@pytest.mark.parametrize("job, problem", [(fivebar, "vegetable_planting.toml"), (parallelogram, "onion_transplanter.toml")])
+@pytest.mark.parametrize("job, problem",
+                         [(fivebar, "vegetable_planting.toml"), (parallelogram, "onion_transplanter.toml")])
 def test_evaluating_a_design_names_what_it_was_given(job, problem):
     with pytest.raises(ProblemError, match=r"problem = None: expected a \w+Problem"):
         job.evaluate_design(None, None)

@@ -21,7 +21,8 @@ def _with_title(text: str, title: str) -> str:
 @pytest.mark.parametrize("command, example, edit, extra", [
     ("gear", "gear_ellipse.toml", lambda t: _with_title(t, UNBALANCED), []),
     ("pickup", "pickup_forward.toml", lambda t: _with_title(t, UNBALANCED), ["--no-animation"]),
-    ("burmester", "burmester_4poses.toml", lambda t: _with_title(t, UNBALANCED).replace('label = "P1"', f"label = '{UNBALANCED}'"), []),
+    ("burmester", "burmester_4poses.toml",
+     lambda t: _with_title(t, UNBALANCED).replace('label = "P1"', f"label = '{UNBALANCED}'"), []),
 ])
 def test_unbalanced_dollar_in_title_or_label_is_drawn(command, example, edit, extra, tmp_path, capsys):
     path = tmp_path / "problem.toml"

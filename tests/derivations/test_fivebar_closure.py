@@ -23,6 +23,7 @@ from transplanter._generated.fivebar import (
 )
 from transplanter.fivebar.linkage import FiveBar
 from transplanter.generated import casadi_function
+from transplanter.geometry.planar import unit
 
 L = sp.symbols("L1:6", positive=True)
 T1, T2, T4, T5 = sp.symbols("theta1 theta2 theta4 theta5", real=True)
@@ -38,8 +39,9 @@ def _published(l1, l2, l3, l4, l5, t1, t2, t5, lib=sp):
 
 def test_printed_eq8_is_the_derived_closure():
     printed = (L[0]**2 + L[1]**2 - L[2]**2 + L[3]**2 + L[4]**2 + 2 * L[0] * L[4] * sp.cos(T1 + T5)
-               + 2 * L[1] * L[4] * sp.cos(T2 + T5) - 2 * L[3] * L[4] * sp.cos(T4 + T5) + 2 * L[0] * L[1] * sp.cos(T1 - T2)
-               - 2 * L[0] * L[3] * sp.cos(T1 - T4) - 2 * L[1] * L[3] * sp.cos(T2 - T4))
+               + 2 * L[1] * L[4] * sp.cos(T2 + T5) - 2 * L[3] * L[4] * sp.cos(T4 + T5)
+               + 2 * L[0] * L[1] * sp.cos(T1 - T2) - 2 * L[0] * L[3] * sp.cos(T1 - T4)
+               - 2 * L[1] * L[3] * sp.cos(T2 - T4))
     assert sp.simplify(sp.expand_trig(fivebar.closure(L, T1, T2, T4, T5) - printed)) == 0
 
 
@@ -55,8 +57,7 @@ def _closed_fivebar(rng):
     """Lengths and angles of a five-bar that closes: L3 is whatever the chosen angles leave."""
     l1, l2, l4, l5 = rng.uniform(0.5, 2.0, 4)
     t1, t2, t4, t5 = rng.uniform(-np.pi, np.pi, 4)
-    e = lambda t: np.array([np.cos(t), np.sin(t)])
-    gap = l1 * e(t1) + l2 * e(t2) - l5 * np.array([-np.cos(t5), np.sin(t5)]) - l4 * e(t4)
+    gap = l1 * unit(t1) + l2 * unit(t2) - l5 * np.array([-np.cos(t5), np.sin(t5)]) - l4 * unit(t4)
     return np.array([l1, l2, np.linalg.norm(gap), l4, l5]), (t1, t2, t4, t5)
 
 

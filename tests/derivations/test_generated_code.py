@@ -132,8 +132,10 @@ def test_check_reports_drift(tmp_path, regenerated, monkeypatch, capsys):
 
 
 def test_package_does_not_import_sympy_at_run_time():
-    code = ("import sys, transplanter.cli, transplanter.burmester.synthesis, transplanter.burmester.problem, transplanter.burmester.figures;"
-            "from transplanter.burmester.synthesis import synthesize; from transplanter.burmester.problem import load_problem;"
+    code = ("import sys, transplanter.cli, transplanter.burmester.synthesis, transplanter.burmester.problem, "
+            "transplanter.burmester.figures;"
+            "from transplanter.burmester.synthesis import synthesize; "
+            "from transplanter.burmester.problem import load_problem;"
             "synthesize(load_problem('examples/burmester_5poses.toml'));"
             "sys.exit('sympy' in sys.modules)")
     assert subprocess.run([sys.executable, "-c", code], cwd=ROOT).returncode == 0

@@ -114,7 +114,9 @@ def test_train_of_the_fixed_relative_angle_rolls_by_the_reciprocal():
     relative = reproduce.fixed_relative_angle()
     train = design_train(relative, (60.0, 60.0))
     stage = train.stage_one
-    ratio = lambda c: 1 / (train.correction * np.sqrt(relative.evaluate(c, 1)))   # noqa: E731
+    def ratio(c):
+        return 1 / (train.correction * np.sqrt(relative.evaluate(c, 1)))
+
     assert stage.phi2 == pytest.approx(TurnMap(lambda c: 1 / ratio(c), relative.knots)(stage.phi1), abs=1e-8)
     assert abs(stage.closure_error) < 1e-10
     assert np.degrees(TurnMap(ratio, relative.knots).total) == pytest.approx(362.22, abs=0.005)

@@ -29,7 +29,8 @@ API_BLOCKS = python_blocks(section(README, "Python API"))
 
 
 def test_every_job_has_an_example():
-    imported = {job for block in API_BLOCKS for job in re.findall(r"^from transplanter import (\w+)", block, re.MULTILINE)}
+    imported = {job for block in API_BLOCKS
+                for job in re.findall(r"^from transplanter import (\w+)", block, re.MULTILINE)}
     assert imported == {"fivebar", "burmester", "gears", "reverse"}
 
 

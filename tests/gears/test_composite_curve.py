@@ -183,5 +183,5 @@ def test_a_composite_without_corners_gets_the_shaper_teeth_of_its_family():
              "pair": {"module": 2.0, "teeth": 30, "cutter": "shaper"}}
     split, family = synthesize(parse_problem(halves)), synthesize(parse_problem(whole))
     assert split.to_json()["cusps"] == [] and split.to_json()["cutter"] == "shaper"
-    for ours, theirs in zip(split.teeth.outlines, family.teeth.outlines):
+    for ours, theirs in zip(split.teeth.outlines, family.teeth.outlines, strict=True):
         assert len(ours) == len(theirs) and np.abs(ours - theirs).max() < 1e-9 * A

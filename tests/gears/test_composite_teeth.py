@@ -96,7 +96,8 @@ def test_layout_and_the_thickness_band():
     with pytest.raises(InfeasibleError) as error:
         _check_layout(skewed, 20, [(100.0, 100.0)] * 3, "f.toml")
     message = str(error.value)
-    assert message.startswith("f.toml: pair.teeth = 20: the tooth on the corner") and "tooth counts that keep every corner tooth in the band" in message
+    assert message.startswith("f.toml: pair.teeth = 20: the tooth on the corner")
+    assert "tooth counts that keep every corner tooth in the band" in message
     with pytest.raises(InfeasibleError, match="cusp zone of .* wider than the segment"):
         _check_layout(plan, 20, [(1.0, 100.0), (100.0, 100.0)], "f.toml")
 
@@ -124,17 +125,20 @@ def example():
 def test_composite_teeth_of_the_ellipse_and_chord(example):
     report = example.to_json()
     assert report["self_intersections"] == [0, 0]
-    assert report["tooth_counts_built"] == [29, 29]              # 27 regular teeth and 2 corner teeth, each a pitch thick
+    # 27 regular teeth and 2 corner teeth, each a pitch thick
+    assert report["tooth_counts_built"] == [29, 29]
     for tooth in report["corner_teeth"]:
         assert tooth["thickness_pitches"] == pytest.approx(1.0)
         assert max(tooth["joint_kinks_deg"]) < 3.0              # the straight flank leans alpha as the shaper's does
         assert max(tooth["joint_gaps_mm"]) < 0.01 * 2.0       # within the mesh check's backlash
-        for low, high in tooth["arch_pressure_angles_deg"]:     # alpha at the joint; the arch reaches the corner and
-            assert low == pytest.approx(20.0, abs=1e-9) and high == pytest.approx(22.0, abs=1e-9)   # leaves the tip band
-            # as its circle pivots there, at the corner's pressure angle (22 deg, the first one tried)
+        # alpha at the joint; the arch reaches the corner and leaves the tip band as its circle pivots there,
+        # at the corner's pressure angle (22 deg, the first one tried)
+        for low, high in tooth["arch_pressure_angles_deg"]:
+            assert low == pytest.approx(20.0, abs=1e-9) and high == pytest.approx(22.0, abs=1e-9)
     assert report["corner_pressure_angle_deg"] == 22.0
-    assert report["corner_pressure_trials"] == [{"corner_pressure_angle_deg": 22.0, "passed": True, "failures": [],
-                                                 "transmission_error_mm": report["mesh_check"]["transmission_error_mm"]}]
+    assert report["corner_pressure_trials"] == [
+        {"corner_pressure_angle_deg": 22.0, "passed": True, "failures": [],
+         "transmission_error_mm": report["mesh_check"]["transmission_error_mm"]}]
     assert report["mesh_check"]["passed"] and report["mesh_check"]["max_overlap_mm"] < 0.005 * 2.0
     assert report["contact_ratio_min"] >= 1.0 and not any(report["contact_lost_at_deg"].values())
     # every space's two flanks against the closed-form variable involute (the corner teeth's above the pitch curve
@@ -195,7 +199,8 @@ def test_without_a_corner_pressure_angle_the_first_that_passes_is_kept():
 
 
 def test_corner_pressure_angle_that_stops_the_arch_short_of_the_corner_is_refused():
-    with pytest.raises(InfeasibleError, match=r"pair.corner_pressure_angle_deg = 60: .* above the tip .* use at most 43\.\d deg"):
+    with pytest.raises(InfeasibleError,
+                       match=r"pair.corner_pressure_angle_deg = 60: .* above the tip .* use at most 43\.\d deg"):
         synthesize(parse_problem({
             "driver": {"family": "composite", "segments": [
                 {"kind": "ellipse", "phi_deg": [-150, 150], "semi_major_axis": 30.0, "eccentricity": 0.3},
@@ -211,7 +216,8 @@ def test_cycloid_flanks_that_cross_are_refused():
     with pytest.raises(InfeasibleError, match=r"f.toml: pair.corner_pressure_angle_deg = 25: the two cycloid flanks "
                                               r".* cross below its tip .* use at most \d+\.\d deg, or use more teeth"):
         _check_arches_apart([left, right], (3.0, 3.0), 3.0, alpha, np.radians(25), tip, 80.0, "f.toml")
-    _check_arches_apart([left, np.array([[4.0, 0.0], [3.5, 2.0]])], (3.0, 3.0), 3.0, alpha, np.radians(25), tip, 80.0, "f.toml")
+    apart = np.array([[4.0, 0.0], [3.5, 2.0]])
+    _check_arches_apart([left, apart], (3.0, 3.0), 3.0, alpha, np.radians(25), tip, 80.0, "f.toml")
 
 
 def test_teeth_on_the_straight_segment_are_a_racks(example):
@@ -315,6 +321,7 @@ def test_a_tooth_outline_that_crosses_itself_at_a_square_corner_is_refused():
              for a in (0.0, 90.0, 180.0, 270.0)]
     problem = parse_problem({"driver": {"family": "composite", "segments": sides},
                              "pair": {"module": 2.0, "teeth": 30, "corner_pressure_angle_deg": 22.0}}, "f.toml")
-    with pytest.raises(InfeasibleError, match=r"f.toml: pair.corner_pressure_angle_deg = 22: the driver's tooth outline "
-                                              r"crosses itself at .* which turns the tangent by 90.0 deg"):
+    with pytest.raises(InfeasibleError, match=r"f.toml: pair.corner_pressure_angle_deg = 22: "
+                                              r"the driver's tooth outline crosses itself at .* "
+                                              r"which turns the tangent by 90.0 deg"):
         synthesize(problem)

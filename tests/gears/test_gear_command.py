@@ -27,7 +27,7 @@ def test_one_example_per_family():
     runs = [subprocess.Popen(_command(path, "--json"), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                              cwd=ROOT) for path in EXAMPLES]
     outputs = [run.communicate() for run in runs]
-    for path, run, (_, stderr) in zip(EXAMPLES, runs, outputs):
+    for path, run, (_, stderr) in zip(EXAMPLES, runs, outputs, strict=True):
         assert run.returncode == 0, (path.name, stderr)
     families = {json.loads(stdout)["driver"]["family"] for stdout, _ in outputs}
     assert families == {"ellipse", "higher_order_ellipse", "denatured_ellipse", "limacon", "denatured_limacon",
@@ -74,29 +74,34 @@ BAD = {
     "ratio cannot close": ('[driver]\nfamily = "ratio"\nphi_deg = [0, 90, 180, 270]\nratio = [1.0, 1.5, 1.0, 2.0]\n'
                            '[pair]\ncenter_distance = 50.0\n', ["closes at no center distance", "driver.correct"]),
     "center distance too small": ('[driver]\nfamily = "ellipse"\nsemi_major_axis = 30.0\neccentricity = 0.3\n'
-                                  '[pair]\ncenter_distance = 35.0\n', ["pair.center_distance = 35", "largest driver radius"]),
+                                  '[pair]\ncenter_distance = 35.0\n',
+                                  ["pair.center_distance = 35", "largest driver radius"]),
     "center distance does not close": ('[driver]\nfamily = "ellipse"\nsemi_major_axis = 30.0\neccentricity = 0.3\n'
                                        '[pair]\ncenter_distance = 70.0\n', ["does not close", "60.000000000"]),
     "eccentricity": ('[driver]\nfamily = "ellipse"\nsemi_major_axis = 30.0\neccentricity = 1.2\n',
                      ["driver.eccentricity", "1.2", "[0, 1)"]),
-    "m12 breaks eq 2": ('[driver]\nfamily = "denatured_limacon"\nbase = 53.0\namplitude = 13.0\nm11 = 1.5\nm12 = 0.375\n',
+    "m12 breaks eq 2": ('[driver]\nfamily = "denatured_limacon"\nbase = 53.0\namplitude = 13.0\n'
+                        'm11 = 1.5\nm12 = 0.375\n',
                         ["driver.m12", "0.375", "0.75", "breaks"]),
     "undercut module": ('[driver]\nfamily = "ellipse"\nsemi_major_axis = 30.0\neccentricity = 0.5\n'
                         '[pair]\nmodule = 4.0\nteeth = 12\n', ["module 4 undercuts", "below m / sin^2(alpha)"]),
-    "teeth per lobe": ('[driver]\nfamily = "higher_order_ellipse"\nsemi_major_axis = 30.0\neccentricity = 0.2\norder = 2\n'
-                       '[pair]\nmodule = 2.0\nteeth = 31\n', ["pair.teeth = 31", "multiple of the driver order 2"]),
+    "teeth per lobe": ('[driver]\nfamily = "higher_order_ellipse"\nsemi_major_axis = 30.0\neccentricity = 0.2\n'
+                       'order = 2\n[pair]\nmodule = 2.0\nteeth = 31\n',
+                       ["pair.teeth = 31", "multiple of the driver order 2"]),
     "expression calls something else": ('[driver]\nfamily = "ratio"\nexpression = "__import__(\'os\')"\n'
                                         '[pair]\ncenter_distance = 50.0\n', ["driver.expression", "is not allowed"]),
     "expression not periodic": ('[driver]\nfamily = "ratio"\nexpression = "1 + phi / 10"\ncorrect = true\n'
                                 '[pair]\ncenter_distance = 50.0\n', ["driver.ratio is not periodic"]),
     "expression goes negative": ('[driver]\nfamily = "ratio"\nexpression = "0.5 + cos(phi)"\ncorrect = true\n'
-                                 '[pair]\ncenter_distance = 50.0\n', ["driver.expression = '0.5 + cos(phi)' reaches -0.5", "goes negative"]),
+                                 '[pair]\ncenter_distance = 50.0\n',
+                                 ["driver.expression = '0.5 + cos(phi)' reaches -0.5", "goes negative"]),
     "pole narrower than the grid": ('[driver]\nfamily = "ratio"\nexpression = "1 + 1e-12/(cos(phi) - 0.5403)**2"\n'
                                     'correct = true\n[pair]\ncenter_distance = 50.0\n',
                                     [f"at phi = {360 - np.degrees(np.arccos(0.5403)):.2f} deg", "from 0.001 to 1000"]),
     "pole through zero narrower than the grid": (
         '[driver]\nfamily = "ratio"\nexpression = "1 + 0.3*cos(phi) + 1e-9/(sin(phi) - 0.90929742)"\ncorrect = true\n'
-        '[pair]\ncenter_distance = 50.0\n', [f"at phi = {180 - np.degrees(np.arcsin(0.90929742)):.2f} deg", "goes negative"]),
+        '[pair]\ncenter_distance = 50.0\n',
+        [f"at phi = {180 - np.degrees(np.arcsin(0.90929742)):.2f} deg", "goes negative"]),
     "jump": ('[driver]\nfamily = "ratio"\nexpression = "1.5 + 0.1*sqrt(cos(phi)**2)/cos(phi)"\ncorrect = true\n'
              '[pair]\ncenter_distance = 50.0\n', ["not resolved near phi = 90.0000", "a pole or a jump"]),
     "expression as a number": ('[driver]\nfamily = "ratio"\nexpression = 1.5\n[pair]\ncenter_distance = 50.0\n',

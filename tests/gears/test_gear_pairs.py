@@ -139,7 +139,8 @@ def test_published_gear_of_the_onion_transplanter_paper():
     assert m12 == pytest.approx(0.75)                    # eq (2): pi/1.5 + pi/m12 = 2 pi
     assert np.pi / 1.5 + np.pi / 0.375 == pytest.approx(10 * np.pi / 3)   # eq (19)'s value breaks eq (2)
     printed = denatured_limacon(53.0, 13.0, 1.5, 0.375)
-    jump = printed.evaluate(np.array([2 * np.pi / 3 + 1e-12]))[0] - printed.evaluate(np.array([2 * np.pi / 3 - 1e-12]))[0]
+    after, before = (printed.evaluate(np.array([2 * np.pi / 3 + side]))[0] for side in (1e-12, -1e-12))
+    jump = after - before
     assert jump[0] == pytest.approx(13.0)                # r jumps from 40 to 53 mm at 120 deg
     d = design_pair(denatured_limacon(53.0, 13.0, 1.5, m12), 1)
     assert d.joints[0]["radius_jump"] == pytest.approx(0, abs=1e-9)
@@ -153,7 +154,8 @@ def test_published_gear_of_the_onion_transplanter_paper():
 
 def _circle_table(radius, samples=4001):
     angle = np.linspace(0, 2 * np.pi, samples)
-    return pitch_table(radius * np.c_[np.cos(angle), np.sin(angle)], radius * angle, np.c_[-np.sin(angle), np.cos(angle)])
+    return pitch_table(radius * np.c_[np.cos(angle), np.sin(angle)], radius * angle,
+                       np.c_[-np.sin(angle), np.cos(angle)])
 
 
 def test_rack_envelope_on_a_circle_is_the_involute():
@@ -167,7 +169,8 @@ def test_rack_envelope_on_a_circle_is_the_involute():
     outline = rack_profile(table, 30, 2.0, alpha)
     radius, angle = np.hypot(*outline.T), np.unwrap(np.arctan2(outline[:, 1], outline[:, 0]))
     crossings = np.flatnonzero(np.diff(np.sign(radius - 30.0)))
-    at_pitch = [angle[k] + (30 - radius[k]) / (radius[k + 1] - radius[k]) * (angle[k + 1] - angle[k]) for k in crossings]
+    at_pitch = [angle[k] + (30 - radius[k]) / (radius[k + 1] - radius[k]) * (angle[k + 1] - angle[k])
+                for k in crossings]
     assert np.abs(np.diff(at_pitch) * 30.0 - np.pi).max() < 2e-3     # tooth and space are p/2 = pi m / 2
     assert radius.min() == pytest.approx(27.5) and radius.max() == pytest.approx(32.0)
 
@@ -325,7 +328,8 @@ def test_shaper_pair_meshes_and_its_transmission_error_is_the_polygons():
 
 def test_shaper_too_large_for_the_concave_stretch():
     d = _scaled_pair(denatured_limacon(1.0, 0.45, 1.2, denatured_partner(1.2)), 60)
-    with pytest.raises(InfeasibleError, match=r"pair.shaper_teeth = 200: the cutter's pitch radius 200.000 mm does not fit"):
+    with pytest.raises(InfeasibleError,
+                       match=r"pair.shaper_teeth = 200: the cutter's pitch radius 200.000 mm does not fit"):
         generate_teeth(d, 2.0, np.radians(20), "test", cutter="shaper", cutter_teeth=200)
 
 
@@ -347,7 +351,8 @@ def test_undercut_advice_for_teeth_that_set_the_size_is_what_clears_it():
     def teeth_of(count):
         return design_pair(curve.scaled(count * np.pi * 2.0 / design_pair(curve, 1).perimeters[0]), 1)
 
-    with pytest.raises(InfeasibleError, match=r"where pair.teeth sets the size.*more teeth \(about ([\d.]+) times") as error:
+    with pytest.raises(InfeasibleError,
+                       match=r"where pair.teeth sets the size.*more teeth \(about ([\d.]+) times") as error:
         generate_teeth(teeth_of(12), 2.0, np.radians(20), "test")
     enough = math.ceil(12 * float(re.search(r"about ([\d.]+) times", str(error.value)).group(1)) - 1e-9)
     with pytest.raises(InfeasibleError, match="undercuts the driver"):
@@ -361,7 +366,9 @@ def test_undercut_advice_for_teeth_that_set_the_size_is_what_clears_it():
 def test_concave_pitch_curve_is_refused_for_the_rack():
     curve = denatured_limacon(1.0, 0.45, 1.2, denatured_partner(1.2))   # eq (9) < 0: concave driver
     d = design_pair(curve.scaled(40 * np.pi * 2.0 / design_pair(curve, 1).perimeters[0]), 1)
-    with pytest.raises(InfeasibleError, match="driver pitch curve is concave at phi1 = .* rack cutter cannot generate it; set pair.cutter"):
+    with pytest.raises(InfeasibleError,
+                       match="driver pitch curve is concave at phi1 = .* "
+                             "rack cutter cannot generate it; set pair.cutter"):
         generate_teeth(d, 2.0, np.radians(20), "test")
 
 
@@ -462,7 +469,8 @@ def test_pinion_cutter_flanks_are_involutes_of_its_base_circle(teeth):
     edges = np.roll(outline, -1, axis=0) - outline
     middle = outline + edges / 2
     ends = np.hypot(*outline.T), np.hypot(*np.roll(outline, -1, axis=0).T)
-    flank = (np.fmin(*ends) >= lowest - 1e-9) & (np.abs(ends[1] - ends[0]) > 1e-9)     # edges that climb, above the base
+    # edges that climb, above the base
+    flank = (np.fmin(*ends) >= lowest - 1e-9) & (np.abs(ends[1] - ends[0]) > 1e-9)
     normal = np.c_[edges[:, 1], -edges[:, 0]] / np.hypot(*edges.T)[:, None]
     # distance from the centre to the normal through the edge's middle: the base radius, to second order in the edge
     reach_of_normal = np.abs(normal[flank, 0] * middle[flank, 1] - normal[flank, 1] * middle[flank, 0])

@@ -40,7 +40,8 @@ def _shift_one_tooth(outline: np.ndarray, pitch_radius_of, fraction: float) -> n
     root = radius < pitch_radius_of(angle) - 1.1 * MODULE            # root gaps are 1.25 modules deep
     starts = np.flatnonzero(root & ~np.roll(root, 1))
     ends = np.flatnonzero(root & ~np.roll(root, -1))
-    middles = np.sort([(s + e) // 2 for s, e in zip(starts, ends[np.searchsorted(ends, starts) % len(ends)])])
+    following = ends[np.searchsorted(ends, starts) % len(ends)]
+    middles = np.sort([(s + e) // 2 for s, e in zip(starts, following, strict=True)])
     first, second = middles[3], middles[4]
     shifted = outline.copy()
     turn = fraction * 2 * np.pi / TEETH

@@ -12,7 +12,8 @@ from transplanter.gears.ratio_expression import ExpressionError, parse_ratio
 @pytest.mark.parametrize("text, reference", [
     ("1 + 0.35*cos(phi) + 0.1*sin(2*phi)", lambda p: 1 + 0.35 * np.cos(p) + 0.1 * np.sin(2 * p)),
     ("(1 + 0.5*cos(phi))**2 / sqrt(2)", lambda p: (1 + 0.5 * np.cos(p)) ** 2 / np.sqrt(2)),
-    ("exp(-phi/pi) + log(2 + sin(phi)) - tan(phi/8)", lambda p: np.exp(-p / np.pi) + np.log(2 + np.sin(p)) - np.tan(p / 8)),
+    ("exp(-phi/pi) + log(2 + sin(phi)) - tan(phi/8)",
+     lambda p: np.exp(-p / np.pi) + np.log(2 + np.sin(p)) - np.tan(p / 8)),
 ])
 def test_formula_evaluates_as_numpy(text, reference):
     phi = ca.SX.sym("phi")

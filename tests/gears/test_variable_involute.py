@@ -39,7 +39,8 @@ def test_the_printed_steps_of_eq_5_hold(side):
     point, _, _ = derivation.shaper_contact(alpha, rolled, radius, side)
     base, phi_s = radius * sp.cos(alpha), side * rolled / radius
     to_s, to_m2 = point - sp.Matrix([0, radius]), sp.Matrix([0, -radius])
-    assert float(to_s.norm()) == pytest.approx(float(sp.sqrt(base ** 2 + (base * (sp.tan(alpha) + phi_s)) ** 2)), rel=1e-14)
+    expected = sp.sqrt(base ** 2 + (base * (sp.tan(alpha) + phi_s)) ** 2)
+    assert float(to_s.norm()) == pytest.approx(float(expected), rel=1e-14)
     angle = sp.acos(to_s.dot(to_m2) / (to_s.norm() * radius))
     assert float(angle) == pytest.approx(float(abs(sp.atan(sp.tan(alpha) + phi_s) - alpha)), rel=1e-12)
 

@@ -1,6 +1,7 @@
 """The onion transplanter of the onion-transplanter paper, the derived model: gear pair, kinematics, trajectory
 measures."""
 import dataclasses
+from itertools import pairwise
 
 import numpy as np
 import pytest
@@ -25,12 +26,12 @@ def _problem(**changes):
 
 def test_antiderivative_of_the_rolling_law():
     """dF/du = r1 / (a - r1) for r1 = l + b cos u (the closed form behind phi2), at seeded points."""
-    u, a, l, b = sp.symbols("u a l b", real=True)
-    residual = derivation.driven_antiderivative_residual(u, a, l, b)
+    u, a, base, b = sp.symbols("u a l b", real=True)
+    residual = derivation.driven_antiderivative_residual(u, a, base, b)
     rng = np.random.default_rng(1)
     for _ in range(6):
-        point = {u: rng.uniform(0, np.pi), l: rng.uniform(30, 60), b: rng.uniform(1, 20)}
-        point[a] = point[l] + point[b] + rng.uniform(5, 60)
+        point = {u: rng.uniform(0, np.pi), base: rng.uniform(30, 60), b: rng.uniform(1, 20)}
+        point[a] = point[base] + point[b] + rng.uniform(5, 60)
         assert abs(float(residual.subs(point))) < 1e-12
 
 
@@ -42,11 +43,13 @@ def test_driven_angle_against_quadrature_of_the_gear_library_curve(m12, center):
     curve = denatured_limacon(53.0, 13.0, 1.5, float(mech.m12[0]))
     a = float(mech.center_distance[0])
     phi = np.array([0.3, 1.9, 2 * np.pi / 3, 2.5, 4.0, 2 * np.pi])
-    radius = lambda x: float(curve.evaluate(np.array([x]))[0][0])  # noqa: E731
-    for x, value in zip(phi, mech.driven_angle(np.broadcast_to(phi, (1, phi.size)))[0]):
+    def radius(x):
+        return float(curve.evaluate(np.array([x]))[0][0])
+
+    for x, value in zip(phi, mech.driven_angle(np.broadcast_to(phi, (1, phi.size)))[0], strict=True):
         pieces = [0.0, min(x, 2 * np.pi / 3), x]
         expected = sum(quad(lambda s: radius(s) / (a - radius(s)), p, q, epsabs=1e-13)[0]
-                       for p, q in zip(pieces, pieces[1:]) if q > p)
+                       for p, q in pairwise(pieces) if q > p)
         assert value == pytest.approx(expected, rel=1e-10, abs=1e-12)
 
 
@@ -63,8 +66,8 @@ def test_closing_center_distance_is_the_gear_library_closure():
 def _uniform_crank(ratio_center, forward, l1=80.0, speed=2 * np.pi, sense="counterclockwise"):
     """b = 0: a circular pair r1 = l, phi2 = phi1 l / (a - l) exactly; alpha 0 from +x at phi1 = 0."""
     return _problem(design={"b": 1e-300, "l": 50.0, "l1": l1, "alpha_deg": 0.0},
-                    machine={"forward_speed_mm_s": forward, "forward": "-x", "driver_speed_rpm": speed * 60 / (2 * np.pi),
-                             "crank_pivot_mm": [7.0, -3.0]},
+                    machine={"forward_speed_mm_s": forward, "forward": "-x",
+                             "driver_speed_rpm": speed * 60 / (2 * np.pi), "crank_pivot_mm": [7.0, -3.0]},
                     conventions={"crank_sense": sense, "alpha_reference_deg": 0.0, "alpha_instant": "driver_zero"})
 
 
@@ -81,7 +84,8 @@ def test_kinematics_of_a_constructed_motion(sense):
     theta = s * phi / 2
     pin, tip, velocity, acceleration = mech.state(phi)
     pivot = np.array([150.0 + 7.0, -3.0])
-    assert np.allclose(pin[:, 0], pivot[:, None] + 80.0 * np.array([np.cos(theta[0]), np.sin(theta[0])]), rtol=0, atol=1e-11 * 80)
+    expected_pin = pivot[:, None] + 80.0 * np.array([np.cos(theta[0]), np.sin(theta[0])])
+    assert np.allclose(pin[:, 0], expected_pin, rtol=0, atol=1e-11 * 80)
     expected_tip = pin[:, 0] + np.array([[254.0 + 61.0], [-119.0]]) + np.array([-250.0 * t[0], 0 * t[0]])
     assert np.allclose(tip[:, 0], expected_tip, rtol=0, atol=1e-10 * 80)
     expected_velocity = np.array([-80 * omega * np.sin(theta[0]) - 250.0, 80 * omega * np.cos(theta[0])])
@@ -97,7 +101,9 @@ def test_velocity_and_acceleration_are_the_derivatives_of_the_positions():
     phi = np.array([0.4, 1.3, 3.0, 4.4, 5.9, 7.1])
     h = 1e-4
     dt = h / mech.driver_speed
-    tip = lambda x: mech.state(x[None, :])[1][:, 0]  # noqa: E731
+    def tip(x):
+        return mech.state(x[None, :])[1][:, 0]
+
     velocity = mech.state(phi[None, :])[2][:, 0]
     acceleration = mech.state(phi[None, :])[3][:, 0]
     differences = (tip(phi + h) - tip(phi - h)) / (2 * dt)
@@ -129,7 +135,9 @@ def test_depth_and_release_speed_of_a_trochoid(speed_ratio):
     m = measure(mech, problem.depth_window, 1024)
     assert m.vx_release[0] == pytest.approx(radius * w - v, abs=1e-9 * radius * w)
     window = problem.depth_window
-    gap = lambda s: abs(radius * np.sin(s) - v / w * s) - window  # noqa: E731
+    def gap(s):
+        return abs(radius * np.sin(s) - v / w * s) - window
+
     ends = [brentq(gap, side * 1e-9, side * np.pi) for side in (-1, 1)]
     expected = max(radius * (1 - np.cos(s)) for s in ends)
     assert m.depth[0] == pytest.approx(expected, rel=1e-9)
@@ -161,7 +169,8 @@ def test_driven_angle_sees_only_the_shape_of_the_pair():
     euler = derivation.driven_angle_scale_derivative(phi1, gear)
     rng = np.random.default_rng(3)
     for x in (0.7, 3.5):
-        point = {phi1: x, gear[1]: rng.uniform(40, 60), gear[2]: rng.uniform(5, 15), gear[3]: 1.4, gear[4]: 1 / (2 - 1 / 1.4)}
+        point = {phi1: x, gear[1]: rng.uniform(40, 60), gear[2]: rng.uniform(5, 15),
+                 gear[3]: 1.4, gear[4]: 1 / (2 - 1 / 1.4)}
         point[gear[0]] = point[gear[1]] + point[gear[2]] + 40
         assert abs(float(euler.subs(point))) < 1e-12
     problem = _problem()

@@ -61,7 +61,7 @@ def test_search_is_seeded_and_reproducible(problem):
     first, second = nsga2(problem), nsga2(problem)
     assert np.array_equal(first.designs, second.designs)
     assert np.array_equal(first.objectives, second.objectives)
-    again = score(problem, dict(zip(first.names, first.designs.T)), 512)
+    again = score(problem, dict(zip(first.names, first.designs.T, strict=True)), 512)
     assert np.allclose(again.objectives, first.objectives, rtol=1e-12, atol=1e-12)
     assert np.all(again.constraints <= 0)
 

@@ -35,31 +35,30 @@ tip_of_eq15 = numpy_twin(pickup_tip)
 def test_inverse_and_rates_recover_a_constructed_arm_motion(rng):
     """theta(u), psi(u) cubic polynomials -> P and its derivatives exactly -> the generated
     inverse gives theta and psi back on the right branch, and the rates their derivatives."""
-    s, l = 92.3, 162.0
+    carrier, arm = 92.3, 162.0          # lengths s and l of the reverse-gear-design paper
+    polynomial = np.polynomial.polynomial
     for _ in range(5):
         th, ps = rng.normal(size=4), rng.normal(size=4)
         u = rng.uniform(-0.5, 0.5)
-        def value(c, k):
-            return np.polynomial.polynomial.polyval(u, np.polynomial.polynomial.polyder(c, k)) if k else \
-                np.polynomial.polynomial.polyval(u, c)
-        t = [value(th, k) for k in range(4)]
-        p = [value(ps, k) for k in range(4)]
+        t = [polynomial.polyval(u, polynomial.polyder(th, k)) for k in range(4)]
+        p = [polynomial.polyval(u, polynomial.polyder(ps, k)) for k in range(4)]
         # P' = s t1 e_perp(theta) + l p1 e_perp(psi), and so on: differentiate s e(theta(u)) symbolically by hand
         e, n = unit(t[0]), unit(t[0] + np.pi / 2)
         f, m = unit(p[0]), unit(p[0] + np.pi / 2)
-        d1 = s * t[1] * n + l * p[1] * m
-        d2 = s * (t[2] * n - t[1] ** 2 * e) + l * (p[2] * m - p[1] ** 2 * f)
-        d3 = s * (t[3] * n - 3 * t[1] * t[2] * e - t[1] ** 3 * n) + l * (p[3] * m - 3 * p[1] * p[2] * f - p[1] ** 3 * m)
-        point = s * e + l * f
-        phi3 = np.arctan2(*(s * e + l * f)[::-1])
+        d1 = carrier * t[1] * n + arm * p[1] * m
+        d2 = carrier * (t[2] * n - t[1] ** 2 * e) + arm * (p[2] * m - p[1] ** 2 * f)
+        d3 = (carrier * (t[3] * n - 3 * t[1] * t[2] * e - t[1] ** 3 * n)
+              + arm * (p[3] * m - 3 * p[1] * p[2] * f - p[1] ** 3 * m))
+        point = carrier * e + arm * f
+        phi3 = np.arctan2(*point[::-1])
         branch = np.sign(np.angle(np.exp(1j * (t[0] - phi3))))     # theta = phi3 + branch * phi4
-        theta, psi = inverse(point, [s, l], [branch])[0]
+        theta, psi = inverse(point, [carrier, arm], [branch])[0]
         assert np.angle(np.exp(1j * (theta - t[0]))) == pytest.approx(0, abs=1e-12)
         assert np.angle(np.exp(1j * (psi - p[0]))) == pytest.approx(0, abs=1e-12)
-        got = rates([t[0], p[0]], [s, l], np.r_[d1, d2, d3])[0]
+        got = rates([t[0], p[0]], [carrier, arm], np.r_[d1, d2, d3])[0]
         assert got == pytest.approx([t[1], p[1], t[2], p[2], t[3], p[3]], rel=1e-9, abs=1e-9)
         gamma_per_theta = (p[1] - t[1]) / t[1]
-        assert slope([t[0], p[0]], [s, l], d1)[0][0] == pytest.approx(gamma_per_theta, rel=1e-9)
+        assert slope([t[0], p[0]], [carrier, arm], d1)[0][0] == pytest.approx(gamma_per_theta, rel=1e-9)
 
 
 def test_gears_stop_where_the_distance_from_the_pivot_is_stationary():
@@ -103,7 +102,8 @@ def test_rice_example_reproduces_its_path_by_rolling(rice):
     assert rice.monotonic
     assert stationary_radii(rice.motion) == []         # both extremes touch, the one at the start too
     assert (rice.motion.carrier_length, rice.motion.arm_length) == pytest.approx((92.3, 162.0), abs=1e-9)
-    assert [(t.circle, t.parameter) for t in rice.motion.touches] == [("outer", pytest.approx(np.pi)), ("inner", TWO_PI)]
+    touches = [(t.circle, t.parameter) for t in rice.motion.touches]
+    assert touches == [("outer", pytest.approx(np.pi)), ("inner", TWO_PI)]
     assert rice.verification.max_error_mm < 1e-6
     assert max(abs(rice.train.stage_one.closure_error), abs(rice.train.stage_two.closure_error)) < 1e-9
     ratio = rice.motion.total_ratio()
@@ -176,7 +176,8 @@ def test_idler_rolling_against_the_pitch_point_speeds():
     # the claim of docs/reverse.md on this train: it can only produce ratios with i13(c) i13(c*) = 1
     h, where = 1e-4, np.linspace(0.3, 6.0, 9)
     def rolled_rate(at):
-        return (roll_idler_train(stage_one, planet, at + h)[0] - roll_idler_train(stage_one, planet, at - h)[0]) / (2 * h)
+        ahead, behind = roll_idler_train(stage_one, planet, at + h)[0], roll_idler_train(stage_one, planet, at - h)[0]
+        return (ahead - behind) / (2 * h)
     star = np.interp(np.mod(np.interp(where, c, psi) + np.pi, TWO_PI), psi, c)
     assert rolled_rate(where) * rolled_rate(star) == pytest.approx(1, abs=1e-6)
     assert max(abs(stage_one.closure_error), abs(stage_two.closure_error)) < 1e-9
@@ -187,7 +188,8 @@ def test_self_crossing_path_is_accepted():
     tau = np.linspace(0, TWO_PI, 19, endpoint=False)
     rho = 162 - 92.3 * np.cos(tau)
     alpha = np.radians(-90 + 12 * np.sin(2 * tau))
-    data = {"trajectory": {"kind": "control_points", "points": np.c_[rho * np.cos(alpha), rho * np.sin(alpha)].tolist()},
+    points = np.c_[rho * np.cos(alpha), rho * np.sin(alpha)].tolist()
+    data = {"trajectory": {"kind": "control_points", "points": points},
             "arm": {"direction": "clockwise"}}
     result = synthesize(parse_problem(data))
     x = np.linspace(0, TWO_PI, 400, endpoint=False)

@@ -17,7 +17,8 @@ def _derived(relative: RelativeAngle, c: np.ndarray, k: float):
 
 
 def test_a_constant_ratio_gives_four_circles_of_half_the_center_distance():
-    """rho' = 1, k = 1: every gear is a circle of radius a / 2 (a kappa = 2, rho / a = 1/2, convexity r^2 / a^2 = 1/4)."""
+    """rho' = 1, k = 1: every gear is a circle of radius a / 2
+    (a kappa = 2, rho / a = 1/2, convexity r^2 / a^2 = 1/4)."""
     convexity, bend, radius = curvature([[1.0], [0.0], [0.0]], [[1.0]])
     assert np.allclose(convexity, 0.25, rtol=1e-15) and np.allclose(bend, 2.0, rtol=1e-15)
     assert np.allclose(radius, 0.5, rtol=1e-15)
@@ -34,7 +35,8 @@ def test_derived_curvature_is_the_gear_library_curvature_of_the_designed_train(s
     train = design_train(relative, centers)
     k = train.correction
     sun_turns = train.stage_one.phi1
-    intermediate_turns = train.intermediate_turn.inverse(np.mod(train.stage_two.phi1, 2 * np.pi))  # as the library wraps
+    # wrapped as the library wraps
+    intermediate_turns = train.intermediate_turn.inverse(np.mod(train.stage_two.phi1, 2 * np.pi))
     convex, _, radius = _derived(relative, sun_turns, k)
     convex2, _, radius2 = _derived(relative, intermediate_turns, k)
     stages = ((train.stage_one, convex[:2], radius[:2]), (train.stage_two, convex2[2:], radius2[2:]))

@@ -93,9 +93,9 @@ def test_whole_counts_and_layout_on_a_spline(smooth):
     m = smooth.module
     a1, a2 = smooth.train.center_distances
     curves = []
-    for stage, a in zip((smooth.train.stage_one, smooth.train.stage_two), (a1, a2)):
+    for stage, a in zip((smooth.train.stage_one, smooth.train.stage_two), (a1, a2), strict=True):
         curves += [stage.driver, conjugate_curve(stage.driver, a)]
-    for gear, curve in zip(smooth.gears, curves):
+    for gear, curve in zip(smooth.gears, curves, strict=True):
         assert arc_map(curve).total == pytest.approx(np.pi * m * gear.teeth, rel=1e-9)
         closed = np.r_[gear.pitch_curve, gear.pitch_curve[:1]]
         assert arc_lengths(closed)[-1] == pytest.approx(np.pi * m * gear.teeth, rel=1e-7)
@@ -103,8 +103,8 @@ def test_whole_counts_and_layout_on_a_spline(smooth):
     assert np.hypot(*(smooth.shaft - [CARRIER, 0.0])) == pytest.approx(a2, rel=1e-12)
     assert abs(a1 - a2) <= CARRIER <= a1 + a2
     limit = m / np.sin(np.radians(20)) ** 2
-    for stage, z in zip((smooth.train.stage_one, smooth.train.stage_two), smooth.counts):
-        smallest = min(r[c > 0].min() for c, r in zip(stage.convexity, stage.curvature_radius))
+    for stage, z in zip((smooth.train.stage_one, smooth.train.stage_two), smooth.counts, strict=True):
+        smallest = min(r[c > 0].min() for c, r in zip(stage.convexity, stage.curvature_radius, strict=True))
         assert smallest >= limit
         assert smallest * (z - 1) / z < limit                     # the count is the least that clears it
     assert smooth.passed, smooth.failures

@@ -28,8 +28,8 @@ def _poses(ax, poses: np.ndarray, labels, size: float):
         ax.annotate("", xy=tip, xytext=(x, y),
                     arrowprops={"arrowstyle": "-|>", "color": "k", "lw": 1.2, "mutation_scale": 9})
         ax.plot(x, y, "ko", ms=3)
-        ax.annotate(labels[k] if labels else f"P{k + 1}", (x, y), textcoords="offset points", xytext=(4, -10), fontsize=8,
-                    parse_math=False)
+        ax.annotate(labels[k] if labels else f"P{k + 1}", (x, y), textcoords="offset points", xytext=(4, -10),
+                    fontsize=8, parse_math=False)
     ax.plot([], [], "k-", lw=1.2, label="poses (reference point, direction)")
 
 

@@ -71,7 +71,7 @@ def burmester_points(poses: np.ndarray, tolerance: float = 1e-10):
 
 
 def _distinct(centers, circles, gap: float = 1e-7):
-    kept = []
+    kept: list[int] = []
     for k, g in enumerate(centers):
         if all(np.linalg.norm(g - centers[i]) > gap or np.linalg.norm(circles[k] - circles[i]) > gap for i in kept):
             kept.append(k)

@@ -33,9 +33,9 @@ def _solver(poses: np.ndarray, radius: float) -> Solver:
 
 def _starts(poses: np.ndarray, radius: float, count: int = 16):
     centers, circles = burmester_points(poses[:5])
-    starts = list(zip(centers, circles))
+    starts = list(zip(centers, circles, strict=True))
     family = trace_dyads(poses[:4], directions=4 * count, radius=radius)
-    pick = np.linspace(0, len(family[0]) - 1, min(count, len(family[0]))).astype(int) if len(family[0]) else []
+    pick = np.linspace(0, len(family[0]) - 1, min(count, len(family[0]))).astype(int)
     starts += [(family[0][k], family[1][k]) for k in pick]
     return starts
 
@@ -56,7 +56,7 @@ def least_squares_dyads(poses: np.ndarray, radius: float, keep: int = 4):
         raise SolverError("least-squares dyad synthesis found no optimum from any start",
                           ", ".join(sorted(set(statuses))) or "no start")
     found.sort(key=lambda item: item[0])
-    distinct = []
+    distinct: list[tuple[float, np.ndarray]] = []
     for value, z in found:
         if all(np.linalg.norm(z[:4] - other[:4]) > 1e-6 for _, other in distinct):
             distinct.append((value, z))

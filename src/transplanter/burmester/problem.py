@@ -154,7 +154,8 @@ def parse_problem(data: dict, source: str = "<dict>") -> DyadProblem:
     for k, pose in enumerate(poses_table):
         where = f"poses[{k}]"
         read.keys(pose, _POSE_KEYS, where)
-        rows.append([read.number(pose, "x", where), read.number(pose, "y", where), read.number(pose, "angle_deg", where)])
+        rows.append([read.number(pose, "x", where), read.number(pose, "y", where),
+                     read.number(pose, "angle_deg", where)])
         labels.append(read.text(pose, "label", where, LONGEST_LABEL, f"P{k + 1}"))
     degrees = np.array(rows)
     if np.any(np.abs(degrees[:, 2]) > 360):
@@ -212,5 +213,5 @@ def check_distinct(read: FieldReader, degrees: np.ndarray, field: str):
             same_place = np.linalg.norm(degrees[i, :2] - degrees[j, :2]) <= 1e-9 * spread
             same_turn = abs((degrees[i, 2] - degrees[j, 2] + 180) % 360 - 180) <= 1e-9
             if same_place and same_turn:
-                read.fail(f"{field}[{j}]", dict(zip(("x", "y", "angle_deg"), degrees[j, :3].tolist())),
+                read.fail(f"{field}[{j}]", dict(zip(("x", "y", "angle_deg"), degrees[j, :3].tolist(), strict=True)),
                           f"a pose different from {field}[{i}] (they coincide)")

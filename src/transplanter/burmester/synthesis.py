@@ -63,7 +63,7 @@ def _pure_rotation(problem: DyadProblem, poses: np.ndarray, center: np.ndarray) 
     radius_mm = problem.radius_mm or 10 * frame.scale
     circles = problem.circle_points
     if not len(circles):
-        reach = np.linalg.norm(poses[0, :2] - center) or min(frame.scale, radius_mm / 2)
+        reach = float(np.linalg.norm(poses[0, :2] - center)) or min(frame.scale, radius_mm / 2)
         circles = center + reach * np.array([[np.cos(poses[0, 2]), np.sin(poses[0, 2])]])
     method = (f"pure rotation about ({center[0]:.6g}, {center[1]:.6g}) mm: every pose is pose 1 turned about "
               "this point, so every dyad centred there guides the body, whatever its circle point "

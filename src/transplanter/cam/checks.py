@@ -93,7 +93,8 @@ class CamChecks:
         for kind, extreme in self.pressure.items():
             if extreme is not None and extreme.value > self.pressure_limit:
                 out.append(f"largest pressure angle on {kind} {np.degrees(extreme.value):.3f} deg at cam angle "
-                           f"{np.degrees(extreme.angle):.2f} deg exceeds the limit {np.degrees(self.pressure_limit):g} deg")
+                           f"{np.degrees(extreme.angle):.2f} deg exceeds the limit "
+                           f"{np.degrees(self.pressure_limit):g} deg")
         for stretch in self.undercut if self.flat_faced else ():
             out.append(f"the flat face cannot follow the profile from cam angle {np.degrees(stretch.start):.2f} to "
                        f"{np.degrees(stretch.end):.2f} deg: its curvature radius R_b + s + s'' falls to "
@@ -104,7 +105,8 @@ class CamChecks:
         smallest = self.min_profile_radius
         if self.profile_radius_limit > 0 and smallest is not None and 0 < smallest.value < self.profile_radius_limit:
             out.append(f"the profile's smallest convex radius {smallest.value:.4f} mm at cam angle "
-                       f"{np.degrees(smallest.angle):.2f} deg is below limits.profile_radius_mm = {self.profile_radius_limit:g}")
+                       f"{np.degrees(smallest.angle):.2f} deg is below "
+                       f"limits.profile_radius_mm = {self.profile_radius_limit:g}")
         for stretch in self.interference:
             out.append(f"the roller cuts {stretch.worst:.4f} mm into the profile from cam angle "
                        f"{np.degrees(stretch.start):.2f} to {np.degrees(stretch.end):.2f} deg")
@@ -122,7 +124,7 @@ def runs(mask: np.ndarray) -> list[np.ndarray]:
     shift = int(np.argmin(mask))                      # start the cycle on a False
     rolled = np.roll(mask, -shift)
     edges = np.flatnonzero(np.diff(np.concatenate([[0], rolled.astype(int), [0]])))
-    return [(np.arange(a, b) + shift) % mask.size for a, b in zip(edges[::2], edges[1::2])]
+    return [(np.arange(a, b) + shift) % mask.size for a, b in zip(edges[::2], edges[1::2], strict=True)]
 
 
 def _polish(problem, base_radius, geometry, k, quantity, bounds_segment) -> Extreme:
@@ -150,7 +152,8 @@ def _smallest(problem, base_radius, geometry, quantity, mask) -> Extreme | None:
     return _polish(problem, base_radius, geometry, k, quantity, int(geometry.segment[k]))
 
 
-def _with_extreme(stretches: tuple[Stretch, ...], extreme: Extreme | None, limit: float, step: float) -> tuple[Stretch, ...]:
+def _with_extreme(stretches: tuple[Stretch, ...], extreme: Extreme | None, limit: float,
+                  step: float) -> tuple[Stretch, ...]:
     """``stretches`` found on the samples (``step`` apart), widened to the polished ``extreme`` when it falls below
     ``limit`` (e.g. the sharpest point of a segment is its end, where the next segment's sample sits), or with it
     as a stretch of its own when no stretch is within a sample of it."""
@@ -191,15 +194,16 @@ def interference(geometry: CamGeometry, roller_radius: float) -> tuple[Stretch, 
     would cut into the cam there. Distances to the profile's vertices bound those to the profile from
     above, so an overlap found is real."""
     distance, _ = cKDTree(geometry.profile).query(geometry.pitch)
-    overlap = roller_radius - distance
+    overlap = roller_radius - np.asarray(distance)      # an array for an array of points
     return _stretches(geometry, overlap > INTERFERENCE_SHARE * roller_radius, overlap, np.max)
 
 
 def acceleration_jumps(problem: CamProblem) -> tuple[AccelerationJump, ...]:
     """Jumps of the follower's acceleration where one segment meets the next (and at the end of the turn)."""
     segments, starts, levels = problem.segments, segment_starts(problem.segments), segment_levels(problem.segments)
-    ends = [segment_motion(s, level, [0.0, s.angle])[2] for s, level in zip(segments, levels)]
-    scale = max(np.abs(segment_motion(s, level, np.linspace(0, s.angle, 65))[2]).max() for s, level in zip(segments, levels))
+    ends = [segment_motion(s, level, [0.0, s.angle])[2] for s, level in zip(segments, levels, strict=True)]
+    scale = max(np.abs(segment_motion(s, level, np.linspace(0, s.angle, 65))[2]).max()
+                for s, level in zip(segments, levels, strict=True))
     jumps = []
     for k in range(len(segments)):
         after = (k + 1) % len(segments)
@@ -225,8 +229,8 @@ def check(problem: CamProblem, geometry: CamGeometry) -> CamChecks:
     smallest_pitch = _smallest(problem, base, geometry, lambda g: g.curvature_radius, convex)
     smallest_profile = None if smallest_pitch is None else Extreme(smallest_pitch.value - roller, smallest_pitch.angle)
     concave = _smallest(problem, base, geometry, lambda g: np.abs(g.profile_curvature_radius), ~convex)
-    undercut = _with_extreme(_stretches(geometry, convex & (geometry.curvature_radius < roller), geometry.curvature_radius,
-                                        np.min), smallest_pitch, roller, step)
+    undercut = _with_extreme(_stretches(geometry, convex & (geometry.curvature_radius < roller),
+                                        geometry.curvature_radius, np.min), smallest_pitch, roller, step)
     return CamChecks(pressure=pressure_extremes(problem, geometry), min_pitch_radius=smallest_pitch,
                      min_profile_radius=smallest_profile, min_concave_profile_radius=concave, undercut=undercut,
                      interference=interference(geometry, roller), acceleration_jumps=acceleration_jumps(problem),

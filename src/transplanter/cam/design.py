@@ -16,7 +16,7 @@ import numpy as np
 from transplanter.cam.checks import check, interference
 from transplanter.cam.kinematics import evaluate
 from transplanter.cam.problem import CamProblem
-from transplanter.errors import InfeasibleError
+from transplanter.errors import InfeasibleError, ProblemError
 
 #: Scanned base radii, and the cam angles per turn of the scan.
 SCAN_SIZES, SCAN_SAMPLES = 96, 720
@@ -24,19 +24,21 @@ SCAN_SIZES, SCAN_SAMPLES = 96, 720
 BISECTION_SHARE = 1e-7
 
 
-def base_radius_range(problem: CamProblem) -> tuple[float, float]:
-    """Open interval of base radii (mm) on which the follower sits on the cam and the roller fits in it."""
+def base_radius_range(problem: CamProblem, largest: float) -> tuple[float, float]:
+    """Open interval of base radii (mm) up to ``largest`` on which the follower sits on the cam and the roller
+    fits in it."""
     follower = problem.follower
     roller = follower.roller_radius
-    low, high = roller, problem.max_base_radius
+    low, high = roller, largest
     if follower.kind == "flat_faced":
         low = 1e-6 * high
     elif follower.kind == "translating":
         low = max(low, abs(follower.offset) - roller)
     else:
-        reach = float(np.hypot(*follower.pivot))
-        low = max(low, abs(reach - follower.arm_length) - roller)
-        high = min(high, reach + follower.arm_length - roller)
+        pivot, arm = follower.arm
+        reach = float(np.hypot(*pivot))
+        low = max(low, abs(reach - arm) - roller)
+        high = min(high, reach + arm - roller)
     return low, high
 
 
@@ -69,28 +71,35 @@ def smallest_base_radius(problem: CamProblem) -> tuple[float, int]:
     InfeasibleError
         When no base circle up to ``problem.max_base_radius`` meets them: says what the largest gives.
     """
-    low, high = base_radius_range(problem)
+    largest = problem.max_base_radius
+    if largest is None:
+        raise ProblemError(f"{problem.source}: max_base_radius = None: expected the largest base radius to try (mm); "
+                           "a problem with its base radius given has no base circle to design")
+    low, high = base_radius_range(problem, largest)
     if not low < high:
-        raise InfeasibleError(f"{problem.source}: design.max_base_radius = {problem.max_base_radius:g}: no base circle "
+        raise InfeasibleError(f"{problem.source}: design.max_base_radius = {largest:g}: no base circle "
                               f"above {low:.6g} mm fits the roller and the follower; expected more than {low:.6g}")
     sizes = np.geomspace(low, high, SCAN_SIZES + 1)[1:]
     sizes[-1] = high * (1 - 1e-9)
-    previous = low
-    for evaluated, size in enumerate(sizes, 1):
+    previous, evaluated = low, 0
+    for size in sizes:
+        evaluated += 1
         if _passes(problem, size, SCAN_SAMPLES):
             break
         previous = size
     else:
         pressure, sharpness, overlap = _worst(problem, sizes[-1], problem.samples)
         raise InfeasibleError(
-            f"{problem.source}: limits.pressure_angle_deg = {np.degrees(problem.pressure_limit):g}: no base circle up to "
-            f"{sizes[-1]:.6g} mm meets it without undercut (there the largest pressure angle is {np.degrees(pressure):.3f} "
-            f"deg, the sharpest convex pitch radius less the roller {sharpness:.4g} mm, the roller overlap {overlap:.4g} mm); "
-            + ("raise design.max_base_radius or the limit" if high >= problem.max_base_radius else
+            f"{problem.source}: limits.pressure_angle_deg = {np.degrees(problem.pressure_limit):g}: "
+            f"no base circle up to {sizes[-1]:.6g} mm meets it without undercut (there the largest pressure angle is "
+            f"{np.degrees(pressure):.3f} deg, the sharpest convex pitch radius less the roller {sharpness:.4g} mm, "
+            f"the roller overlap {overlap:.4g} mm); "
+            + ("raise design.max_base_radius or the limit" if high >= largest else
                "the arm cannot reach a larger base circle: move the pivot or change the arm, or raise the limit")
             + ", or lengthen the rise and return angles")
     failing, passing = previous, size
-    while not _passes(problem, passing, problem.samples) and passing < high:   # the scan's coarser samples missed a peak
+    # the scan's coarser samples missed a peak
+    while not _passes(problem, passing, problem.samples) and passing < high:
         failing, passing = passing, min(passing * 1.01, high)
         evaluated += 1
     while passing - failing > BISECTION_SHARE * passing:
@@ -104,7 +113,8 @@ def smallest_base_radius(problem: CamProblem) -> tuple[float, int]:
     failing, step = passing, BISECTION_SHARE * passing
     while not _passes_polished(problem, min(failing + step, high)):
         if failing + step >= high:
-            raise InfeasibleError(f"{problem.source}: limits.pressure_angle_deg = {np.degrees(problem.pressure_limit):g}: "
+            raise InfeasibleError(f"{problem.source}: "
+                                  f"limits.pressure_angle_deg = {np.degrees(problem.pressure_limit):g}: "
                                   f"no base circle up to {high:.6g} mm meets it without undercut; raise "
                                   "design.max_base_radius or the limit")
         failing, step = failing + step, 2 * step

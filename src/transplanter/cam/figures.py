@@ -26,7 +26,7 @@ def draw_motion(result: CamResult) -> Figure:
     axes = fig.subplots(4, 1, sharex=True)
     labels = (f"s / {unit}", f"ds/dθ / {unit} rad⁻¹", f"d²s/dθ² / {unit} rad⁻²", f"d³s/dθ³ / {unit} rad⁻³")
     angle = np.degrees(g.angle)
-    for ax, values, label in zip(axes, g.motion, labels):
+    for ax, values, label in zip(axes, g.motion, labels, strict=True):
         ax.plot(angle, values * scale, lw=1)
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
@@ -74,8 +74,9 @@ def _draw_follower(ax, result: CamResult, k: int):
     ax.plot(center[0] + follower.roller_radius * np.cos(circle), center[1] + follower.roller_radius * np.sin(circle),
             color="tab:orange", lw=1.2)
     if follower.kind == "oscillating":
-        ax.plot(*np.array([follower.pivot, center]).T, **style)
-        ax.plot(*follower.pivot, "k^", ms=7)
+        pivot, _ = follower.arm
+        ax.plot(*np.array([pivot, center]).T, **style)
+        ax.plot(*pivot, "k^", ms=7)
     else:
         ax.plot([center[0], center[0]], [center[1], np.abs(g.center[:, 1]).max() + follower.roller_radius], **style)
 
@@ -86,7 +87,7 @@ def draw_profile(result: CamResult, positions: int = 4) -> Figure:
     follower = problem.follower
     fig = Figure(figsize=(4 * positions, 4.6), layout="constrained")
     axes = fig.subplots(1, positions, sharex=True, sharey=True)
-    for ax, k in zip(axes, np.linspace(0, g.angle.size, positions, endpoint=False).astype(int)):
+    for ax, k in zip(axes, np.linspace(0, g.angle.size, positions, endpoint=False).astype(int), strict=True):
         turn = problem.direction * g.angle[k]
         ax.fill(*rotate_about(g.profile, (0.0, 0.0), turn).T, color="tab:blue", alpha=0.3, lw=0.8, ec="tab:blue")
         if follower.kind != "flat_faced":

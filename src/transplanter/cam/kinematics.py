@@ -90,17 +90,17 @@ def motion_at(segments: tuple[Segment, ...], angle, segment: int | None = None) 
     else:
         index = np.full(angle.shape, segment)
     motion = np.empty((4, angle.size))
-    for k, segment in enumerate(segments):
+    for k, piece in enumerate(segments):
         mask = index == k
         if mask.any():
-            motion[:, mask] = segment_motion(segment, levels[k], angle[mask] - starts[k])
+            motion[:, mask] = segment_motion(piece, levels[k], angle[mask] - starts[k])
     return motion, index
 
 
 def oscillating_start(follower: Follower, pitch_radius: float, direction: int) -> tuple[float, float]:
     """Arm angle b0 (rad from +x at the pivot) with the roller centre on the base pitch circle, and the
     sense kappa (+-1) in which a positive swing moves the roller away from the cam centre."""
-    pivot, arm = follower.pivot, follower.arm_length
+    pivot, arm = follower.arm
     reach = float(np.hypot(*pivot))
     toward_cam = np.arctan2(-pivot[1], -pivot[0])
     spread = np.arccos(np.clip((reach**2 + arm**2 - pitch_radius**2) / (2 * reach * arm), -1.0, 1.0))
@@ -121,8 +121,8 @@ def roller_center(problem: CamProblem, base_radius: float, motion: np.ndarray):
         height = np.sqrt(pitch_radius**2 - follower.offset**2)
         return numpy_twin(cam_translating_roller)(group(follower.offset, height), motion[:3])
     start, sense = oscillating_start(follower, pitch_radius, problem.direction)
-    return numpy_twin(cam_oscillating_roller)(group(*follower.pivot, follower.arm_length, start, sense),
-                                                       motion[:3])
+    pivot, arm = follower.arm
+    return numpy_twin(cam_oscillating_roller)(group(*pivot, arm, start, sense), motion[:3])
 
 
 def _flat_faced(problem: CamProblem, base_radius: float, angle, index, motion) -> CamGeometry:

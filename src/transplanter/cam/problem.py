@@ -33,6 +33,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -100,6 +101,13 @@ class Follower:
     arm_length: float | None = None
     pulled: bool = True
 
+    @property
+    def arm(self) -> tuple[np.ndarray, float]:
+        """(pivot, arm_length) of an oscillating follower (mm)."""
+        if self.pivot is None or self.arm_length is None:
+            raise TypeError(f"a {self.kind} follower has no arm")
+        return self.pivot, self.arm_length
+
 
 @dataclass(frozen=True)
 class CamProblem:
@@ -166,7 +174,7 @@ def _check_follower(check: ClassFields, follower):
     """CamProblem.follower: a Follower of a known kind with positive sizes (mm) and, when it swings, a pivot."""
     if not isinstance(follower, Follower) or follower.kind not in _FOLLOWER_KEYS:
         check.fail("follower", follower, f"a Follower of kind {', '.join(map(repr, _FOLLOWER_KEYS))}")
-    sizes = [("roller_radius", follower.roller_radius)] if follower.kind != "flat_faced" else []
+    sizes: list[tuple[str, Any]] = [("roller_radius", follower.roller_radius)] if follower.kind != "flat_faced" else []
     if follower.kind == "oscillating":
         sizes.append(("arm_length", follower.arm_length))
         pivot = np.asarray(follower.pivot, float) if is_sequence(follower.pivot) else None
@@ -195,7 +203,8 @@ def _check_segments(check: ClassFields, segments, follower):
         if not is_finite_number(segment.angle) or not 0 < segment.angle <= 2 * np.pi:
             check.fail(f"segments[{k}].angle", segment.angle, "a positive angle up to 2 pi (rad)")
         if not is_finite_number(segment.lift) or (follower.kind == "oscillating" and abs(segment.lift) >= np.pi):
-            check.fail(f"segments[{k}].lift", segment.lift, "a finite lift (mm), or for a swing an angle (rad) below pi")
+            check.fail(f"segments[{k}].lift", segment.lift,
+                       "a finite lift (mm), or for a swing an angle (rad) below pi")
         object.__setattr__(segment, "angle", float(segment.angle))
         object.__setattr__(segment, "lift", float(segment.lift))
 
@@ -239,7 +248,8 @@ def _size(follower: Follower, segments: tuple[Segment, ...]) -> float:
     """The cam's largest given length (mm): a translating lift, the roller, the offset, the pivot's reach."""
     lengths = [follower.roller_radius, abs(follower.offset)]
     if follower.kind == "oscillating":
-        lengths.append(float(np.hypot(*follower.pivot)) + follower.arm_length)
+        pivot, arm = follower.arm
+        lengths.append(float(np.hypot(*pivot)) + arm)
     else:
         lengths += [abs(s.lift) for s in segments]
     return max(lengths)
@@ -272,8 +282,8 @@ def _segments(read: FieldReader, data: dict, oscillating: bool) -> tuple[Segment
         kind = _choice(read, row, "kind", where, SEGMENT_KINDS)
         angle = np.radians(_positive(read, row, "angle_deg", where))
         if other_key in row:
-            read.fail(f"{where}.{other_key}", row[other_key], f"{amount_key} for {'an oscillating' if oscillating else 'a translating'} "
-                      "follower")
+            follower_kind = "an oscillating" if oscillating else "a translating"
+            read.fail(f"{where}.{other_key}", row[other_key], f"{amount_key} for {follower_kind} follower")
         if kind == "dwell":
             for key in ("law", amount_key):
                 if key in row:
@@ -328,7 +338,8 @@ def parse_problem(data: dict, source: str = "<dict>") -> CamProblem:
     max_base = None
     if design is not None:
         read.keys(design, {"max_base_radius"}, "design")
-        max_base = _positive(read, design, "max_base_radius", "design", default=DESIGN_REACH * _size(follower, segments))
+        max_base = _positive(read, design, "max_base_radius", "design",
+                             default=DESIGN_REACH * _size(follower, segments))
         if "base_radius" in cam:
             read.fail("cam.base_radius", cam["base_radius"], "no base radius with [design], which finds the smallest")
     base = None if design is not None else _positive(read, cam, "base_radius", "cam")
@@ -371,7 +382,8 @@ def check_swing(problem: CamProblem, base_radius: float, fail):
     follower = problem.follower
     if follower.kind != "oscillating":
         return
-    reach, arm, pitch = float(np.hypot(*follower.pivot)), follower.arm_length, base_radius + follower.roller_radius
+    pivot, arm = follower.arm
+    reach, pitch = float(np.hypot(*pivot)), base_radius + follower.roller_radius
     rest = np.arccos(np.clip((reach**2 + arm**2 - pitch**2) / (2 * reach * arm), -1.0, 1.0))
     peak = float(np.max(np.cumsum([segment.lift for segment in problem.segments])))
     if peak >= np.pi - rest:
@@ -391,15 +403,16 @@ def check_base_radius(follower: Follower, base_radius: float, fail):
     pitch = base_radius + roller
     if follower.kind == "translating" and abs(follower.offset) >= pitch:
         fail("follower.offset", follower.offset, f"less than base radius + roller radius = {pitch:g} mm in size")
-    if follower.kind == "oscillating" and follower.pivot is not None:
-        reach = float(np.hypot(*follower.pivot))
+    if follower.kind == "oscillating":
+        pivot, arm = follower.arm
+        reach = float(np.hypot(*pivot))
         if reach <= pitch:
-            fail("follower.pivot", [float(v) for v in follower.pivot],
+            fail("follower.pivot", [float(v) for v in pivot],
                  f"a pivot outside the base pitch circle (more than {pitch:g} mm from the cam centre; it is "
                  f"{reach:.6g} mm away): within it the arm turns with the cam's profile")
-        low, high = abs(reach - follower.arm_length), reach + follower.arm_length
+        low, high = abs(reach - arm), reach + arm
         if not low < pitch < high:
-            fail("follower.arm_length", follower.arm_length,
-                 f"an arm whose roller reaches the cam: the pivot is {reach:.6g} mm from the cam centre, so the arm must "
-                 f"be from {abs(reach - pitch):.6g} to {reach + pitch:.6g} mm to put the roller centre on the base "
-                 f"pitch circle of radius {pitch:g} mm")
+            fail("follower.arm_length", arm,
+                 f"an arm whose roller reaches the cam: the pivot is {reach:.6g} mm from the cam centre, "
+                 f"so the arm must be from {abs(reach - pitch):.6g} to {reach + pitch:.6g} mm "
+                 f"to put the roller centre on the base pitch circle of radius {pitch:g} mm")

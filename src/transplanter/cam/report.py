@@ -71,7 +71,7 @@ def cam_result_json(result: CamResult) -> dict:
     return {
         "source": problem.source, "title": problem.title,
         "follower": {"kind": follower.kind, "roller_radius_mm": follower.roller_radius,
-                     **({"pivot_mm": follower.pivot.tolist(), "arm_length_mm": follower.arm_length,
+                     **({"pivot_mm": follower.arm[0].tolist(), "arm_length_mm": follower.arm[1],
                          "roller_side": "pulled" if follower.pulled else "pushed"} if swing
                         else {"face_offset_range_mm": _face_offsets(result)} if flat
                         else {"offset_mm": follower.offset})},
@@ -122,7 +122,7 @@ def _follower_line(result: CamResult) -> str:
         low, high = _face_offsets(result)
         return (f"flat-faced translating follower, contact from {low:.3f} to {high:.3f} mm along the face "
                 "(its width must cover this)")
-    where = (f"pivot {follower.pivot.tolist()} mm, arm {follower.arm_length:g} mm, roller "
+    where = (f"pivot {follower.arm[0].tolist()} mm, arm {follower.arm[1]:g} mm, roller "
              f"{'pulled' if follower.pulled else 'pushed'}" if result.problem.oscillating
              else f"offset {follower.offset:g} mm")
     return f"{follower.kind} roller follower, roller radius {follower.roller_radius:g} mm, {where}"

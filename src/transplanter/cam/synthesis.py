@@ -24,10 +24,11 @@ def synthesize(problem: CamProblem) -> CamResult:
     """
     require_problem(problem, CamProblem, "cam")
     timings, start = {}, time.perf_counter()
-    base, evaluated = problem.base_radius, 1
-    if base is None:
+    if problem.base_radius is None:
         base, evaluated = smallest_base_radius(problem)
         timings["design"] = time.perf_counter() - start
+    else:
+        base, evaluated = problem.base_radius, 1
     start = time.perf_counter()
     geometry = evaluate(problem, base)
     timings["evaluation"] = time.perf_counter() - start

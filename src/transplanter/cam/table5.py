@@ -19,6 +19,7 @@ Readings tried where the print does not close:
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from scipy.optimize import brentq
@@ -68,7 +69,8 @@ def datum_for_swing(assembly: int, swing: float = SWING) -> float | None:
         return support_swing(linkage, y0 + LOW_HEIGHT, y0 + HIGH_HEIGHT).swing[assembly] - swing
 
     values = np.array([excess(y) for y in grid])
-    crossings = np.flatnonzero(np.isfinite(values[:-1]) & np.isfinite(values[1:]) & (np.sign(values[:-1]) != np.sign(values[1:])))
+    crossings = np.flatnonzero(np.isfinite(values[:-1]) & np.isfinite(values[1:])
+                               & (np.sign(values[:-1]) != np.sign(values[1:])))
     if not crossings.size:
         return None
     k = crossings[np.argmin(np.abs(grid[crossings]))]          # the datum nearest y = 0
@@ -186,13 +188,14 @@ def evaluate_table5() -> Table5Evaluation:
     printed = printed_linkage()
     reach = printed.reach()
     distances = [float(np.linalg.norm(printed.slider_point(h) - PIVOT_C)) for h in (LOW_HEIGHT, HIGH_HEIGHT)]
-    report = {
+    report: dict[str, Any] = {
         "printed": {"distance_c_to_h_mm": distances, "reach_mm": list(reach),
                     **_swing_json(printed, LOW_HEIGHT, HIGH_HEIGHT)},
         "plate_below_rod": _swing_json(printed_linkage(True), LOW_HEIGHT, HIGH_HEIGHT),
         "heights_from_datum": [],
         "cam_at_d": {"distance_c_to_d_mm": float(np.linalg.norm(CAM_CENTER_D - PIVOT_C)),
-                     "roller_reach_mm": [ARM_LENGTH - BASE_RADIUS - ROLLER_RADIUS, ARM_LENGTH + BASE_RADIUS + ROLLER_RADIUS],
+                     "roller_reach_mm": [ARM_LENGTH - BASE_RADIUS - ROLLER_RADIUS,
+                                         ARM_LENGTH + BASE_RADIUS + ROLLER_RADIUS],
                      "nearest_roller_to_d_mm": float(np.linalg.norm(CAM_CENTER_D - PIVOT_C) - ARM_LENGTH),
                      "base_pitch_radius_mm": BASE_RADIUS + ROLLER_RADIUS},
     }
@@ -200,7 +203,7 @@ def evaluate_table5() -> Table5Evaluation:
     rise_senses = []
     for index, assembly in enumerate(ASSEMBLIES):
         datum = datum_for_swing(index)
-        entry = {"assembly": assembly, "datum_y0_mm": datum}
+        entry: dict[str, Any] = {"assembly": assembly, "datum_y0_mm": datum}
         if datum is not None:
             swing = support_swing(printed, datum + LOW_HEIGHT, datum + HIGH_HEIGHT)
             entry.update(theta_cg_deg={"low": _degrees(swing.low_angle[index])[0],

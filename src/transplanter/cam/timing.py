@@ -48,7 +48,7 @@ def timed_segments(stage_angles, drive_ratio: float, swing: float, law: str = "h
         raise ProblemError(f"stage_angles x drive_ratio = {cam_angles.sum():.6g} deg of cam: expected one cam turn "
                            f"(360 deg); with these stages the ratio would be {2 * np.pi / angles.sum():.9g}")
     rows = []
-    for stage, angle in zip(STAGES, cam_angles):
+    for stage, angle in zip(STAGES, cam_angles, strict=True):
         row = {"kind": _KINDS[stage], "angle_deg": float(angle)}
         if row["kind"] != "dwell":
             row.update(law=law, swing_deg=float(np.degrees(swing)))

@@ -114,7 +114,7 @@ def composite(segments: list[Segment], source: str = "<gear>", where: str = "dri
     ProblemError
         Naming the segment whose angle range or end radius does not meet its neighbour's.
     """
-    for k, (a, b) in enumerate(zip(segments, segments[1:] + segments[:1])):
+    for k, (a, b) in enumerate(zip(segments, segments[1:] + segments[:1], strict=True)):
         expected = b.start + (TWO_PI if k == len(segments) - 1 else 0.0)
         if abs(a.end - expected) > 1e-12 or a.end <= a.start:
             raise ProblemError(f"{source}: {where}[{k}].phi_deg = [{np.degrees(a.start):g}, {np.degrees(a.end):g}]: "
@@ -130,16 +130,16 @@ def composite(segments: list[Segment], source: str = "<gear>", where: str = "dri
             raise ProblemError(f"{source}: {where}[{k}]: {defect}" + ("; a line (or chord) must pass the gear centre "
                                                                      "at a distance, within 90 deg of its normal"
                                                                      if segment.kind == "line" else ""))
-    for k, (a, b) in enumerate(zip(segments, segments[1:] + segments[:1])):
+    for k, (a, b) in enumerate(zip(segments, segments[1:] + segments[:1], strict=True)):
         r_end, r_start = a.curve.evaluate(np.array([a.end]))[0][0], b.curve.evaluate(np.array([b.start]))[0][0]
         if not (np.isfinite(r_end) and np.isfinite(r_start)) or abs(r_end - r_start) > JOIN_TOLERANCE * size:
             raise ProblemError(f"{source}: {where}[{(k + 1) % len(segments)}]: starts at r = {r_start:.9g} mm where "
                                f"segment {k} ends at r = {r_end:.9g} mm (phi = {np.degrees(b.start):g} deg): "
                                f"expected the segments to join (within {JOIN_TOLERANCE * size:.2g} mm)")
-    segments = tuple(segments)
-    joints = tuple(float(np.mod(s.start, TWO_PI)) for s in segments)
-    parameters = {"segments": [s.kind for s in segments]}
-    return CompositeCurve("composite", parameters, 1, _Piecewise(segments), joints, joints, segments=segments)
+    ordered = tuple(segments)
+    joints = tuple(float(np.mod(s.start, TWO_PI)) for s in ordered)
+    parameters = {"segments": [s.kind for s in ordered]}
+    return CompositeCurve("composite", parameters, 1, _Piecewise(ordered), joints, joints, segments=ordered)
 
 
 @dataclass(frozen=True)
@@ -156,7 +156,7 @@ class _Piecewise:
         for k, segment in enumerate(self.segments):
             chosen = index == k
             if chosen.any():
-                for target, value in zip(out, segment.curve.evaluate(local[chosen])):
+                for target, value in zip(out, segment.curve.evaluate(local[chosen]), strict=True):
                     target[chosen] = value
         return out
 

@@ -75,8 +75,8 @@ def read_composite(read: FieldReader, table: dict, where: str, read_family, fami
             curve = rotated(curve, rotation) if rotation else curve
         pieces.append([kind, start, end, curve])
     ends = {}
-    for k, (kind, start, end, curve) in enumerate(pieces):
-        if curve is None:                               # a chord: from the previous segment's end to the next one's start
+    for k, (_, start, end, curve) in enumerate(pieces):
+        if curve is None:   # a chord: from the previous segment's end to the next one's start
             before, after = pieces[k - 1], pieces[(k + 1) % len(pieces)]
             if before[3] is None or after[3] is None:
                 read.fail(f"{where}.segments[{k}]", "line without distance", "a neighbour that is not a chord as well")

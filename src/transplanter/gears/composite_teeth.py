@@ -27,7 +27,7 @@ import shapely
 import shapely.affinity
 
 from transplanter import progress
-from transplanter.errors import InfeasibleError
+from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.gears.composite_curve import CompositeCurve, cusps
 from transplanter.gears.cycloid_teeth import (
     STRAIGHT_POINTS,
@@ -74,7 +74,8 @@ class CornerTooth:
     arches: tuple[CycloidArch, CycloidArch]
     joint_kinks_deg: tuple[float, float]    # turn of the outline where each flank leaves the involute below it
     joint_gaps_mm: tuple[float, float]
-    flanks: tuple[np.ndarray, np.ndarray]   # each side's straight flank and arch from its pitch point, as cut at the tip
+    # each side's straight flank and arch from its pitch point, as cut at the tip
+    flanks: tuple[np.ndarray, np.ndarray]
     pressure_angles_deg: tuple[tuple[float, float], tuple[float, float]]   # each arch's, as cut at the tip
     min_curvature_radius_mm: tuple[float, float]                           # each arch's, as cut at the tip
 
@@ -100,7 +101,8 @@ class Layout:
     def space_centers(self, perimeter: float) -> np.ndarray:
         """Pitch arcs (mm, ascending in [0, perimeter)) of the driver's tooth-space centres."""
         ends = self.corners + self.after
-        centers = [end + self.pitch / 4 + i * self.pitch for end, k in zip(ends, self.between) for i in range(k + 1)]
+        centers = [end + self.pitch / 4 + i * self.pitch
+                   for end, k in zip(ends, self.between, strict=True) for i in range(k + 1)]
         return np.sort(np.mod(centers, perimeter))
 
 
@@ -123,12 +125,13 @@ def _check_layout(plan: Layout, teeth: int, segment_arcs: list[tuple[float, floa
             f"{ratios[k]:.3f} pitches thick, outside [{low}, {high}] (the cusp-pitch-curve paper, section 2.3); tooth "
             f"counts that keep every corner tooth in the band: {', '.join(map(str, fits)) or 'none within 12 of it'} "
             f"(whether they mesh is checked when they are cut)")
-    for k, (corner, (before, after)) in enumerate(zip(plan.corners, segment_arcs)):
+    for k, (corner, (before, after)) in enumerate(zip(plan.corners, segment_arcs, strict=True)):
         for zone, room, name in ((plan.before[k], before, "before"), (plan.after[k], after, "after")):
             if zone >= room:
                 raise InfeasibleError(
                     f"{source}: pair.teeth = {teeth}: the cusp zone of {zone:.3f} mm {name} the corner at pitch arc "
-                    f"{corner:.3f} mm is wider than the segment there ({room:.3f} mm); use more teeth or a longer segment")
+                    f"{corner:.3f} mm is wider than the segment there ({room:.3f} mm); "
+                    "use more teeth or a longer segment")
 
 
 def _fits(plan: Layout, teeth: int, candidate: int) -> bool:
@@ -182,7 +185,7 @@ class CompositeTeeth:
         if self.contact.minimum < 1:
             found.append(f"contact ratio {self.contact.minimum:.3f} below 1 on the {where.flank} flank of the "
                          f"tooth at {where.phi_deg:.2f} deg")
-        for flank, angles in zip(("low-arc", "high-arc"), self.contact.uncovered_deg):
+        for flank, angles in zip(("low-arc", "high-arc"), self.contact.uncovered_deg, strict=True):
             if angles.size:
                 found.append(f"no {flank} flank touches (contact ratio below 1) at {angles.size} of the sampled "
                              f"positions, first at driver angle {angles[0]:.2f} deg")
@@ -197,7 +200,7 @@ class CompositeTeeth:
 
 def _pitch_heights(points: np.ndarray, pitch_curve: shapely.Polygon) -> np.ndarray:
     """Distance (mm) of points outside the pitch curve from it (0 inside)."""
-    return shapely.distance(pitch_curve, shapely.points(points))
+    return np.asarray(shapely.distance(pitch_curve, shapely.points(points)))
 
 
 def _to_tip(arch_points: np.ndarray, heights: np.ndarray, tip: float) -> np.ndarray:
@@ -231,7 +234,9 @@ def _largest_corner_pressure(zone: float, alpha: float, tip: float) -> str:
     angles = np.linspace(alpha, np.pi / 2, 2001)[1:]
     low = corner_heights(zone, alpha, 2 * angles) < tip
     fits = angles[:int(np.argmin(low))] if not low.all() else angles
-    return f"use at most {np.floor(np.degrees(fits.max()) * 10) / 10:.1f} deg" if fits.size else "no angle fits: use more teeth"
+    if not fits.size:
+        return "no angle fits: use more teeth"
+    return f"use at most {np.floor(np.degrees(fits.max()) * 10) / 10:.1f} deg"
 
 
 def _check_arch_height(zone: float, alpha: float, corner_pressure: float, tip: float, corner: float, source: str):
@@ -274,16 +279,20 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
         or, at the given corner pressure angle (at every one tried), an arch stands above the tip over its corner or
         a corner tooth's two cycloid flanks cross.
     """
-    curve: CompositeCurve = design.driver
+    curve = design.driver
+    if not isinstance(curve, CompositeCurve):
+        raise ProblemError(f"{source}: driver.family = {curve.family!r}: expected \"composite\" (composite teeth "
+                           "stand on the corners of a composite pitch curve)")
     perimeter, pitch = design.perimeters[0], np.pi * module
     corners = sorted(cusps(curve), key=lambda c: c["phi_deg"])
     concave = [c for c in corners if c["turn_deg"] < 0]
     if concave:
         raise InfeasibleError(f"{source}: driver.segments: the corner at {concave[0]['phi_deg']:.3f} deg turns "
-                              f"{concave[0]['turn_deg']:.3f} deg (concave): composite teeth stand on convex corners only")
+                              f"{concave[0]['turn_deg']:.3f} deg (concave): "
+                              "composite teeth stand on convex corners only")
     starts = [float(np.mod(s.start, 2 * np.pi)) for s in curve.segments]
     joint_index = [int(np.argmin(np.abs(np.radians(c["phi_deg"]) - np.array(starts)))) for c in corners]
-    edge_arc = {float(phi): float(arc) for phi, arc in zip(design.phi1, design.arc)}
+    edge_arc = {float(phi): float(arc) for phi, arc in zip(design.phi1, design.arc, strict=True)}
     segment_start = np.array([edge_arc[min(edge_arc, key=lambda e: abs(e - start))] for start in starts])
     segment_length = np.mod(np.roll(segment_start, -1) - segment_start, perimeter)
     segment_length[segment_length == 0] = perimeter
@@ -309,12 +318,12 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
             stretch = shaper_profile(table, module, alpha, cutter_teeth, first_tooth_at=end - pitch / 4)[keep]
         if not np.isfinite(stretch).all():
             raise InfeasibleError(
-                f"{source}: pair.teeth = {teeth}: the shaper path (swept_teeth) returned non-finite tooth heights on the "
-                f"stretch after the corner at pitch arc {corner_arc[j]:.3f} mm; try another tooth count")
+                f"{source}: pair.teeth = {teeth}: the shaper path (swept_teeth) returned non-finite tooth heights "
+                f"on the stretch after the corner at pitch arc {corner_arc[j]:.3f} mm; try another tooth count")
         stretches.append(stretch[np.argsort(run[keep])])
 
     def pair_at(corner_pressure: float) -> CompositeTeeth:
-        pieces, corner_teeth = [], []
+        pieces, corner_parts = [], []
         for j, k in enumerate(joint_index):
             start, end = corner_arc[j] - plan.before[j], corner_arc[j] + plan.after[j]
             zone = max(plan.before[j], plan.after[j])
@@ -326,11 +335,11 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
                                 source)
             pieces += [np.r_[rising[0], _tip(rising[0][-1], rising[1][-1], pitch_curve, tip), rising[1][::-1]],
                        stretches[j]]
-            corner_teeth.append((j, start, end, (left, right), rising))
+            corner_parts.append((j, start, end, (left, right), rising))
         driver = np.concatenate(pieces)
         _check_outline_simple(driver, corners, corner_pressure, source)
         corner_teeth = tuple(_corner_tooth(driver, corner_arc[j], start, end, pitch, arches, rising)
-                             for j, start, end, arches, rising in corner_teeth)
+                             for j, start, end, arches, rising in corner_parts)
         driven = carved_mate(design, driver, module)
         built = int(plan.between.sum()) + len(corners)
         outlines = (driver, driven)
@@ -367,13 +376,14 @@ def _check_outline_simple(driver: np.ndarray, corners: list[dict], corner_pressu
 def _first_that_passes(pair_at, angles: list[float]) -> CompositeTeeth:
     """``pair_at(corner pressure angle)`` over ``angles`` (deg): the first pair that passes, else the one with the
     smallest transmission error, with every trial's outcome; the first refusal when every angle is refused."""
-    trials, built, refusal = [], [], None
+    trials, built = [], []
+    refusals: list[InfeasibleError] = []
     for degrees in angles:
         try:
             with progress.step(f"corner pressure angle {degrees:g} deg"):
                 teeth = pair_at(float(np.radians(degrees)))
         except InfeasibleError as error:
-            refusal = refusal or error
+            refusals.append(error)
             trials.append(CornerPressureTrial(degrees, refused=str(error).split(": ", 1)[-1]))
             continue
         trials.append(CornerPressureTrial(degrees, failures=tuple(teeth.failures),
@@ -382,7 +392,7 @@ def _first_that_passes(pair_at, angles: list[float]) -> CompositeTeeth:
         if teeth.passed:
             break
     if not built:
-        raise refusal
+        raise refusals[0]
     best = built[-1] if built[-1].passed else min(built, key=lambda t: t.mesh.max_transmission_error_mm)
     return dataclasses.replace(best, trials=tuple(trials))
 
@@ -424,34 +434,41 @@ def carved_mate(design: GearPairDesign, driver: np.ndarray, module: float) -> np
     discs = shapely.buffer(shapely.points(centers), CARVE_REACH_PITCHES * np.pi * module, quad_segs=8)
     teeth = shapely.intersection(body, discs)
     placed = []
-    for tooth, a, b in zip(teeth, phi1, phi2):
+    for tooth, a, b in zip(teeth, phi1, phi2, strict=True):
         points = shapely.get_coordinates(tooth)
         c1, s1 = np.cos(-a), np.sin(-a)
         world = points @ np.array([[c1, s1], [-s1, c1]]) - [design.center_distance, 0.0]
         c2, s2 = np.cos(-b), np.sin(-b)
-        placed.append(shapely.transform(tooth, lambda _: world @ np.array([[c2, s2], [-s2, c2]])))
+        placed.append(_with_coordinates(tooth, world @ np.array([[c2, s2], [-s2, c2]])))
     blank = shapely.Polygon(design.points[1][:-1]).buffer(ADDENDUM * module, quad_segs=64)
     driven = blank.difference(shapely.union_all(placed))
-    if driven.geom_type == "MultiPolygon":
-        driven = max(driven.geoms, key=lambda g: g.area)
-    return shapely.get_coordinates(driven.exterior)[:-1]
+    largest = max(shapely.get_parts(driven), key=lambda g: g.area)     # the carved blank may fall apart
+    return shapely.get_coordinates(shapely.get_exterior_ring(largest))[:-1]
+
+
+def _with_coordinates(geometry, coordinates: np.ndarray):
+    """``geometry`` with its coordinates replaced by ``coordinates`` (same count, same order)."""
+    return shapely.transform(geometry, lambda _: coordinates)
 
 
 def _corner_tooth(outline, corner, start, end, pitch, arches, rising) -> CornerTooth:
     """The joints of a corner tooth's arches with the involute below them: the outline's turn and gap there."""
-    kinks, gaps = [], []
     n = len(outline)
-    for points, after in ((rising[0], False), (rising[1], True)):
+
+    def joint(points: np.ndarray, after: bool) -> tuple[float, float]:
         at = int(np.argmin(np.linalg.norm(outline - points[0], axis=1)))      # the arch's pitch point in the outline
         if after:       # outline runs down the arch to D, then down the involute
             arch_way, involute_way = points[0] - points[1], outline[(at + 4) % n] - outline[(at + 1) % n]
-            kinks.append(abs(_turn_deg(arch_way, involute_way)))
-            gaps.append(float(np.linalg.norm(outline[(at + 1) % n] - points[0])))
-        else:           # outline runs up the involute to A, then up the arch
-            involute_way, arch_way = outline[at - 1] - outline[at - 4], points[1] - points[0]
-            kinks.append(abs(_turn_deg(involute_way, arch_way)))
-            gaps.append(float(np.linalg.norm(outline[at - 1] - points[0])))
-    used = [len(points) - STRAIGHT_POINTS for points in rising]
-    return CornerTooth(float(corner), float(start), float(end), pitch, arches, tuple(kinks), tuple(gaps), tuple(rising),
-                       tuple(arch_pressure_range(a, n) for a, n in zip(arches, used)),
-                       tuple(polyline_min_curvature_radius(points[STRAIGHT_POINTS:]) for points in rising))
+            return abs(_turn_deg(arch_way, involute_way)), float(np.linalg.norm(outline[(at + 1) % n] - points[0]))
+        # outline runs up the involute to A, then up the arch
+        involute_way, arch_way = outline[at - 1] - outline[at - 4], points[1] - points[0]
+        return abs(_turn_deg(involute_way, arch_way)), float(np.linalg.norm(outline[at - 1] - points[0]))
+
+    (kink_a, gap_a), (kink_d, gap_d) = joint(rising[0], False), joint(rising[1], True)
+    left, right = rising
+    return CornerTooth(float(corner), float(start), float(end), pitch, arches, (kink_a, kink_d), (gap_a, gap_d),
+                       (left, right),
+                       (arch_pressure_range(arches[0], len(left) - STRAIGHT_POINTS),
+                        arch_pressure_range(arches[1], len(right) - STRAIGHT_POINTS)),
+                       (polyline_min_curvature_radius(left[STRAIGHT_POINTS:]),
+                        polyline_min_curvature_radius(right[STRAIGHT_POINTS:])))

@@ -2,6 +2,8 @@
 the shaper's involute flanks in two colours, the pitch curve, and the driven gear in mesh as the corner passes."""
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 from matplotlib.figure import Figure
 
@@ -13,18 +15,18 @@ from transplanter.gears.result import GearResult
 from transplanter.geometry.poses import rotate_about
 
 
-def draw_cusps(result: GearResult) -> Figure:
-    """One panel per corner, in the pair's frame at the instant the corner is on the line of centres (mm)."""
-    teeth: CompositeTeeth = result.teeth
+def draw_cusps(result: GearResult, teeth: CompositeTeeth) -> Figure:
+    """One panel per corner of ``teeth`` (the result's), in the pair's frame at the instant the corner is on the
+    line of centres (mm)."""
     d = result.design
-    module = result.problem.module
+    module = teeth.plan.pitch / np.pi
     corners = teeth.corner_teeth
     fig = Figure(figsize=(5 * len(corners) + 2, 5), layout="constrained")
     axes = np.atleast_1d(fig.subplots(1, len(corners)))
-    for ax, tooth in zip(axes, corners):
+    for ax, tooth in zip(axes, corners, strict=True):
         phi1 = float(np.interp(tooth.corner_arc, d.arc, d.phi1))
         phi2 = float(driven_angle(d, np.array([phi1]))[0])
-        place = (lambda points: rotate_about(points, (0.0, 0.0), -phi1))
+        place = partial(rotate_about, pivot=(0.0, 0.0), angle=-phi1)
         driver, pitch = place(teeth.outlines[0]), place(d.points[0])
         driven = rotate_about(teeth.outlines[1], (0.0, 0.0), phi2) + [d.center_distance, 0.0]
         corner = place(d.driver.evaluate(np.array([phi1]))[0][:1, None] * np.array([[np.cos(phi1), np.sin(phi1)]]))[0]

@@ -73,14 +73,16 @@ def arch(curve: CompositeCurve, arc_to_phi, corner_arc: float, zone: float, segm
                         np.full(PIVOT_POINTS, corner_angle), side),
               _rolled(curve, arc_to_phi, beyond, contact[~near], theta[~near], radius, side)]
     pitch_point = segment_frame(curve, own, arc_to_phi(np.array([start])))[0][0]
-    straight = pitch_point + np.linspace(0.0, 1.0, STRAIGHT_POINTS, endpoint=False)[:, None] * (rolled[0][0] - pitch_point)
+    fractions = np.linspace(0.0, 1.0, STRAIGHT_POINTS, endpoint=False)[:, None]
+    straight = pitch_point + fractions * (rolled[0][0] - pitch_point)
     return CycloidArch(np.concatenate([straight, *rolled]), radius, joint, over_corner, theta0, corner_angle,
                        np.r_[contact[near], np.full(PIVOT_POINTS, corner_arc), contact[~near]],
                        np.r_[theta[near], np.full(PIVOT_POINTS, corner_angle), theta[~near]])
 
 
-def corner_heights(zone: float, alpha: float, corner_angles: np.ndarray) -> np.ndarray:
-    """Height (mm, above a straight pitch line) of the arch's point as its circle reaches the corner, for each theta_J."""
+def corner_heights(zone: float, alpha: float, corner_angles: float | np.ndarray) -> np.ndarray:
+    """Height (mm, above a straight pitch line) of the arch's point as its circle reaches the corner,
+    for each theta_J."""
     angles = np.atleast_1d(np.asarray(corner_angles, float))
     return _incomplete([np.full_like(angles, alpha)], [np.full_like(angles, zone)], [angles])[4][0]
 

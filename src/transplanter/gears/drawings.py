@@ -29,8 +29,8 @@ LAYERS = {"teeth": "TEETH", "pitch": "PITCH", "bore": "BORE", "mark": "MARK"}
 def outlines(result: GearResult) -> dict[str, np.ndarray]:
     """Closed outline per gear: the tooth profile when generated, else the pitch curve."""
     if result.teeth is not None:
-        return dict(zip(NAMES, result.teeth.outlines))
-    return {name: points[:-1] for name, points in zip(NAMES, _pitch_curves(result))}
+        return dict(zip(NAMES, result.teeth.outlines, strict=True))
+    return {name: points[:-1] for name, points in zip(NAMES, _pitch_curves(result), strict=True)}
 
 
 def _pitch_curves(result: GearResult):
@@ -115,7 +115,8 @@ def write_dxf(outline: np.ndarray, path: Path, *, outline_layer: str = "OUTLINE"
         _polyline(space, np.asarray(pitch_curve), LAYERS["pitch"], close=False)
     if mark is not None:
         document.layers.add(LAYERS["mark"])
-        space.add_line(*np.asarray(mark).tolist(), dxfattribs={"layer": LAYERS["mark"]})
+        start, end = np.asarray(mark).tolist()
+        space.add_line(start, end, dxfattribs={"layer": LAYERS["mark"]})
     document.saveas(path)
 
 
@@ -182,7 +183,7 @@ def write_drawings(result: GearResult, folder: str | Path) -> list[Path]:
     require_result(result, GearResult, "gears")
     folder = writable_folder(folder)
     written = write_csv(result, folder)
-    for (name, outline), pitch_curve in zip(outlines(result).items(), _pitch_curves(result)):
+    for (name, outline), pitch_curve in zip(outlines(result).items(), _pitch_curves(result), strict=True):
         for suffix, writer in ((".svg", write_svg), (".dxf", write_dxf)):
             path = folder / f"{name}{suffix}"
             writer(outline, path, pitch_curve=pitch_curve)

@@ -28,7 +28,7 @@ def draw_mesh(result: GearResult, positions: int = 4) -> Figure:
     shapes = outlines(result)
     fig = Figure(figsize=(4 * positions, 4.4), layout="constrained")
     axes = fig.subplots(1, positions, sharex=True, sharey=True)
-    for ax, k in zip(axes, np.linspace(0, len(d.phi1) - 1, positions, endpoint=False).astype(int)):
+    for ax, k in zip(axes, np.linspace(0, len(d.phi1) - 1, positions, endpoint=False).astype(int), strict=True):
         _filled(ax, rotate_about(shapes["driver"], (0.0, 0.0), -d.phi1[k]), "tab:blue")
         _filled(ax, rotate_about(shapes["driven"], (0.0, 0.0), d.phi2[k]) + [d.center_distance, 0], "tab:orange")
         ax.plot([0, d.center_distance], [0, 0], "k+", ms=8)
@@ -90,7 +90,8 @@ def draw_figures(result: GearResult) -> dict[str, Figure]:
     Returns
     -------
     dict of str to matplotlib.figure.Figure
-        With composite teeth also ``gear_cusps`` (each corner zoomed). Save with ``figure.savefig(f"{stem}.png")`` or show in a notebook.
+        With composite teeth also ``gear_cusps`` (each corner zoomed). Save with
+        ``figure.savefig(f"{stem}.png")`` or show in a notebook.
     """
     require_result(result, GearResult, "gears")
     figures = {"gear_mesh": draw_mesh(result), "gear_kinematics": draw_kinematics(result),
@@ -98,5 +99,5 @@ def draw_figures(result: GearResult) -> dict[str, Figure]:
     if isinstance(result.teeth, CompositeTeeth):
         from transplanter.gears.cusp_figures import draw_cusps
 
-        figures["gear_cusps"] = draw_cusps(result)
+        figures["gear_cusps"] = draw_cusps(result, result.teeth)
     return figures

@@ -126,7 +126,7 @@ def design_pair(driver: PitchCurve, driven_order: int, center_distance: float | 
     orders = (driver.lobes, driven_order)
     r_nodes, slope_nodes, _ = driver.evaluate(grid.nodes)
     given = center_distance is not None
-    if not given:
+    if center_distance is None:
         center_distance = closing_center_distance(r_nodes, orders, grid, r_max)
     elif center_distance <= r_max:
         raise ProblemError(f"{source}: pair.center_distance = {center_distance:g}: expected more than the largest "
@@ -178,8 +178,9 @@ def arc_to_angle(design: GearPairDesign, arc) -> np.ndarray:
     arch rolled on it missed its normal by 0.015 mm."""
     grid = design.phi1
     inside = 1e-9 * (grid[1:] - grid[:-1])
-    rates = [1 / np.hypot(*design.driver.evaluate(ends)[:2]) for ends in (grid[:-1] + inside, grid[1:] - inside)]
-    return hermite(design.arc, grid, *rates, np.mod(np.asarray(arc, float), design.perimeters[0]))
+    start_rate, end_rate = (1 / np.hypot(*design.driver.evaluate(ends)[:2])
+                            for ends in (grid[:-1] + inside, grid[1:] - inside))
+    return hermite(design.arc, grid, start_rate, end_rate, np.mod(np.asarray(arc, float), design.perimeters[0]))
 
 
 def driven_angle(design: GearPairDesign, phi1: np.ndarray) -> np.ndarray:

@@ -18,8 +18,9 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import TypeVar
 
 import casadi as ca
 import numpy as np
@@ -40,7 +41,12 @@ def too_small_radius(phi: np.ndarray, radius: np.ndarray, largest: float) -> str
             f"{SMALLEST_RADIUS:g} of the largest ({largest:.6g} mm) all round")
 
 
-def denatured_partner(m11: float) -> float:
+FloatOrArray = TypeVar("FloatOrArray", float, np.ndarray)
+#: r (or a ratio) and its first two derivatives at an array of angles.
+Evaluator = Callable[[np.ndarray], Sequence[np.ndarray]]
+
+
+def denatured_partner(m11: FloatOrArray) -> FloatOrArray:
     """m12 from the onion-transplanter paper eq (2): pi/m11 + pi/m12 = 2 pi."""
     return 1.0 / (2.0 - 1.0 / m11)
 
@@ -56,7 +62,7 @@ class PitchCurve:
     family: str
     parameters: dict
     lobes: int
-    evaluator: Callable[[np.ndarray], tuple] = field(repr=False, compare=False)
+    evaluator: Evaluator = field(repr=False, compare=False)
     joints: tuple[float, ...] = ()
     breaks: tuple[float, ...] = ()
     scale: float = 1.0
@@ -64,8 +70,9 @@ class PitchCurve:
     def evaluate(self, phi) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(r, dr/dphi, d2r/dphi2) at the angles ``phi`` (any shape), in mm."""
         phi = np.asarray(phi, float)
-        values = self.evaluator(np.mod(phi.ravel(), TWO_PI))
-        return tuple(self.scale * np.asarray(v, float).reshape(phi.shape) for v in values)
+        r, slope, bend = (self.scale * np.asarray(v, float).reshape(phi.shape)
+                          for v in self.evaluator(np.mod(phi.ravel(), TWO_PI)))
+        return r, slope, bend
 
     def scaled(self, factor: float) -> PitchCurve:
         return dataclasses.replace(self, scale=self.scale * factor)
@@ -96,7 +103,7 @@ def _derivatives(name: str, expression: ca.SX, phi: ca.SX) -> _Derivatives:
 class Shifted:
     """An evaluator read ``angle`` (rad) further round: ``evaluator(phi + angle)``."""
 
-    evaluator: Callable[[np.ndarray], tuple]
+    evaluator: Evaluator
     angle: float
 
     def __call__(self, phi: np.ndarray):
@@ -181,12 +188,12 @@ def spline(phi: np.ndarray, radius: np.ndarray) -> PitchCurve:
     return PitchCurve("spline", {"samples": len(curve.knots)}, 1, curve.evaluate, (), tuple(curve.knots))
 
 
-def ratio_samples(phi: np.ndarray, ratio: np.ndarray) -> Callable[[np.ndarray], tuple]:
+def ratio_samples(phi: np.ndarray, ratio: np.ndarray) -> Evaluator:
     """i12 and its two derivatives from samples (periodic cubic spline)."""
     return PeriodicSpline(np.mod(phi, TWO_PI), ratio).evaluate
 
 
-def ratio_formula(expression: ca.SX, phi: ca.SX) -> Callable[[np.ndarray], tuple]:
+def ratio_formula(expression: ca.SX, phi: ca.SX) -> Evaluator:
     """i12 and its two derivatives from a casadi expression of phi (automatic differentiation)."""
     return _derivatives("ratio", expression, phi)
 
@@ -195,7 +202,7 @@ def ratio_formula(expression: ca.SX, phi: ca.SX) -> Callable[[np.ndarray], tuple
 class _FromRatio:
     """r1 = a / (1 + k i12) and its two derivatives, from i12 and its own (``from_ratio``)."""
 
-    ratio: Callable[[np.ndarray], tuple]
+    ratio: Evaluator
     factor: float
     center_distance: float
 
@@ -206,7 +213,7 @@ class _FromRatio:
         return a / one, -a * di / one**2, a * (2 * di**2 / one**3 - ddi / one**2)
 
 
-def from_ratio(ratio: Callable[[np.ndarray], tuple], factor: float, center_distance: float,
+def from_ratio(ratio: Evaluator, factor: float, center_distance: float,
                breaks=()) -> PitchCurve:
     """Driver pitch curve r1 = a / (1 + k i12) for a ratio i12 = omega1 / omega2 (the onion-transplanter paper eq 13),
     scaled by a constant k (Wang et al. 2025 eq 12)."""

@@ -10,7 +10,8 @@
     order = 1                     # n1: lobes of the driver (ellipse 1; higher-order ellipse, limacon >= 1)
     base = 53.0                   # limacon families: r = base + amplitude cos(order phi)
     amplitude = 13.0
-    m11 = 1.5                     # denatured families (the onion-transplanter paper eq 2-3); m12 defaults to 1 / (2 - 1/m11)
+    m11 = 1.5                     # denatured families (the onion-transplanter paper eq 2-3);
+                                  # m12 defaults to 1 / (2 - 1/m11)
     phi_deg = [...]               # spline: samples of the radius; ratio: samples of i12 = omega1/omega2
     radius = [...]                # spline (mm)
     ratio = [...]                 # ratio: samples of i12 (with phi_deg) ...
@@ -185,7 +186,8 @@ def _range_defect(phi: np.ndarray, values: np.ndarray) -> str | None:
                                           "expected a positive ratio all round")
     else:
         k = int(np.argmin(values)) if values.min() < low else int(np.argmax(values))
-        why = f"expected i12 from {low:g} to {high:g} all round: beyond it one pitch radius is a thousandth of the other"
+        why = (f"expected i12 from {low:g} to {high:g} all round: "
+               "beyond it one pitch radius is a thousandth of the other")
     return f"reaches {values[k]:.6g} at phi = {np.degrees(phi[k]):.2f} deg: {why}"
 
 
@@ -220,10 +222,12 @@ def _between_samples(evaluate, phi: np.ndarray, values: np.ndarray, slopes: np.n
             return (f"is not resolved near phi = {np.degrees(middle[k]):.6f} deg: between values {width[k]:.2g} rad "
                     f"apart it is {miss[k]:.3g} off the cubic through them; expected a ratio smooth all round (a "
                     "pole or a jump is there)")
-        keep = lambda array: np.concatenate([array[unresolved]] * 2)  # noqa: E731
-        left, width = np.concatenate([left[unresolved], middle[unresolved]]), keep(width) / 2
-        ends = (np.concatenate([v0[unresolved], value[unresolved]]), np.concatenate([s0[unresolved], slope[unresolved]]),
-                np.concatenate([value[unresolved], v1[unresolved]]), np.concatenate([slope[unresolved], s1[unresolved]]))
+        left = np.concatenate([left[unresolved], middle[unresolved]])
+        width = np.concatenate([width[unresolved]] * 2) / 2
+        ends = (np.concatenate([v0[unresolved], value[unresolved]]),
+                np.concatenate([s0[unresolved], slope[unresolved]]),
+                np.concatenate([value[unresolved], v1[unresolved]]),
+                np.concatenate([slope[unresolved], s1[unresolved]]))
 
 
 def load_problem(path: str | Path) -> GearProblem:
@@ -261,7 +265,8 @@ def _denatured_pair(read, table, where="driver"):
     if "m12" in table:
         given = read.number(table, "m12", where)
         if abs(given - m12) > 1e-9 * m12:
-            read.fail(f"{where}.m12", given, f"{m12:.12g}, from pi/m11 + pi/m12 = 2 pi (the onion-transplanter paper eq 2); "
+            read.fail(f"{where}.m12", given, f"{m12:.12g}, from pi/m11 + pi/m12 = 2 pi "
+                                           f"(the onion-transplanter paper eq 2); "
                                            f"with {given:g} the pitch curve breaks at phi = {180 / m11:.6g} deg")
     return m11, m12
 
@@ -269,7 +274,7 @@ def _denatured_pair(read, table, where="driver"):
 def read_driver(read: FieldReader, table: dict, where: str = "driver", families=FAMILIES):
     """A driver pitch curve from its table (any family of ``families``); a ratio gives (evaluator, breaks)."""
     family = table.get("family") if isinstance(table, dict) else None
-    if family not in families:
+    if not isinstance(family, str) or family not in families:
         read.keys(table, _DRIVER_KEYS, where)
         read.fail(f"{where}.family", family, "one of " + ", ".join(families))
     read.keys(table, _FAMILY_KEYS[family] | {"family"}, where)
@@ -312,8 +317,8 @@ def read_driver(read: FieldReader, table: dict, where: str = "driver", families=
     if len(np.unique(np.round(wrapped, 12))) != len(wrapped):
         read.fail(f"{where}.phi_deg", table["phi_deg"], "distinct angles within one turn")
     if values.min() <= 0:
-        read.fail(f"{where}.{key}", float(values.min()), "positive values all round"
-                  + (" (a ratio that touches zero or goes negative reverses the driven gear)" if key == "ratio" else ""))
+        why = " (a ratio that touches zero or goes negative reverses the driven gear)" if key == "ratio" else ""
+        read.fail(f"{where}.{key}", float(values.min()), "positive values all round" + why)
     if family == "spline":
         return spline(phi, values)
     evaluate = ratio_samples(phi, values)

@@ -63,8 +63,8 @@ class GearResult(CommandResult):
         error (rad), ratio i12, driven speed (rad/s) and acceleration (rad/s^2), curvature radii (mm).
     tooth_counts : ToothCounts or None
         When a module is given.
-    teeth : PairTeeth or None
-        Tooth outlines (mm) when teeth are given.
+    teeth : PairTeeth, CompositeTeeth or None
+        Tooth outlines (mm) when teeth are given; composite teeth for a driver with corners.
     ratio_correction : float or None
         Factor k that scaled a given ratio to close (Wang et al. 2025 eq 12).
     timings_s : dict
@@ -74,7 +74,7 @@ class GearResult(CommandResult):
     problem: GearProblem
     design: GearPairDesign
     tooth_counts: ToothCounts | None
-    teeth: PairTeeth | None
+    teeth: PairTeeth | CompositeTeeth | None
     ratio_correction: float | None
     timings_s: dict
 

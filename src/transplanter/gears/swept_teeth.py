@@ -189,7 +189,8 @@ def mate_profile(design: GearPairDesign, driver_outline: np.ndarray, driven: Pit
     phi2 = driven_angle(design, phi1)
 
     def place(points, rows):
-        world = rotate_about(points[None], ORIGIN, -phi1[rows, None])            # driver points near the line of centres
+        # driver points near the line of centres
+        world = rotate_about(points[None], ORIGIN, -phi1[rows, None])
         return rotate_about(world - [design.center_distance, 0.0], ORIGIN, -phi2[rows, None])
 
     # the driver's one-per-bin vertices, thinned where they stay within a hair of their chords

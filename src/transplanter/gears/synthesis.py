@@ -8,12 +8,12 @@ import numpy as np
 from transplanter.api_arguments import require_problem
 from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.gears.composite_curve import CompositeCurve, cusps, with_exact_curvature
-from transplanter.gears.composite_teeth import generate_composite_teeth
+from transplanter.gears.composite_teeth import CompositeTeeth, generate_composite_teeth
 from transplanter.gears.pair import GearPairDesign, arc_length, design_pair
 from transplanter.gears.pitch_curves import from_ratio
 from transplanter.gears.problem import MAX_TEETH, GearProblem, ratio_defect
 from transplanter.gears.result import GearResult, ToothCounts
-from transplanter.gears.teeth import generate_teeth
+from transplanter.gears.teeth import PairTeeth, generate_teeth
 from transplanter.geometry.turn_quadrature import panels
 
 
@@ -21,14 +21,16 @@ def tooth_counts(design: GearPairDesign, module: float) -> ToothCounts:
     n1, n2 = design.orders
     per_lobe = max(1, int(round(design.perimeters[0] / (np.pi * module * n1))))
     counts = (per_lobe * n1, per_lobe * n2)
-    return ToothCounts(module, tuple(p / (np.pi * module) for p in design.perimeters), counts,
+    fractional = (design.perimeters[0] / (np.pi * module), design.perimeters[1] / (np.pi * module))
+    return ToothCounts(module, fractional, counts,
                        design.perimeters[0] / (np.pi * counts[0]), np.pi * module * counts[0] / design.perimeters[0])
 
 
-def _ratio_curve(problem: GearProblem, center_distance: float):
-    """Driver from a ratio i12: closure does not depend on a (r1 = a / (1 + i12)), so a ratio that does
-    not close is corrected by a constant factor k when asked (Wang et al. 2025 eq 12), or refused."""
-    ratio, breaks = problem.ratio
+def _ratio_curve(problem: GearProblem, given: tuple, center_distance: float):
+    """Driver from the problem's ratio i12 ``given`` (evaluator, breaks): closure does not depend on a
+    (r1 = a / (1 + i12)), so a ratio that does not close is corrected by a constant factor k when asked
+    (Wang et al. 2025 eq 12), or refused."""
+    ratio, breaks = given
     grid = panels(breaks)
     defect = ratio_defect(ratio)
     if defect:
@@ -72,11 +74,11 @@ def synthesize(problem: GearProblem) -> GearResult:
     correction = None
     center = problem.center_distance
     if problem.ratio is not None:
-        driver, correction = _ratio_curve(problem, center or 1.0)
+        driver, correction = _ratio_curve(problem, problem.ratio, center or 1.0)
         center = center or 1.0
     else:
         driver = problem.driver
-    if problem.teeth is not None:
+    if problem.teeth is not None and problem.module is not None:    # teeth come with a module (GearProblem)
         if problem.teeth % driver.lobes:
             raise InfeasibleError(f"{problem.source}: pair.teeth = {problem.teeth}: expected a multiple of the driver "
                                   f"order {driver.lobes} (equal teeth on every lobe)")
@@ -93,7 +95,8 @@ def synthesize(problem: GearProblem) -> GearResult:
     if isinstance(driver, CompositeCurve):
         design = with_exact_curvature(design)
     timings = {"pitch_curves": time.perf_counter() - start}
-    counts = teeth = None
+    counts: ToothCounts | None = None
+    teeth: PairTeeth | CompositeTeeth | None = None
     if problem.module is not None:
         counts = tooth_counts(design, problem.module)
         if problem.teeth is not None:

@@ -63,7 +63,8 @@ def local_contact_ratio(rho1, rho2, module: float, alpha: float) -> np.ndarray:
 
 def _side(p, q, r):
     """Sign of the turn p -> q -> r: +1 left, -1 right, 0 collinear."""
-    return np.sign((q[..., 0] - p[..., 0]) * (r[..., 1] - p[..., 1]) - (q[..., 1] - p[..., 1]) * (r[..., 0] - p[..., 0]))
+    return np.sign((q[..., 0] - p[..., 0]) * (r[..., 1] - p[..., 1])
+                   - (q[..., 1] - p[..., 1]) * (r[..., 0] - p[..., 0]))
 
 
 def self_intersections(outline: np.ndarray) -> int:
@@ -77,10 +78,11 @@ def self_intersections(outline: np.ndarray) -> int:
     if shapely.is_simple(shapely.linearrings(outline)):
         return 0
     a, b = outline, np.roll(outline, -1, axis=0)
-    segments = shapely.linestrings(np.stack([a, b], axis=1))
+    segments = np.asarray(shapely.linestrings(np.stack([a, b], axis=1)))     # an array of them
     first, second = shapely.STRtree(segments).query(segments)
     i, j = first[first < second], second[first < second]
-    crossing = (_side(a[i], b[i], a[j]) * _side(a[i], b[i], b[j]) < 0) & (_side(a[j], b[j], a[i]) * _side(a[j], b[j], b[i]) < 0)
+    crossing = ((_side(a[i], b[i], a[j]) * _side(a[i], b[i], b[j]) < 0)
+                & (_side(a[j], b[j], a[i]) * _side(a[j], b[j], b[i]) < 0))
     return int(crossing.sum())
 
 
@@ -102,7 +104,8 @@ def _refuse_what_the_cutter_cannot_cut(design: GearPairDesign, module: float, al
                     f"{source}: pair.shaper_teeth = {cutter_teeth}: the cutter's pitch radius {cutter_radius:.3f} mm "
                     f"does not fit the {name}'s concave curvature radius {hollow:.3f} mm; use at most "
                     f"{int(np.ceil(2 * hollow / module)) - 1} cutter teeth")
-        rho = np.where(concave, np.inf, design.curvature_radius[gear])   # the rack criterion, also a guide for the shaper
+        # the rack criterion, also a guide for the shaper
+        rho = np.where(concave, np.inf, design.curvature_radius[gear])
         if rho.min() < limit:
             k = int(np.argmin(rho))
             raise InfeasibleError(
@@ -118,20 +121,21 @@ def generate_teeth(design: GearPairDesign, module: float, alpha: float, source: 
     """Both tooth outlines; the driver's tooth 0 and the driven gear's tooth space 0 meet at phi1 = 0."""
     teeth = [design.perimeters[0] / (np.pi * module), design.perimeters[1] / (np.pi * module)]
     if max(abs(z - round(z)) for z in teeth) > 1e-6:
-        raise InfeasibleError(f"{source}: tooth profiles need whole tooth counts, got {teeth[0]:.6f} and {teeth[1]:.6f} "
-                              f"for module {module:g}: give pair.teeth to scale the curves to pi m Z")
+        raise InfeasibleError(f"{source}: tooth profiles need whole tooth counts, "
+                              f"got {teeth[0]:.6f} and {teeth[1]:.6f} for module {module:g}: "
+                              "give pair.teeth to scale the curves to pi m Z")
     _refuse_what_the_cutter_cannot_cut(design, module, alpha, cutter, cutter_teeth, source)
-    counts = [int(round(z)) for z in teeth]
+    counts = (int(round(teeth[0])), int(round(teeth[1])))
     pitch = design.perimeters[0] / counts[0]
     tables = (driver_table(design), driven_table(design))
     if cutter == "rack":    # one rack cuts both: its two sides are complementary, so the pair is conjugate
-        outlines = [rack_profile(table, count, module, alpha, first)
-                    for table, count, first in zip(tables, counts, (0.0, pitch / 2))]
+        driver, driven = (rack_profile(table, count, module, alpha, first)
+                          for table, count, first in zip(tables, counts, (0.0, pitch / 2), strict=True))
     else:                   # the shaper cuts the driver; the driver's teeth cut the driven gear (conjugate)
         driver = shaper_profile(tables[0], module, alpha, cutter_teeth)
-        outlines = [driver, mate_profile(design, driver, tables[1], module)]
+        driven = mate_profile(design, driver, tables[1], module)
     both = (design.convexity[0] > 0) & (design.convexity[1] > 0)
     ratio = local_contact_ratio(design.curvature_radius[0][both], design.curvature_radius[1][both], module, alpha)
-    return PairTeeth(tuple(outlines), tuple(counts), cutter,
+    return PairTeeth((driver, driven), counts, cutter,
                      (float(ratio.min()), float(ratio.max())) if ratio.size else None,
-                     tuple(self_intersections(o) for o in outlines))
+                     (self_intersections(driver), self_intersections(driven)))

@@ -9,8 +9,8 @@ belongs to a driver tooth (the tooth whose pitch-curve span, from one space cent
 holds the foot of the point on the pitch curve) and to its low-arc or high-arc flank; one flank
 side drives when the driver turns one way, the other when it turns back (the cusp-pitch-curve paper, section 3.2: the
 contact ratio of a cusp gear depends on the direction). A tooth's contact ratio on a side is the
-pitch arc rolled while that flank touches over the tooth's own pitch (the mean spacing to its neighbours' centres); positions where no
-flank of a side touches are listed too (there the next pair has not taken over).
+pitch arc rolled while that flank touches over the tooth's own pitch (the mean spacing to its neighbours'
+centres); positions where no flank of a side touches are listed too (there the next pair has not taken over).
 """
 from __future__ import annotations
 
@@ -99,7 +99,7 @@ def measure_contact_ratio(design: GearPairDesign, outlines: tuple[np.ndarray, np
     phi1 = np.interp(np.mod(rolled, perimeter), design.arc, design.phi1) + 2 * np.pi * np.floor(rolled / perimeter)
     phi2 = driven_angle(design, phi1)
     touching = np.zeros((2, len(space_centers), len(rolled)), bool)
-    for k, (s, a, b) in enumerate(zip(np.mod(rolled, perimeter), phi1, phi2)):
+    for k, (s, a, b) in enumerate(zip(np.mod(rolled, perimeter), phi1, phi2, strict=True)):
         near = np.flatnonzero(np.abs(np.mod(arc - s + perimeter / 2, perimeter) - perimeter / 2)
                               <= REACH_PITCHES * pitch)
         c1, s1, c2, s2 = np.cos(a), np.sin(a), np.cos(b), np.sin(b)

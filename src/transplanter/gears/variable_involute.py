@@ -60,8 +60,8 @@ def involute_deviation(table: PitchTable, outline: np.ndarray, flanks: np.ndarra
     pitch_curve = shapely.Polygon(table.points)
     flat = points.reshape(-1, 2)
     height = shapely.distance(pitch_curve.exterior, shapely.points(flat))
-    height = np.where(shapely.contains_xy(pitch_curve, flat[:, 0], flat[:, 1]), -height, height).reshape(points.shape[:2])
-    contact = flanks + sides * q
+    inside = shapely.contains_xy(pitch_curve, flat[:, 0], flat[:, 1])
+    height = np.where(inside, -height, height).reshape(points.shape[:2])
     perimeter = table.perimeter
     passes = np.zeros(points.shape[:2], bool)
     for corner in corners:      # a corner strictly between the flank's pitch point and the contact
@@ -78,7 +78,7 @@ def involute_deviation(table: PitchTable, outline: np.ndarray, flanks: np.ndarra
 
 def _distances(outline: np.ndarray, points: np.ndarray) -> np.ndarray:
     """Distance (mm) from each point to the closed polyline ``outline``, through a tree of its edges."""
-    edges = shapely.linestrings(np.stack([outline, np.roll(outline, -1, axis=0)], axis=1))
+    edges = np.asarray(shapely.linestrings(np.stack([outline, np.roll(outline, -1, axis=0)], axis=1)))
     tree = shapely.STRtree(edges)
     (_, _), distance = tree.query_nearest(shapely.points(points), return_distance=True, all_matches=False)
     return distance

@@ -54,13 +54,11 @@ def fitted_polygon(samples: np.ndarray) -> np.ndarray:
     while count < last:
         counts.append(int(round(count)))
         count *= factor
-    best = None
+    scored = []
     for count in sorted(set(counts)):
         control, squares = _least_squares_polygon(samples, count)
-        score = squares / n / (1 - count / n) ** 2
-        if best is None or score < best[0]:
-            best = (score, control)
-    return best[1]
+        scored.append((squares / n / (1 - count / n) ** 2, control))
+    return min(scored, key=lambda item: item[0])[1]
 
 
 @dataclass(frozen=True)
@@ -100,7 +98,8 @@ class ClosedTrajectory:
             slope = np.polynomial.polynomial.polyder(square)
             bend = np.polynomial.polynomial.polyder(slope)
             for root in np.polynomial.polynomial.polyroots(slope):
-                if abs(root.imag) > 1e-9 or not -1e-9 <= root.real <= 1 + 1e-9:   # a root at a joint may fall either side
+                # a root at a joint may fall either side
+                if abs(root.imag) > 1e-9 or not -1e-9 <= root.real <= 1 + 1e-9:
                     continue
                 t = root.real
                 curvature = np.polynomial.polynomial.polyval(t, bend)
@@ -109,10 +108,12 @@ class ClosedTrajectory:
                 radius = float(np.sqrt(np.polynomial.polynomial.polyval(t, square)))
                 extremes.append(RadialExtreme(float(np.mod(TWO_PI * (k + t) / self.count, TWO_PI)), radius,
                                               "farthest" if curvature < 0 else "nearest"))
+        if not extremes:
+            return []
         extremes.sort(key=lambda e: e.parameter)
         # a root at a joint is found by both segments that meet there: keep one
-        gaps = np.diff([e.parameter for e in extremes] + [extremes[0].parameter + TWO_PI]) if extremes else []
-        return [e for e, gap in zip(extremes, gaps) if gap > 1e-8]
+        gaps = np.diff([e.parameter for e in extremes] + [extremes[0].parameter + TWO_PI])
+        return [e for e, gap in zip(extremes, gaps, strict=True) if gap > 1e-8]
 
     def sample_misses(self, samples: np.ndarray) -> np.ndarray:
         """Distance of each sample (N, 2), sample k taken at x = 2 pi k / N, from the curve there (mm)."""
@@ -128,7 +129,8 @@ class ClosedTrajectory:
         direction = self.control / radius[:, None]
 
         def miss(ab):
-            radii = [e.radius for e in ClosedTrajectory(direction * (ab[0] + ab[1] * radius)[:, None]).radial_extremes()]
+            remapped = ClosedTrajectory(direction * (ab[0] + ab[1] * radius)[:, None])
+            radii = [e.radius for e in remapped.radial_extremes()]
             return np.array([max(radii) - farthest, min(radii) - nearest])
 
         ab, size = np.array([0.0, 1.0]), farthest

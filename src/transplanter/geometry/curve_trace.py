@@ -43,17 +43,19 @@ def trace_circular_cubic(coefficients, pivot, directions: int, radius: float) ->
     angles = np.pi * np.arange(directions) / directions
     direction = np.stack([np.cos(angles), np.sin(angles)])
     alpha, beta, gamma = _pencil(np.asarray(coefficients)[:, None], np.asarray(pivot)[:, None], direction)[0]
-    points, runs, start = [], [], 0
+    sheets: list[np.ndarray] = []
+    runs: list[np.ndarray] = []
+    start = 0
     for t in _pencil_roots(alpha, beta, gamma):
         sheet = pivot[:, None] + t * direction
         inside = np.isfinite(t) & (np.hypot(*sheet) <= radius)
-        points.append(sheet.T[inside])
+        sheets.append(sheet.T[inside])
         index = np.flatnonzero(inside)
         for run in np.split(np.arange(index.size), np.flatnonzero(np.diff(index) > 1) + 1):
             if run.size > 1:
                 runs.append(start + run)
         start += index.size
-    points = np.concatenate(points)
+    points = np.concatenate(sheets)
     return CurveTrace(points, _split_jumps(points, runs, radius))
 
 

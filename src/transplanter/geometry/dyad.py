@@ -54,7 +54,7 @@ def verify_dyads(poses: np.ndarray, centers, circles, link: Link | None = None) 
     distances = np.linalg.norm(moving - fixed, axis=-1)
     errors = distances - distances[:, :1]
     scale = pose_scale(poses)
-    return [Dyad(c, m, float(d[0]), e, scale) for c, m, d, e in zip(centers, circles, distances, errors)]
+    return [Dyad(c, m, float(d[0]), e, scale) for c, m, d, e in zip(centers, circles, distances, errors, strict=True)]
 
 
 def verify_dyad(poses: np.ndarray, center, circle, link: Link | None = None) -> Dyad:

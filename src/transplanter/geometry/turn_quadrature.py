@@ -33,7 +33,7 @@ def panels(breaks=(), count: int = PANELS, nodes: int = NODES) -> Panels:
     cuts = np.unique(np.r_[0.0, np.mod(np.asarray(breaks, float), TWO_PI), TWO_PI])
     cuts = cuts[np.r_[True, np.diff(cuts) > 1e-12]]
     edges = []
-    for start, end in zip(cuts[:-1], cuts[1:]):
+    for start, end in zip(cuts[:-1], cuts[1:], strict=True):
         pieces = max(PIECE_PANELS, int(round(count * (end - start) / TWO_PI)))
         edges.append(np.linspace(start, end, pieces + 1)[:-1])
     edges = np.r_[np.concatenate(edges), TWO_PI]

@@ -32,7 +32,8 @@ def _draw_frames(result: ParallelogramResult, frames: int):
     fine = sample_path(mech, 1, 721)
     m = measure(mech, problem.depth_window, 8192)
     a = float(mech.center_distance[0])
-    scale = result.gear.design.driver.scale         # the drawn pair is the toothed one, brought back to the design's size
+    # the drawn pair is the toothed one, brought back to the design's size
+    scale = result.gear.design.driver.scale
     shapes = {name: outline / scale for name, outline in outlines(result.gear).items()}
     pivot = np.array([a, 0.0]) + problem.crank_pivot
     offset = np.array([design["l2"], 0.0])
@@ -56,7 +57,7 @@ def _draw_frames(result: ParallelogramResult, frames: int):
     machine.legend(fontsize=7, loc="upper left", bbox_to_anchor=(0, -0.14), ncols=2)
 
     field.plot(*fine.tip, color="0.8", lw=0.8)
-    window = mech.state(np.linspace(*m.window[:, 0], 200)[None, :])[1][:, 0]
+    window = mech.state(np.linspace(m.window[0, 0], m.window[1, 0], 200)[None, :])[1][:, 0]
     field.plot(*window, color="tab:red", lw=2.5, label=f"depth window (H = {m.depth[0]:.1f} mm)")
     trace, = field.plot([], [], "k-", lw=1.2, animated=True, label="E so far")
     clock = field.text(0.0, 1.03, "", transform=field.transAxes, fontsize=9, va="bottom", animated=True)
@@ -83,4 +84,5 @@ def write_animation(result: ParallelogramResult, folder: str | Path, frames: int
     """``animation.gif`` of one driver turn (one plant) in ``folder``."""
     require_result(result, ParallelogramResult, "parallelogram")
     folder = writable_folder(folder)
-    return write_gif(blitted_frames(*_draw_frames(result, frames), frames), folder / "animation.gif")
+    fig, draw = _draw_frames(result, frames)
+    return write_gif(blitted_frames(fig, draw, frames), folder / "animation.gif")

@@ -59,7 +59,8 @@ def parse_design(data: dict, source: str = "<dict>") -> DesignFile:
         read.fail("design", None, "a [design] table with the eight variables")
     design = read_design(read, data["design"])
     return DesignFile(design, read_printed(read, data.get("printed", {}), design),
-                      read_published(read, data.get("published", {})), source, read.text(data, "title", "", LONGEST_TITLE))
+                      read_published(read, data.get("published", {})), source,
+                      read.text(data, "title", "", LONGEST_TITLE))
 
 
 def load_design(path: str | Path) -> DesignFile:
@@ -99,7 +100,7 @@ def evaluate(problem: ParallelogramProblem, design: dict, label: str = "closed",
         problem = dataclasses.replace(problem, conventions=conventions)
     mech = mechanisms(problem, design, m12=m12, center_distance=center_distance)
     m = measure(mech, problem.depth_window, EVALUATION_SAMPLES)
-    gear = gear_margins(mech.m11, mech.m12, mech.b, mech.l, mech.center_distance)
+    gear = gear_margins(mech.m11, mech.m12, mech.amplitude, mech.base_radius, mech.center_distance)
     limit = undercut_limit(problem.module, problem.pressure_angle)
     rho = (float(gear.driver_curvature[0]), float(gear.driven_curvature[0]))
     convex = bool(gear.driver_convexity[0] > 0 and gear.driven_convexity[0] > 0)

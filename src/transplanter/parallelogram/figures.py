@@ -26,7 +26,7 @@ def draw_trajectory(problem: ParallelogramProblem, design: dict, title: str = ""
     ax.plot(*path.tip, lw=1.0, label="planting point E")
     for turn in range(TURNS):
         shift = np.array([problem.forward_velocity * turn * problem.period, 0.0])
-        window = np.linspace(*m.window[:, 0], 200)[None, :] + turn * 2 * np.pi
+        window = np.linspace(m.window[0, 0], m.window[1, 0], 200)[None, :] + turn * 2 * np.pi
         segment = mech.state(window)[1][:, 0]
         ax.plot(*segment, color="tab:red", lw=2.5, label="depth window" if turn == 0 else None)
         ax.plot(*(m.lowest[:, 0] + shift), "kv", ms=6, label="planting instant t_E" if turn == 0 else None)
@@ -47,7 +47,7 @@ def _time_plot(problem, design, pick, ylabel_x: str, ylabel_y: str, unit: str) -
     values = pick(path)
     fig = Figure(figsize=(7, 5.5), layout="constrained")
     axes = fig.subplots(2, 1, sharex=True)
-    for ax, series, label in zip(axes, values, (ylabel_x, ylabel_y)):
+    for ax, series, label in zip(axes, values, (ylabel_x, ylabel_y), strict=True):
         ax.plot(path.time, series, lw=1.0)
         ax.axvline(m.planting_time[0], color="tab:red", lw=0.8, ls="--", label="planting instant t_E")
         ax.axhline(0.0, color="k", lw=0.5)
@@ -80,7 +80,7 @@ def draw_pareto(result) -> Figure:
     labels = ("f1 = |Vx(t_E)| / mm s⁻¹", "f2 = |H − H_target| / mm", "f3 = |Y − Y_target| / mm")
     fig = Figure(figsize=(12, 4), layout="constrained")
     axes = fig.subplots(1, 3)
-    for ax, (i, j) in zip(axes, ((0, 1), (0, 2), (1, 2))):
+    for ax, (i, j) in zip(axes, ((0, 1), (0, 2), (1, 2)), strict=True):
         ax.scatter(f[:, i], f[:, j], s=14, color="tab:blue", label="Pareto designs")
         ax.scatter(f[0, i], f[0, j], s=90, marker="*", color="tab:red", label="knee (rank 1)")
         ax.set_xscale("symlog", linthresh=1e-3)
@@ -91,7 +91,8 @@ def draw_pareto(result) -> Figure:
             ax.scatter(p[i], p[j], s=60, marker="P", color="tab:green", label="NLP polish of it")
         if result.pick != 1:
             k = result.pick - 1
-            ax.scatter(f[k, i], f[k, j], s=60, marker="D", facecolor="none", color="k", label=f"picked (rank {result.pick})")
+            ax.scatter(f[k, i], f[k, j], s=60, marker="D", facecolor="none", color="k",
+                       label=f"picked (rank {result.pick})")
         ax.set_xlabel(labels[i])
         ax.set_ylabel(labels[j])
         ax.grid(alpha=0.3)

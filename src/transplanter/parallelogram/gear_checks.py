@@ -46,16 +46,17 @@ class GearMargins:
     driven_curvature: np.ndarray
 
 
-def gear_margins(m11, m12, b, l, center_distance) -> GearMargins:
-    """Convexity and curvature margins of the pairs (arrays of shape (P,))."""
-    b, l, a = (np.asarray(v, float)[:, None] for v in (b, l, center_distance))
+def gear_margins(m11, m12, amplitude, base_radius, center_distance) -> GearMargins:
+    """Convexity and curvature margins of the pairs (arrays of shape (P,)); the driver's half is
+    r1 = base_radius + amplitude cos(m phi1) (the onion-transplanter paper's l and b)."""
+    b, base, a = (np.asarray(v, float)[:, None] for v in (amplitude, base_radius, center_distance))
     c = COSINES[None, :]
-    k, d = b / l, a / l
+    k, d = b / base, a / base
     driver, driven, rho1, rho2 = [], [], [], []
     for m in (np.asarray(m11, float)[:, None], np.asarray(m12, float)[:, None]):
         driver.append(_driver_convexity([k], [m], [c])[0][0].min(axis=1))
         driven.append(_driven_convexity([k], [m], [d], [c])[0][0].min(axis=1))
-        radius, slope, bend = np.broadcast_arrays(l + b * c, b * m * np.sqrt(1 - c**2), -b * m**2 * c)
+        radius, slope, bend = np.broadcast_arrays(base + b * c, b * m * np.sqrt(1 - c**2), -b * m**2 * c)
         with np.errstate(divide="ignore", invalid="ignore"):
             rho1.append(_curvature([radius], [slope], [bend])[0][0].min(axis=1))
             r2, s2, b2, _ = (v[0] for v in _conjugate([np.broadcast_to(a, radius.shape)], [radius], [slope], [bend]))

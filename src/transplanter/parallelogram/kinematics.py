@@ -8,6 +8,7 @@ crank (2 pi when the pair closes).
 """
 from __future__ import annotations
 
+import dataclasses
 import functools
 from dataclasses import dataclass
 
@@ -46,6 +47,10 @@ def _column(value, ndim: int) -> np.ndarray:
     return value.reshape(value.shape + (1,) * (ndim - value.ndim))
 
 
+#: The attributes of ``Mechanisms`` that hold one value per design.
+_PER_DESIGN = ("m11", "m12", "amplitude", "base_radius", "center_distance", "l1", "l2", "l5", "l6", "alpha")
+
+
 @dataclass(frozen=True)
 class Mechanisms:
     """P designs of the mechanism (mm, rad, s); every attribute has shape (P,).
@@ -56,8 +61,8 @@ class Mechanisms:
 
     m11: np.ndarray
     m12: np.ndarray
-    b: np.ndarray
-    l: np.ndarray
+    amplitude: np.ndarray           # the driver's b: r1 = l + b cos(m phi1) on each half
+    base_radius: np.ndarray         # the driver's l
     center_distance: np.ndarray
     l1: np.ndarray
     l2: np.ndarray
@@ -73,8 +78,12 @@ class Mechanisms:
     def count(self) -> int:
         return self.m11.size
 
+    def first(self) -> Mechanisms:
+        """The first design alone: every per-design attribute cut to shape (1,)."""
+        return dataclasses.replace(self, **{name: getattr(self, name)[:1] for name in _PER_DESIGN})
+
     def pitch(self, ndim: int) -> np.ndarray:
-        return _group(*(_column(v, ndim) for v in (self.l, self.b, self.m11, self.m12)))
+        return _group(*(_column(v, ndim) for v in (self.base_radius, self.amplitude, self.m11, self.m12)))
 
     def driven_angle(self, phi1) -> np.ndarray:
         """phi2 at driver angles within one turn (design on the first axis)."""
@@ -114,7 +123,8 @@ class Mechanisms:
         angle, pitch, center, links, crank = self._groups(phi1)
         ones = np.ones_like(crank[0])
         motion = _group(self.driver_speed * ones, self.forward_velocity * ones)
-        return _tip(angle, [phi1 / self.driver_speed], pitch, center, links, crank, motion)
+        pin, tip, velocity, acceleration = _tip(angle, [phi1 / self.driver_speed], pitch, center, links, crank, motion)
+        return pin, tip, velocity, acceleration
 
     def position(self, phi1) -> np.ndarray:
         """E in the machine's frame (no forward motion), shape (2, *phi1.shape): for dense grids."""
@@ -134,6 +144,7 @@ def mechanisms(problem: ParallelogramProblem, variables: dict | None = None, m12
     m12 = denatured_partner(arrays["m11"]) if m12 is None else np.broadcast_to(float(m12), (count,)).copy()
     a = (closing_center_distance(arrays["l"], arrays["b"]) if center_distance is None
          else np.broadcast_to(float(center_distance), (count,)).copy())
-    return Mechanisms(m12=m12, center_distance=a, conventions=problem.conventions,
-                      driver_speed=problem.driver_speed, forward_velocity=problem.forward_velocity,
-                      pivot_offset=np.asarray(problem.crank_pivot, float), **arrays)
+    return Mechanisms(m11=arrays["m11"], m12=m12, amplitude=arrays["b"], base_radius=arrays["l"], center_distance=a,
+                      l1=arrays["l1"], l2=arrays["l2"], l5=arrays["l5"], l6=arrays["l6"], alpha=arrays["alpha"],
+                      conventions=problem.conventions, driver_speed=problem.driver_speed,
+                      forward_velocity=problem.forward_velocity, pivot_offset=np.asarray(problem.crank_pivot, float))

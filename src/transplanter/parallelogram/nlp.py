@@ -1,8 +1,8 @@
 """NLP polish of a Pareto design (IPOPT through CasADi, exact derivatives of the generated functions).
 
 Unknowns: the searched variables but l (the kinematics sees b/l only, so l, the gear's size, would
-be a direction of zero curvature; it stays at the start's value) and three driver angles, the planting instant tau_E and the two
-ends tau_-, tau_+ of the depth run. Conditions, all exact:
+be a direction of zero curvature; it stays at the start's value) and three driver angles, the planting instant
+tau_E and the two ends tau_-, tau_+ of the depth run. Conditions, all exact:
 - the planting instant is a lowest point: V_y(tau_E) = 0, A_y(tau_E) >= 0;
 - true zero-speed planting: V_x(tau_E) = 0 (an equality, not a weight);
 - the run's ends lie on the band's edges, on the sides the start design leaves it:
@@ -57,8 +57,9 @@ class Polish:
     seconds: float
 
 
-def _gear_constraints(m11, m12, b, l, a, limit):
-    """Convexity (scale-free) and curvature margin (rho / limit - 1) of both curves, both halves, on COSINES."""
+def _gear_constraints(m11, m12, b, base, a, limit):
+    """Convexity (scale-free) and curvature margin (rho / limit - 1) of both curves, both halves, on COSINES;
+    the driver's half is r1 = base + b cos(m phi1) (the onion-transplanter paper's l and b)."""
     driver = casadi_function(limacon_driver_convexity)
     driven = casadi_function(limacon_driven_convexity)
     curvature = casadi_function(polar_curvature)
@@ -66,8 +67,8 @@ def _gear_constraints(m11, m12, b, l, a, limit):
     rows = []
     for m in (m11, m12):
         for c in COSINES:
-            rows += [driver(b / l, m, c), driven(b / l, m, a / l, c)]
-            radius, slope, bend = l + b * c, b * m * np.sqrt(max(1 - c * c, 0.0)), -b * m**2 * c
+            rows += [driver(b / base, m, c), driven(b / base, m, a / base, c)]
+            radius, slope, bend = base + b * c, b * m * np.sqrt(max(1 - c * c, 0.0)), -b * m**2 * c
             rows.append(curvature(radius, slope, bend)[0] / limit - 1)
             r2, s2, b2, _ = conjugate(a, radius, slope, bend)
             rows.append(curvature(r2, s2, b2)[0] / limit - 1)
@@ -91,7 +92,8 @@ def polish(problem: ParallelogramProblem, start: dict, measures: TrajectoryMeasu
     # each angle stays within its whole turn and within a quarter turn of its start
     tau = nlp.variables("angles", 3, np.maximum(TWO_PI * laps, start_angles - np.pi / 2),
                         np.minimum(TWO_PI * (laps + 1), start_angles + np.pi / 2))
-    v = {**{k: float(val) for k, val in start.items()}, **{n: searched[i] for i, n in enumerate(names)}}
+    v: dict[str, float | ca.SX] = {**{k: float(val) for k, val in start.items()},
+                                   **{n: searched[i] for i, n in enumerate(names)}}
     m12 = 1 / (2 - 1 / v["m11"])
     a = casadi_function(limacon_center_distance)(v["l"], v["b"], 1.0)
     pitch = ca.vertcat(v["l"], v["b"], v["m11"], m12)

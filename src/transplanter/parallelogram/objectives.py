@@ -40,7 +40,7 @@ def score(problem: ParallelogramProblem, variables: dict, samples: int) -> Score
     """F and G of every design in ``variables`` (name -> array, mm and rad)."""
     mech = mechanisms(problem, variables)
     m = measure(mech, problem.depth_window, samples)
-    gear = gear_margins(mech.m11, mech.m12, mech.b, mech.l, mech.center_distance)
+    gear = gear_margins(mech.m11, mech.m12, mech.amplitude, mech.base_radius, mech.center_distance)
     limit = undercut_limit(problem.module, problem.pressure_angle)
     low, high = problem.depth_band
     objectives = np.column_stack([np.abs(m.vx_release), np.abs(m.depth - problem.depth_target),

@@ -222,7 +222,8 @@ def read_design(read: FieldReader, table, where: str = "design") -> dict:
     if design["m11"] <= 0.5:
         read.fail(f"{where}.m11", design["m11"], "more than 0.5 (eq 2: m12 = 1 / (2 - 1/m11) must be positive)")
     if design["b"] >= design["l"]:
-        read.fail(f"{where}.b", design["b"], f"less than l = {design['l']:g} mm (the driver radius l - b must stay positive)")
+        read.fail(f"{where}.b", design["b"],
+                  f"less than l = {design['l']:g} mm (the driver radius l - b must stay positive)")
     return design
 
 
@@ -232,7 +233,7 @@ def check_design(check: ClassFields, design):
     if not isinstance(design, dict) or set(design) != set(VARIABLES):
         check.fail("design", design, f"a dict of exactly {', '.join(VARIABLES)} (mm; alpha in rad)")
     for name, value in design.items():
-        if not is_finite_number(value) or (name != "alpha" and value <= 0) or (name == "alpha" and abs(value) > 2 * np.pi):
+        if not is_finite_number(value) or (abs(value) > 2 * np.pi if name == "alpha" else value <= 0):
             check.fail(f"design[{name!r}]", value, "an angle within one turn (rad)" if name == "alpha" else
                        "a positive number" + (" (mm)" if name != "m11" else ""))
     if design["m11"] <= 0.5 or design["b"] >= design["l"]:
@@ -338,7 +339,8 @@ def parse_problem(data: dict, source: str = "<dict>") -> ParallelogramProblem:
     read = FieldReader(source)
     read.keys(data, _TOP_KEYS, "")
     if "design" not in data:
-        raise ProblemError(f"{source}: [design] is missing: expected the eight variables {', '.join(FILE_NAMES.values())}")
+        raise ProblemError(f"{source}: [design] is missing: "
+                           f"expected the eight variables {', '.join(FILE_NAMES.values())}")
     design = read_design(read, data["design"])
     gear = data.get("gear", {})
     read.keys(gear, {"module", "pressure_angle_deg"}, "gear")
@@ -392,4 +394,5 @@ def parse_problem(data: dict, source: str = "<dict>") -> ParallelogramProblem:
         population=population, generations=generations,
         seed=read.integer(search, "seed", "search", 0, 2**31 - 1, default=1),
         source=source, title=read.text(data, "title", "", LONGEST_TITLE),
-        printed=read_printed(read, data.get("printed", {}), design), published=read_published(read, data.get("published", {})))
+        printed=read_printed(read, data.get("printed", {}), design),
+        published=read_published(read, data.get("published", {})))

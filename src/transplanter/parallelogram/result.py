@@ -74,7 +74,7 @@ class Polished:
     def failures(self, problem: ParallelogramProblem) -> tuple[str, ...]:
         """The polished design must exist, meet Vx = 0 and H = target on the fine grid (to 1e-6 of the
         machine speed and of the target) and dominate its start."""
-        if self.variables is None:
+        if self.variables is None or self.evaluation is None:         # None both when IPOPT failed
             return (f"NLP polish failed (IPOPT status {self.status})",)
         e, out = self.evaluation, []
         if abs(e.vx_release) > 1e-6 * problem.forward_speed:
@@ -131,7 +131,10 @@ class ParallelogramResult(CommandResult):
 
     @property
     def final_evaluation(self) -> Evaluation:
-        return self.polished.evaluation if self.polished is not None and self.polished.variables else self.evaluation
+        polished = self.polished
+        if polished is not None and polished.variables and polished.evaluation is not None:
+            return polished.evaluation
+        return self.evaluation
 
     @property
     def source(self) -> str:

@@ -52,7 +52,7 @@ class SearchResult:
 
     def variables(self, rank: int) -> dict:
         """Searched variables of the design ranked ``rank`` (1 = the knee), mm and rad."""
-        return dict(zip(self.names, (float(v) for v in self.designs[rank - 1])))
+        return dict(zip(self.names, (float(v) for v in self.designs[rank - 1]), strict=True))
 
 
 def knee_order(objectives: np.ndarray) -> np.ndarray:
@@ -64,7 +64,8 @@ def knee_order(objectives: np.ndarray) -> np.ndarray:
 
 
 def _describe(problem: ParallelogramProblem, names, x: np.ndarray, g: np.ndarray, depth: float) -> str:
-    values = ", ".join(f"{FILE_NAMES[n]} = {np.degrees(v) if n == 'alpha' else v:.4g}" for n, v in zip(names, x))
+    values = ", ".join(f"{FILE_NAMES[n]} = {np.degrees(v) if n == 'alpha' else v:.4g}"
+                       for n, v in zip(names, x, strict=True))
     worst = CONSTRAINTS[int(np.argmax(g))]
     return f"the closest design ({values}) has H = {depth:.3f} mm and violates {worst} most"
 
@@ -95,7 +96,7 @@ def nsga2(problem: ParallelogramProblem, progress: Callable[[str, int, int], Non
             super().__init__(n_var=len(names), n_obj=len(OBJECTIVES), n_ieq_constr=len(CONSTRAINTS), xl=low, xu=high)
 
         def _evaluate(self, x, out, *args, **kwargs):
-            scores = score(problem, dict(zip(names, x.T)), samples)
+            scores = score(problem, dict(zip(names, x.T, strict=True)), samples)
             out["F"], out["G"] = scores.objectives, scores.constraints
 
     class Report(Callback):
@@ -118,14 +119,14 @@ def nsga2(problem: ParallelogramProblem, progress: Callable[[str, int, int], Non
         population = result.pop
         x, g = population.get("X"), population.get("G")
         k = int(np.argmin(np.maximum(g, 0).sum(axis=1)))
-        depth = score(problem, dict(zip(names, x[k:k + 1].T)), samples).measures.depth[0]
+        depth = score(problem, dict(zip(names, x[k:k + 1].T, strict=True)), samples).measures.depth[0]
         band = list(problem.depth_band)
         raise InfeasibleError(
             f"{problem.source}: objectives.depth_band_mm = {band}: no design within search.bounds meets it and the "
             f"gear constraints after {evaluations} evaluations; {_describe(problem, names, x[k], g[k], depth)}; "
             "widen the band or the bounds")
     x = np.atleast_2d(result.X)
-    scores = score(problem, dict(zip(names, x.T)), samples)
+    scores = score(problem, dict(zip(names, x.T, strict=True)), samples)
     order = knee_order(scores.objectives)
     m = scores.measures
     return SearchResult(names, x[order], scores.objectives[order], m.depth[order], m.vx_release[order],

@@ -9,6 +9,7 @@ import numpy as np
 from transplanter.api_arguments import require_problem
 from transplanter.errors import ProblemError, SolverError, TransplanterError
 from transplanter.gears.result import GearResult
+from transplanter.gears.synthesis import tooth_counts
 from transplanter.parallelogram.evaluation import (
     EVALUATION_SAMPLES,
     DesignFile,
@@ -49,9 +50,11 @@ def _checks(problem: ParallelogramProblem, search: SearchResult, rank: int, eval
     failures = []
     high = problem.depth_band[1]
     if abs(evaluation.depth - search.depth[rank - 1]) > AGREEMENT * high:
-        failures.append(f"depth {evaluation.depth:.6f} mm on the fine grid, {search.depth[rank - 1]:.6f} mm in the search")
+        failures.append(f"depth {evaluation.depth:.6f} mm on the fine grid, "
+                        f"{search.depth[rank - 1]:.6f} mm in the search")
     if abs(evaluation.vx_release - search.vx_release[rank - 1]) > AGREEMENT * problem.forward_speed:
-        failures.append(f"Vx {evaluation.vx_release:.6f} mm/s on the fine grid, {search.vx_release[rank - 1]:.6f} in the search")
+        failures.append(f"Vx {evaluation.vx_release:.6f} mm/s on the fine grid, "
+                        f"{search.vx_release[rank - 1]:.6f} in the search")
     return tuple(failures) + requirement_failures(problem, evaluation, gear)
 
 
@@ -60,7 +63,7 @@ def toothed_pair(problem: ParallelogramProblem, design: dict):
     tooth outlines (the trajectory is unchanged: b/l is kept); the unscaled pair and the reason when the
     teeth cannot be cut."""
     pair = gear_pair(design, problem.module, problem.pressure_angle, problem.driver_speed, source=problem.source)
-    teeth = pair.tooth_counts.counts[0]
+    teeth = tooth_counts(pair.design, problem.module).counts[0]
     try:
         return gear_pair(design, problem.module, problem.pressure_angle, problem.driver_speed, teeth,
                          problem.source), ()

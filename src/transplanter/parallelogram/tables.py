@@ -31,8 +31,8 @@ def write_pareto(result: ParallelogramResult, path: Path) -> Path:
 
 
 def write_trajectory(result: ParallelogramResult, path: Path, samples: int = 721) -> Path:
-    """``trajectory.csv``: one driver turn of the final design (polished, else chosen): t (s), crank pin A (machine frame, mm),
-    E in the field (mm), its velocity (mm/s) and acceleration (mm/s^2)."""
+    """``trajectory.csv``: one driver turn of the final design (polished, else chosen): t (s),
+    crank pin A (machine frame, mm), E in the field (mm), its velocity (mm/s) and acceleration (mm/s^2)."""
     p = sample_path(mechanisms(result.problem, result.final), 1, samples)
     table = np.column_stack([p.time, np.degrees(p.driver_angle), *p.crank_pin, *p.tip, *p.velocity, *p.acceleration])
     header = "time_s,driver_angle_deg,ax_mm,ay_mm,ex_mm,ey_mm,vx_mm_s,vy_mm_s,accel_x_mm_s2,accel_y_mm_s2"

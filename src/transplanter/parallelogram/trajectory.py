@@ -161,7 +161,5 @@ class SampledPath:
 def sample_path(mech: Mechanisms, turns: float = 1.0, samples: int = 721, start: float = 0.0) -> SampledPath:
     """The first design of ``mech`` over ``turns`` driver turns from driver angle ``start``."""
     phi = start + np.linspace(0.0, TWO_PI * turns, samples)[None, :]
-    first = Mechanisms(**{k: (v[:1] if isinstance(v, np.ndarray) and v.shape == (mech.count,) else v)
-                          for k, v in vars(mech).items()})
-    pin, tip, velocity, acceleration = (s[:, 0] for s in first.state(phi))
+    pin, tip, velocity, acceleration = (s[:, 0] for s in mech.first().state(phi))
     return SampledPath(phi[0] / mech.driver_speed, phi[0], pin, tip, velocity, acceleration)

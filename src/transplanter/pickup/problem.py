@@ -143,7 +143,8 @@ def parse_problem(data: dict, source: str = "<dict>") -> PickupProblem:
     return PickupProblem(
         stages=tuple(stages), first_length=_length(read, carrier, "first_length", "carrier"),
         second_length=_length(read, carrier, "second_length", "carrier"),
-        bend=_angle(read, carrier, "bend_deg", "carrier", 0.0), start=_angle(read, carrier, "start_deg", "carrier", 0.0),
+        bend=_angle(read, carrier, "bend_deg", "carrier", 0.0),
+        start=_angle(read, carrier, "start_deg", "carrier", 0.0),
         arm_length=_length(read, arm, "length", "arm"), mounting=_angle(read, arm, "mounting_deg", "arm", 0.0),
         speed=_speed(read, carrier, "speed_rpm", "carrier") * 2 * np.pi / 60,
         picking=_where(read, angles, "picking", "farthest"), pushing=_where(read, angles, "pushing", "lowest"),

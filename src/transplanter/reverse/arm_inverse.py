@@ -94,7 +94,8 @@ class ArmMotion:
         for touch, offset, near in self._near_touches(x):
             sides = self._continuous(np.mod(touch.parameter + np.array([-TOUCH_LIMIT, TOUCH_LIMIT]), TWO_PI))
             weight = (offset[near] + TOUCH_LIMIT) / (2 * TOUCH_LIMIT)
-            for values, (before, after), table in zip((theta, gamma), sides, (self.theta_grid, self.gamma_grid)):
+            grids = (self.theta_grid, self.gamma_grid)
+            for values, (before, after), table in zip((theta, gamma), sides, grids, strict=True):
                 after = before + np.angle(np.exp(1j * (after - before)))
                 values[near] = self._unwrapped(x[near], before + weight * (after - before), table)
         return theta, gamma
@@ -197,5 +198,5 @@ def solve_arm(trajectory: ClosedTrajectory, carrier_length: float, arm_length: f
     gamma = np.unwrap(psi - theta)
     motion = ArmMotion(trajectory, carrier_length, arm_length, direction, start_branch, touches, grid, theta, gamma)
     start = motion.angles(np.zeros(1))          # the references of c and chi, safe at a touch
-    theta, gamma = (np.r_[s[0], v[1:-1], v[-1] + s[0] - v[0]] for s, v in zip(start, (theta, gamma)))
+    theta, gamma = (np.r_[s[0], v[1:-1], v[-1] + s[0] - v[0]] for s, v in zip(start, (theta, gamma), strict=True))
     return ArmMotion(trajectory, carrier_length, arm_length, direction, start_branch, touches, grid, theta, gamma)

@@ -63,9 +63,10 @@ def draw_motion(result: ReverseResult) -> Figure:
     top.set_xlabel("path parameter u (turns)")
     top.set_ylabel("angle (deg)")
     top.legend(fontsize=8, **LEGEND_BESIDE)
-    if result.train is not None:
-        c = result.verification.carrier_turns
-        bottom.plot(np.degrees(c), 1 / result.relative.evaluate(c, 1), "k", label="total i0 (sun : planet)")
+    verification, relative = result.verification, result.relative
+    if result.train is not None and verification is not None and relative is not None:    # all three, or none
+        c = verification.carrier_turns
+        bottom.plot(np.degrees(c), 1 / relative.evaluate(c, 1), "k", label="total i0 (sun : planet)")
         if not isinstance(result.train, IdlerTrain):
             first, second = result.train.stage_ratios(c)
             bottom.plot(np.degrees(c), first, label="stage 1 (sun : intermediate)")

@@ -63,8 +63,9 @@ def seed_iteration(relative: RelativeMotion, center_distance: float):
     planet_turn = np.mod(relative.evaluate(c, 0) + np.pi, TWO_PI)
     L = center_distance
     i12, x = np.ones_like(c), 0.0
-    best = (np.inf, i12, x)
-    for iteration in range(1, ITERATIONS + 1):
+    best, iterations = (np.inf, i12, x), 0
+    for _ in range(ITERATIONS):
+        iterations += 1
         r1 = L / (1 + i12)
         r3 = PeriodicSpline(c, r1).evaluate(planet_turn)[0]
         residual = float(np.abs(_total_ratio(np.array([r1, r3]), np.array([L]))[0][0] / i13 - 1).max())
@@ -81,7 +82,7 @@ def seed_iteration(relative: RelativeMotion, center_distance: float):
         if settled or stalled >= STALL:
             break
     residual, i12, x = best
-    return c, L / (1 + i12), iteration, bool(settled), residual, x
+    return c, L / (1 + i12), iterations, bool(settled), residual, x
 
 
 def _turned(curve: PitchCurve, angle: float) -> PitchCurve:

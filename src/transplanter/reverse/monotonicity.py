@@ -32,7 +32,7 @@ def _runs(failing: np.ndarray) -> list[tuple[int, int]]:
     if not failing.any():
         return []
     edges = np.flatnonzero(np.diff(np.r_[0, failing.astype(int), 0]))
-    runs = [(int(a), int(b) - 1) for a, b in zip(edges[::2], edges[1::2])]
+    runs = [(int(a), int(b) - 1) for a, b in zip(edges[::2], edges[1::2], strict=True)]
     if len(runs) > 1 and runs[0][0] == 0 and runs[-1][1] == len(failing) - 1:
         runs = [(runs[-1][0], runs[0][1])] + runs[1:-1]
     return runs
@@ -52,8 +52,9 @@ def violations(motion: ArmMotion) -> list[Violation]:
                                "at each touch, so an odd count leaves the arm on the other branch after one cycle"))
     elif abs(carrier - 1) > 1e-6 or abs(planet - 1) > 1e-6:
         found.append(Violation("turns", 0.0, 1.0, carrier,
-                               f"per cycle the carrier turns {carrier:+.3f} and the planet {planet:+.3f} turns against "
-                               "it in the carrier's direction; both must turn exactly +1 for the pitch curves to close"))
+                               f"per cycle the carrier turns {carrier:+.3f} and the planet {planet:+.3f} turns "
+                               "against it in the carrier's direction; both must turn exactly +1 "
+                               "for the pitch curves to close"))
     x = motion.grid
     (c1, _, _), (h1, _, _) = motion.path_rates(x)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -79,11 +80,12 @@ def stationary_radii(motion: ArmMotion) -> list[str]:
 
 def fix_hints(trajectory: ClosedTrajectory, motion: ArmMotion, derived_lengths: tuple[float, float]) -> list[str]:
     """Changes that would pass the criterion, each tried on the same path."""
-    s, l, d, b = motion.carrier_length, motion.arm_length, motion.direction, motion.start_branch
-    trials = [(f"start on the {BRANCH_NAMES[-b]} branch", (s, l, d, -b)),
-              (f"turn the carrier {DIRECTION_NAMES[-d]}", (s, l, -d, b)),
-              (f"turn the carrier {DIRECTION_NAMES[-d]} and start on the {BRANCH_NAMES[-b]} branch", (s, l, -d, -b))]
-    if not np.allclose(derived_lengths, (s, l), rtol=1e-9, atol=0):
+    lengths, d, b = (motion.carrier_length, motion.arm_length), motion.direction, motion.start_branch
+    trials = [(f"start on the {BRANCH_NAMES[-b]} branch", (*lengths, d, -b)),
+              (f"turn the carrier {DIRECTION_NAMES[-d]}", (*lengths, -d, b)),
+              (f"turn the carrier {DIRECTION_NAMES[-d]} and start on the {BRANCH_NAMES[-b]} branch",
+               (*lengths, -d, -b))]
+    if not np.allclose(derived_lengths, lengths, rtol=1e-9, atol=0):
         trials += [(f"carrier_length = {derived_lengths[0]:.4f} and arm_length = {derived_lengths[1]:.4f} mm "
                     "(the rice-transplanter paper eq 1-2: the arm straightens at the farthest point and folds "
                     "at the nearest), "

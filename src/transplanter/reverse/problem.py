@@ -13,7 +13,8 @@ Schema (docs/reverse.md, "Problem files"):
     direction = "clockwise"       # carrier rotation, or "counterclockwise" (default)
     branch = "auto"               # at the first point: "approach", "retraction" or "auto"
     [train]
-    topology = "sun-intermediate-planet"   # or "sun-idler-planet" (3 gears), "pick-up" (the cusp-pitch-curve paper eq 15)
+    topology = "sun-intermediate-planet"   # or "sun-idler-planet" (3 gears),
+                                           # "pick-up" (the cusp-pitch-curve paper eq 15)
     split = "sqrt"                # or "peak_to_valley" (4 gears), "identical_sun_planet" (3 gears)
     # peak_to_valley = 0.6        # with split = "peak_to_valley" only: its b, in (0, 1)
     center_distances = [46.15, 46.15]      # mm; default s/2 each (collinear carrier)
@@ -195,12 +196,12 @@ def _train(read: FieldReader, table: dict):
     if not 0 < coefficient < 1:
         read.fail("train.peak_to_valley", coefficient, "a number in (0, 1): the share of the total ratio's swing "
                   "that stage 1 carries")
-    centers = None
+    centers: tuple[float, float] | None = None
     if "center_distances" in table:
-        centers = read.numbers(table, "center_distances", "train", 2)
-        if len(centers) != 2 or centers.min() < SMALLEST_LENGTH:
+        given = read.numbers(table, "center_distances", "train", 2)
+        if len(given) != 2 or given.min() < SMALLEST_LENGTH:
             read.fail("train.center_distances", table["center_distances"], "two positive center distances (mm)")
-        centers = (float(centers[0]), float(centers[1]))
+        centers = (float(given[0]), float(given[1]))
     module = read.length(table, "module", "train") if "module" in table else 2.5
     return topology, split, coefficient, centers, module
 
@@ -233,4 +234,5 @@ def parse_problem(data: dict, source: str = "<dict>") -> ReverseProblem:
     topology, split, coefficient, centers, module = _train(read, data.get("train", {}))
     return ReverseProblem(points=points - pivot, kind=kind, pivot=pivot, lengths=lengths, direction=direction,
                           branch=branch, topology=topology, split=split, peak_to_valley=coefficient,
-                          center_distances=centers, module=module, source=source, title=read.text(data, "title", "", LONGEST_TITLE))
+                          center_distances=centers, module=module, source=source,
+                          title=read.text(data, "title", "", LONGEST_TITLE))

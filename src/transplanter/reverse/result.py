@@ -84,7 +84,7 @@ class ReverseResult(CommandResult):
         """Why there is no train (where the path fails the monotonicity criterion), or why the train fails (rolled
         from its pitch curves, it misses the path by more than ROUNDTRIP_TOLERANCE of the reach); empty when both
         pass."""
-        if not self.monotonic:
+        if not self.monotonic or self.verification is None:      # a train, and its verification, need the former
             return ["the path fails the monotonicity criterion: " + "; ".join(v.message for v in self.violations)]
         miss, reach = self.verification.max_error_mm, self.motion.carrier_length + self.motion.arm_length
         if miss <= ROUNDTRIP_TOLERANCE * reach:

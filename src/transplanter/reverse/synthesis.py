@@ -46,8 +46,10 @@ def build_trajectory(problem: ReverseProblem) -> ClosedTrajectory:
     return trajectory
 
 
-def touching_reach(problem: ReverseProblem, trajectory: ClosedTrajectory, s: float, l: float) -> ClosedTrajectory:
+def touching_reach(problem: ReverseProblem, trajectory: ClosedTrajectory, carrier_length: float,
+                   arm_length: float) -> ClosedTrajectory:
     """A curve fitted to samples, moved radially so that it touches the reach circles s + l and |s - l|
+    (s the carrier length, l the arm length)
     where it comes within ``SAMPLED_TOUCH`` of the reach (or the fit's own miss) of them: samples drawn
     by an arm of these lengths touch them somewhere between two samples, which a curve through the
     samples misses by a little (2.4e-5 mm with 50 samples of a 250 mm loop), and a curve that falls
@@ -55,20 +57,21 @@ def touching_reach(problem: ReverseProblem, trajectory: ClosedTrajectory, s: flo
     folding). The move shows in the fit's miss, which the report gives."""
     if problem.kind != "samples":
         return trajectory
-    allowance = max(trajectory.sample_misses(problem.points).max(), SAMPLED_TOUCH * (s + l))
+    outer, inner = carrier_length + arm_length, abs(carrier_length - arm_length)
+    allowance = max(trajectory.sample_misses(problem.points).max(), SAMPLED_TOUCH * outer)
     radii = [e.radius for e in trajectory.radial_extremes()]
     farthest, nearest = max(radii), min(radii)
-    targets = (s + l if abs(farthest - (s + l)) <= allowance else farthest,
-               abs(s - l) if abs(nearest - abs(s - l)) <= allowance else nearest)
+    targets = (outer if abs(farthest - outer) <= allowance else farthest,
+               inner if abs(nearest - inner) <= allowance else nearest)
     if targets == (farthest, nearest) or not np.linalg.norm(trajectory.control, axis=1).all():
         return trajectory
     return trajectory.radially_remapped(*targets)
 
 
-def _unreachable(problem: ReverseProblem, trajectory: ClosedTrajectory, s: float, l: float):
+def _unreachable(problem: ReverseProblem, trajectory: ClosedTrajectory, carrier_length: float, arm_length: float):
     x = np.linspace(0, TWO_PI, trajectory.count * 256, endpoint=False)
     radius = np.linalg.norm(trajectory.evaluate(x), axis=1)
-    outer, inner = s + l, abs(s - l)
+    outer, inner = carrier_length + arm_length, abs(carrier_length - arm_length)
     for excess, what in ((radius - outer, f"beyond the reach s + l = {outer:.4f} mm"),
                          (inner - radius, f"inside the hole |s - l| = {inner:.4f} mm the arm cannot fold into")):
         bad = excess > TOUCH_TOLERANCE * outer
@@ -80,7 +83,13 @@ def _unreachable(problem: ReverseProblem, trajectory: ClosedTrajectory, s: float
             raise InfeasibleError(
                 f"{problem.source}: trajectory points from u = {first / TWO_PI:.4f} ({p[0, 0]:.6g}, {p[0, 1]:.6g}) to "
                 f"u = {last / TWO_PI:.4f} ({p[1, 0]:.6g}, {p[1, 1]:.6g}) lie {what}, by up to {excess[worst]:.4g} mm "
-                f"at ({p[2, 0]:.6g}, {p[2, 1]:.6g}); carrier_length = {s:g}, arm_length = {l:g}")
+                f"at ({p[2, 0]:.6g}, {p[2, 1]:.6g}); carrier_length = {carrier_length:g}, arm_length = {arm_length:g}")
+
+
+def _lengths_from(extremes: tuple[float, float]) -> tuple[float, float]:
+    """(s, l) from the path's farthest and nearest distances to the pivot (the rice-transplanter paper eq 1-2)."""
+    carrier_length, arm_length = _arm_lengths(np.array(extremes))[0]
+    return float(carrier_length), float(arm_length)
 
 
 def _ratio_spread(motion: ArmMotion) -> float:
@@ -88,37 +97,40 @@ def _ratio_spread(motion: ArmMotion) -> float:
     return float(ratio.max() / ratio.min())
 
 
-def choose_motion(trajectory: ClosedTrajectory, s: float, l: float, direction: int, branch: str) -> ArmMotion:
+def choose_motion(trajectory: ClosedTrajectory, carrier_length: float, arm_length: float, direction: int,
+                  branch: str) -> ArmMotion:
     """The start branch asked for, or (auto) the one that passes with the smaller ratio spread."""
     starts = {"approach": (1,), "retraction": (-1,), "auto": (1, -1)}[branch]
-    motions = [solve_arm(trajectory, s, l, direction, b) for b in starts]
+    motions = [solve_arm(trajectory, carrier_length, arm_length, direction, b) for b in starts]
     counts = [len(violations(m)) for m in motions]
-    judged = [(count, np.inf if count else _ratio_spread(m), k) for k, (m, count) in enumerate(zip(motions, counts))]
+    judged = [(count, np.inf if count else _ratio_spread(m), k)
+              for k, (m, count) in enumerate(zip(motions, counts, strict=True))]
     return motions[min(judged)[2]]
 
 
-def carrier_geometry(problem: ReverseProblem, s: float) -> CarrierGeometry | None:
+def carrier_geometry(problem: ReverseProblem, carrier_length: float) -> CarrierGeometry | None:
     """None for a straight carrier (sun, intermediate and planet shafts on one line)."""
     centers = problem.center_distances
-    if centers is not None and min(centers) < SMALLEST_STAGE * s:
+    if centers is not None and min(centers) < SMALLEST_STAGE * carrier_length:
         raise ProblemError(f"{problem.source}: train.center_distances = {list(centers)}: expected each at least "
-                           f"{SMALLEST_STAGE:g} of the carrier length s = {s:.6g} mm (a shorter stage's gears would be "
-                           f"a thousandth of the train's size)")
+                           f"{SMALLEST_STAGE:g} of the carrier length s = {carrier_length:.6g} mm "
+                           "(a shorter stage's gears would be a thousandth of the train's size)")
     if problem.topology != "pick-up":
-        if centers is not None and abs(sum(centers) - s) > 1e-9 * s:
+        if centers is not None and abs(sum(centers) - carrier_length) > 1e-9 * carrier_length:
             raise ProblemError(f"{problem.source}: train.center_distances = {list(centers)}: expected two distances "
-                               f"adding up to the carrier length {s:.6g} mm on a straight carrier (or topology "
-                               "\"pick-up\" for a bent one)")
-        if problem.topology == "sun-idler-planet" and centers is not None and abs(centers[0] - centers[1]) > 1e-9 * s:
+                               f"adding up to the carrier length {carrier_length:.6g} mm on a straight carrier "
+                               "(or topology \"pick-up\" for a bent one)")
+        if (problem.topology == "sun-idler-planet" and centers is not None
+                and abs(centers[0] - centers[1]) > 1e-9 * carrier_length):
             raise ProblemError(f"{problem.source}: train.center_distances = {list(centers)}: expected two equal "
                                "distances for sun-idler-planet (the rice-transplanter paper: the idler then makes "
                                "the sun and the planet the same curve)")
         return None
-    first, second = centers if centers is not None else (s / 2, s / 2)
-    cosine = (s**2 - first**2 - second**2) / (2 * first * second)
+    first, second = centers if centers is not None else (carrier_length / 2, carrier_length / 2)
+    cosine = (carrier_length**2 - first**2 - second**2) / (2 * first * second)
     if abs(cosine) > 1:
         raise ProblemError(f"{problem.source}: train.center_distances = {[first, second]}: expected L1, L2 that can "
-                           f"place the planet {s:.6g} mm from the pivot (|L1 - L2| <= s <= L1 + L2)")
+                           f"place the planet {carrier_length:.6g} mm from the pivot (|L1 - L2| <= s <= L1 + L2)")
     return CarrierGeometry(first, second, float(np.arccos(cosine)))
 
 
@@ -146,25 +158,27 @@ def synthesize(problem: ReverseProblem) -> ReverseResult:
     radii = [e.radius for e in trajectory.radial_extremes()]
     extremes = (max(radii), min(radii))
     derived = problem.lengths is None
-    s, l = (float(v) for v in _arm_lengths(np.array(extremes))[0]) if derived else problem.lengths
-    if not derived:
-        trajectory = touching_reach(problem, trajectory, s, l)
+    if problem.lengths is None:
+        carrier_length, arm_length = _lengths_from(extremes)
+    else:
+        carrier_length, arm_length = problem.lengths
+        trajectory = touching_reach(problem, trajectory, carrier_length, arm_length)
         radii = [e.radius for e in trajectory.radial_extremes()]
         extremes = (max(radii), min(radii))
-    _unreachable(problem, trajectory, s, l)
-    motion = choose_motion(trajectory, s, l, problem.direction, problem.branch)
+    _unreachable(problem, trajectory, carrier_length, arm_length)
+    motion = choose_motion(trajectory, carrier_length, arm_length, problem.direction, problem.branch)
     found = violations(motion)
     if found:
-        derived_lengths = tuple(float(v) for v in _arm_lengths(np.array(extremes))[0])
         return ReverseResult(problem, trajectory, extremes, derived, motion, found,
-                             fix_hints(trajectory, motion, derived_lengths))
-    geometry = carrier_geometry(problem, s)
+                             fix_hints(trajectory, motion, _lengths_from(extremes)))
+    geometry = carrier_geometry(problem, carrier_length)
     relative = CarrierFrameMotion(motion)
     if problem.topology == "sun-idler-planet":
-        train = design_idler_train(relative, s / 2, problem.source)
-        return ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, None, train,
-                             verify_idler_train(motion, train))
-    centers = (geometry.first, geometry.second) if geometry else (problem.center_distances or (s / 2, s / 2))
+        idler = design_idler_train(relative, carrier_length / 2, problem.source)
+        return ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, None, idler,
+                             verify_idler_train(motion, idler))
+    halves = (carrier_length / 2, carrier_length / 2)
+    centers = (geometry.first, geometry.second) if geometry else (problem.center_distances or halves)
     exponent = problem.peak_to_valley if problem.split == "peak_to_valley" else 0.5
     train = design_train(relative, centers, problem.source, exponent)
     return ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, geometry, train,

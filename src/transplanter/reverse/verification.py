@@ -56,8 +56,9 @@ def rebuild_tip(motion: ArmMotion, geometry: CarrierGeometry | None, carrier_tur
     theta = motion.theta_grid[0] + motion.direction * carrier_turns
     gamma = motion.gamma_grid[0] - motion.direction * planet_turns
     if geometry is None:
-        s, l = motion.carrier_length, motion.arm_length
-        return np.c_[s * np.cos(theta) + l * np.cos(theta + gamma), s * np.sin(theta) + l * np.sin(theta + gamma)]
+        carrier_length, arm_length = motion.carrier_length, motion.arm_length
+        return np.c_[carrier_length * np.cos(theta) + arm_length * np.cos(theta + gamma),
+                     carrier_length * np.sin(theta) + arm_length * np.sin(theta + gamma)]
     first_segment = theta - geometry.offset
     mounting = motion.gamma_grid[0] + geometry.offset - geometry.bend
     angles = np.array([first_segment, np.full_like(theta, geometry.bend), gamma - motion.gamma_grid[0],

@@ -41,7 +41,8 @@ from transplanter.geometry.turn_map import TurnMap
 class RelativeMotion(Protocol):
     """The planet's turn against the carrier as a function of the carrier's turn c (one turn each)."""
 
-    knots: np.ndarray
+    @property
+    def knots(self) -> np.ndarray: ...
 
     def evaluate(self, c, order: int = 0) -> np.ndarray: ...
 

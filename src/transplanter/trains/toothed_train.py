@@ -185,7 +185,7 @@ class ToothedTrain:
     @property
     def failures(self) -> list[str]:
         pairs = ("sun -> first intermediate", "second intermediate -> planet")
-        return [f"{pair}: {text}" for pair, check in zip(pairs, self.mesh) for text in check.failures]
+        return [f"{pair}: {text}" for pair, check in zip(pairs, self.mesh, strict=True) for text in check.failures]
 
     @property
     def passed(self) -> bool:
@@ -197,9 +197,10 @@ def stage_shape(design: GearPairDesign, gearing: Gearing) -> StageShape:
     count (module docstring)."""
     a = design.center_distance
     convex = [c > 0 for c in design.convexity]
-    rho = min(float(r[c].min()) for c, r in zip(convex, design.curvature_radius)) / a
-    concave = tuple(float(np.abs(r[~c]).min()) / a if (~c).any() else np.inf
-                    for c, r in zip(convex, design.curvature_radius))
+    rho = min(float(r[c].min()) for c, r in zip(convex, design.curvature_radius, strict=True)) / a
+    driver_hollow, driven_hollow = (float(np.abs(r[~c]).min()) / a if (~c).any() else np.inf
+                                    for c, r in zip(convex, design.curvature_radius, strict=True))
+    concave = (driver_hollow, driven_hollow)
     perimeter = design.perimeters[0] / a
     least = math.ceil(ADDENDUM * perimeter / (np.pi * rho * np.sin(gearing.pressure_angle) ** 2) * (1 + WHOLE))
     cutter = "rack" if gearing.cutter == "rack" and np.isinf(concave).all() else "shaper"
@@ -221,15 +222,17 @@ def cutting_reasons(train: PlanetaryTrain, stage: int, cutter: str, gearing: Gea
     limit = ADDENDUM * module / np.sin(gearing.pressure_angle) ** 2
     convex = [c > 0 for c in design.convexity]
     if cutter == "rack":
-        return tuple(f"convex; smallest radius of curvature {float(r[c].min()):.3f} mm >= the rack's undercut limit "
-                     f"m / sin^2(alpha) = {limit:.3f} mm" for c, r in zip(convex, design.curvature_radius))
+        driver_why, driven_why = (f"convex; smallest radius of curvature {float(r[c].min()):.3f} mm >= the rack's "
+                                  f"undercut limit m / sin^2(alpha) = {limit:.3f} mm"
+                                  for c, r in zip(convex, design.curvature_radius, strict=True))
+        return driver_why, driven_why
     fit = (f"{gearing.shaper_teeth}-tooth shaper, pitch radius {module * gearing.shaper_teeth / 2:.3f} mm; convex "
            f"stretches keep radii of curvature >= {limit:.3f} mm")
     if gearing.cutter == "shaper":
         why = f"cutter = \"shaper\" asked ({fit})"
     else:
         g = int(np.argmin([np.abs(r[~c]).min() if (~c).any() else np.inf
-                           for c, r in zip(convex, design.curvature_radius)]))
+                           for c, r in zip(convex, design.curvature_radius, strict=True)]))
         k = int(np.argmin(design.convexity[g]))
         hollow = float(np.abs(design.curvature_radius[g][~convex[g]]).min())
         why = (f"the {names[g]}'s pitch curve is concave: convexity r^2 + 2 r'^2 - r r'' = "
@@ -247,7 +250,7 @@ def _bent_counts(shapes, module: float, length: float) -> tuple[int, int]:
                  f"{MODULE_RANGE[0]:g} is the finest module taken: the mechanism is too small for cut teeth")
         raise InfeasibleError(f"the carrier |OA| = {length:.4g} mm is shorter than half a tooth step of the second "
                               f"centre distance ({pitch[1]:.4g} mm at module {module:g}): no whole counts fit; {finer}")
-    found = []
+    found: list[tuple[float, float, int, int]] = []
     z1 = shapes[0].min_teeth
     while not found or z1 * pitch[0] <= min(found)[0]:
         a1 = z1 * pitch[0]
@@ -287,11 +290,13 @@ def _straight_module(shapes, module: float, length: float, source: str) -> tuple
                        f"expected one of the modules that do, nearest: {offers}; or gears.layout = \"bent\"")
 
 
-def _given_counts(shapes, gearing: Gearing, length: float, source: str) -> tuple[int, int]:
+def _given_counts(shapes, gearing: Gearing, distances: tuple[float, float], length: float,
+                  source: str) -> tuple[int, int]:
+    """Whole counts of the given centre ``distances`` (gearing.center_distances), or refuse them."""
     m = gearing.module
     counts = []
-    for j, (a, shape, key) in enumerate(zip(gearing.center_distances, shapes,
-                                            ("first_center_distance", "second_center_distance"))):
+    for j, (a, shape, key) in enumerate(zip(distances, shapes,
+                                            ("first_center_distance", "second_center_distance"), strict=True)):
         z = a * shape.perimeter / (np.pi * m)
         step = np.pi * m / shape.perimeter
         if abs(z - round(z)) > WHOLE * z:
@@ -303,14 +308,14 @@ def _given_counts(shapes, gearing: Gearing, length: float, source: str) -> tuple
                                f"{shape.cutter} (stage {j + 1} needs at least {shape.min_teeth}); expected at least "
                                f"{shape.min_teeth * step:.12g} mm")
         counts.append(int(round(z)))
-    a1, a2 = gearing.center_distances
+    a1, a2 = distances
     if gearing.layout == "straight" and abs(a1 + a2 - length) > WHOLE * length:
         raise ProblemError(f"{source}: gears.first_center_distance + second_center_distance = {a1 + a2:g}: expected "
                            f"|OA| = {length:.12g} mm on a straight carrier (or gears.layout = \"bent\")")
     if not abs(a1 - a2) <= length * (1 + WHOLE) or not length <= (a1 + a2) * (1 + WHOLE):
         raise ProblemError(f"{source}: gears center distances [{a1:g}, {a2:g}] mm: expected |a1 - a2| <= |OA| = "
                            f"{length:.6g} mm <= a1 + a2, so that the shaft can be placed")
-    return tuple(counts)
+    return counts[0], counts[1]
 
 
 def bend_angle(a1: float, a2: float, length: float) -> float:
@@ -351,15 +356,16 @@ def _sizes(relative: RelativeMotion, carrier_length: float, gearing: Gearing, so
     shapes = (stage_shape(unit.stage_one, gearing), stage_shape(unit.stage_two, gearing))
     module = gearing.module
     if gearing.center_distances is not None:
-        counts = _given_counts(shapes, gearing, carrier_length, source)
+        counts = _given_counts(shapes, gearing, gearing.center_distances, carrier_length, source)
     elif gearing.layout == "straight":
-        *counts, module = _straight_module(shapes, module, carrier_length, source)
+        z1, z2, module = _straight_module(shapes, module, carrier_length, source)
+        counts = (z1, z2)
     else:
         try:
             counts = _bent_counts(shapes, module, carrier_length)
         except InfeasibleError as error:
             raise InfeasibleError(f"{source}: {error}") from None
-    for stage, (count, shape) in enumerate(zip(counts, shapes)):
+    for stage, (count, shape) in enumerate(zip(counts, shapes, strict=True)):
         most = MAX_SHAPER_TEETH if shape.cutter == "shaper" else MAX_TEETH
         if count > most:
             coarser = ("a coarser module" if module < MODULE_RANGE[1] else
@@ -367,7 +373,7 @@ def _sizes(relative: RelativeMotion, carrier_length: float, gearing: Gearing, so
             raise ProblemError(f"{source}: gears.module = {module:g}: gives {count} teeth on the "
                                f"{GEAR_NAMES[2 * stage]} ({shape.cutter}-cut); expected at most {most} (every tooth "
                                f"is cut and checked, in time and memory growing with the count); {coarser}")
-    a1, a2 = (z * np.pi * module / s.perimeter for z, s in zip(counts, shapes))
+    a1, a2 = (z * np.pi * module / s.perimeter for z, s in zip(counts, shapes, strict=True))
     if gearing.layout == "straight":
         a2 = carrier_length - a1
     return shapes, counts, (a1, a2), module, unit
@@ -378,10 +384,10 @@ def train_size(relative: RelativeMotion, carrier_length: float, gearing: Gearing
     """The sizes ``design_toothed_train`` would give, without cutting teeth (for comparing designs);
     raises as it does."""
     shapes, counts, distances, module, unit = _sizes(relative, carrier_length, gearing, source)
-    largest = [a * max(float(np.max(r)) for r in stage.radius)
-               for a, stage in zip(distances, (unit.stage_one, unit.stage_two))]
-    return TrainSize(tuple(int(z) for z in counts), tuple(float(a) for a in distances), float(module),
-                     tuple(shape.cutter for shape in shapes), tuple(largest))
+    largest_one, largest_two = (a * max(float(np.max(r)) for r in stage.radius)
+                                for a, stage in zip(distances, (unit.stage_one, unit.stage_two), strict=True))
+    return TrainSize((int(counts[0]), int(counts[1])), (float(distances[0]), float(distances[1])), float(module),
+                     (shapes[0].cutter, shapes[1].cutter), (largest_one, largest_two))
 
 
 def design_toothed_train(relative: RelativeMotion, carrier_length: float, gearing: Gearing = Gearing(),
@@ -417,22 +423,25 @@ def design_toothed_train(relative: RelativeMotion, carrier_length: float, gearin
     start = time.perf_counter()
     stages = (train.stage_one, train.stage_two)
     with ThreadPoolExecutor(2) as stage_pool:       # numpy and cKDTree release the GIL: 5.1 s -> 3.5 s on the example
-        teeth = tuple(stage_pool.map(lambda design, shape: generate_teeth(
-            design, module, gearing.pressure_angle, source, shape.cutter, gearing.shaper_teeth), stages, shapes))
+        teeth_one, teeth_two = stage_pool.map(lambda design, shape: generate_teeth(
+            design, module, gearing.pressure_angle, source, shape.cutter, gearing.shaper_teeth), stages, shapes)
+        teeth = (teeth_one, teeth_two)
         timings["teeth"] = time.perf_counter() - start
         start = time.perf_counter()
-        mesh = tuple(stage_pool.map(lambda design, cut: check_mesh(design, cut.outlines, module), stages, teeth))
+        mesh_one, mesh_two = stage_pool.map(lambda design, cut: check_mesh(design, cut.outlines, module), stages, teeth)
     timings["mesh_check"] = time.perf_counter() - start
 
     line_one = delta                                                         # O -> shaft
     line_two = float(np.arctan2(-shaft[1], carrier_length - shaft[0]))      # shaft -> A
     centers = (np.zeros(2), shaft, shaft, np.array([carrier_length, 0.0]))
     reasons = [cutting_reasons(train, stage, shape.cutter, gearing, module) for stage, shape in enumerate(shapes)]
-    gears = []
-    for k in range(4):
+
+    def gear(k: int) -> ToothedGear:
         stage, side = divmod(k, 2)
-        gears.append(_gear(GEAR_NAMES[k], ("driver", "driven")[side], stages[stage], side, counts[stage], module,
-                           centers[k], (line_one, line_two)[stage], teeth[stage].outlines[side], stage == 0,
-                           shapes[stage].cutter, reasons[stage][side]))
+        return _gear(GEAR_NAMES[k], ("driver", "driven")[side], stages[stage], side, counts[stage], module,
+                     centers[k], (line_one, line_two)[stage], teeth[stage].outlines[side], stage == 0,
+                     shapes[stage].cutter, reasons[stage][side])
+
     return ToothedTrain(train, float(carrier_length), gearing.layout, float(module), gearing.pressure_angle,
-                        tuple(int(z) for z in counts), delta, shaft, tuple(gears), teeth, mesh, timings)
+                        (int(counts[0]), int(counts[1])), delta, shaft, (gear(0), gear(1), gear(2), gear(3)), teeth,
+                        (mesh_one, mesh_two), timings)
