@@ -10,7 +10,10 @@ Conditions (each failure is named in ``defects``):
 - the chain closes all round with sin^2(angle EBF) above the margin (eq 10).
 
 The fitted rho(c) is the least-bending spline through the key poses and a return stroke; the strokes are
-tried cheapest first until one meets the last three conditions.
+tried cheapest first until one meets the last three conditions. Where none does, ``hold`` tries them again
+with the least-bending spline that keeps those conditions at the grid turns (``held_relative_angle``), which
+exists whenever any spline through the points does: a problem with a subset of another's return points
+then keeps every five-bar the other keeps.
 
 ``judge_candidates`` checks a whole batch of mechanisms with array operations over
 (mechanisms x carrier turns), each stage only on the mechanisms the earlier ones kept;
@@ -22,6 +25,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from transplanter.fivebar.held_relative_angle import hold_relative_angle
 from transplanter.fivebar.linkage import FiveBar, assembly_branch
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.relative_angle import RelativeAngle, fit_relative_angle, negative_intervals, ratio_range
@@ -44,6 +48,7 @@ class Candidate:
     relative_angle: RelativeAngle | None = None
     min_margin: float = float("nan")
     ratio_range: tuple[float, float] = (float("nan"), float("nan"))
+    unheld_defects: tuple[str, ...] = ()     # what the least-bending relative angle broke, when this one is held
 
     @property
     def feasible(self) -> bool:
@@ -139,10 +144,11 @@ class _Fit:
             [closure_defect(self.margin, problem.min_closure_margin)] if closure else [])
 
 
-def _least_bending_fits(problem: FiveBarProblem, mech: FiveBar, rho: np.ndarray, judged: np.ndarray) -> dict[int, _Fit]:
+def _least_bending_fits(problem: FiveBarProblem, mech: FiveBar, rho: np.ndarray,
+                        judged: np.ndarray) -> tuple[dict[int, _Fit], dict[int, list[ReturnStroke]]]:
     """For each of the ``judged`` mechanisms (rows of the batch) that has consistent return strokes: the
     least-bending relative angle through the first stroke (cheapest first) with which it meets the
-    conditions, or else through the cheapest."""
+    conditions, or else through the cheapest; and its strokes, cheapest first."""
     turns = problem.carrier_turns
     sequences = stroke_sequences(mech[judged], problem.return_points, turns[-1], rho[judged, 0], rho[judged, -1],
                                  problem.poses[-1, 2])
@@ -167,15 +173,30 @@ def _least_bending_fits(problem: FiveBarProblem, mech: FiveBar, rho: np.ndarray,
         for i in np.flatnonzero(meets | (place == 0)):
             fits[owner[rows[i]]] = _Fit(strokes[rows[i]], RelativeAngle(relative.rho1[i, 0], relative.coefficients[i]),
                                         margin[i], ratios[i], slope[i])
-    return fits
+    return fits, {k: [strokes[row] for row in np.flatnonzero(owner == k)] for k in fits}
 
 
-def judge_candidates(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool = True) -> list[Candidate]:
+def _held_fit(problem: FiveBarProblem, mech: FiveBar, key_rho: np.ndarray, strokes: list[ReturnStroke]) -> _Fit | None:
+    """The held relative angle (``held_relative_angle``) through the first of ``strokes`` with which it meets the
+    conditions by the whole-turn check, or None."""
+    for stroke in strokes:
+        relative = hold_relative_angle(problem, mech, key_rho, stroke, len(GRID))
+        if relative is not None:
+            margin, slope = whole_turn(mech, relative)
+            fit = _Fit(stroke, relative, margin, np.array(ratio_range(slope)), slope)
+            if not fit.failures(problem).any():
+                return fit
+    return None
+
+
+def judge_candidates(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool = True,
+                     hold: bool = False) -> list[Candidate]:
     """Every mechanism of a batch (``mech`` fields (K, 1)) judged at once: one ``Candidate`` each, in order.
 
     Each mechanism's consistent return strokes (``stroke_sequences``) are tried cheapest first with the
     least-bending relative angle through the key poses and the stroke; the first that meets the conditions is
-    kept, or, when none does, the cheapest with what it breaks."""
+    kept, or, when none does, the cheapest with what it breaks. With ``hold``, a mechanism none of whose
+    strokes meets them so tries them again with the held relative angle (``held_relative_angle``)."""
     turns = problem.carrier_turns
     rho = mech.relative_angle_at(problem.poses, turns)
     rho = rho[..., :1] + np.mod(rho - rho[..., :1], TWO_PI)
@@ -188,7 +209,7 @@ def judge_candidates(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool 
     branch_changes = np.any(assembly_branch(mech.hinge_b, e, f) != mech.branch, axis=-1)
     no_crank = ~crank_exists(mech)[:, 0]
     early = disorder | branch_changes | no_crank | np.any([np.zeros(count, bool), *outside.values()], axis=0)
-    fits = _least_bending_fits(problem, mech, rho, np.flatnonzero(~early))
+    fits, strokes = _least_bending_fits(problem, mech, rho, np.flatnonzero(~early))
 
     candidates = []
     for k in range(count):
@@ -206,12 +227,16 @@ def judge_candidates(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool 
         if k not in fits:
             candidates.append(Candidate(one, rho[k], [RETURN]))
             continue
-        fit = fits[k]
+        fit, unheld = fits[k], ()
+        held = _held_fit(problem, one, rho[k], strokes[k]) if hold and fit.failures(problem).any() else None
+        if held is not None:
+            fit, unheld = held, tuple(fit.defects(problem))
         candidates.append(Candidate(one, rho[k], fit.defects(problem), fit.stroke, fit.relative, fit.margin,
-                                    (float(fit.ratios[0]), float(fit.ratios[1]))))
+                                    (float(fit.ratios[0]), float(fit.ratios[1])), unheld))
     return candidates
 
 
-def evaluate_candidate(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool = True) -> Candidate:
+def evaluate_candidate(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool = True,
+                       hold: bool = False) -> Candidate:
     """``judge_candidates`` for one mechanism."""
-    return judge_candidates(problem, mech.as_batch(), check_ranges)[0]
+    return judge_candidates(problem, mech.as_batch(), check_ranges, hold)[0]
