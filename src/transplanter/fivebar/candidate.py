@@ -109,13 +109,6 @@ def closure_defect(margin: float, minimum: float) -> str:
     return f"closure: min sin^2(EBF) = {margin:.4f} < {minimum:g}"
 
 
-def _positions(rows: np.ndarray, count: int) -> np.ndarray:
-    """Where each of ``count`` mechanisms sits in the subset ``rows`` (-1: not in it)."""
-    where = np.full(count, -1)
-    where[rows] = np.arange(len(rows))
-    return where
-
-
 def _spline_failures(problem: FiveBarProblem, margin, lowest, ratios) -> np.ndarray:
     """(monotonic, ratio, closure) stacked on the first axis: which fitted relative angles break each, from their
     smallest closure margin, smallest rho' and (i0 min, i0 max) (last axis of ``ratios``)."""
