@@ -166,7 +166,8 @@ def _least_bending_fits(problem: FiveBarProblem, mech: FiveBar, rho: np.ndarray,
         for i in np.flatnonzero(meets | (place == 0)):
             fits[owner[rows[i]]] = _Fit(strokes[rows[i]], RelativeAngle(relative.rho1[i, 0], relative.coefficients[i]),
                                         margin[i], ratios[i], slope[i])
-    return fits, {k: [strokes[row] for row in np.flatnonzero(owner == k)] for k in fits}
+    runs = np.split(np.arange(len(owner)), np.flatnonzero(np.diff(owner)) + 1)     # rows by mechanism
+    return fits, {owner[run[0]]: [strokes[row] for row in run] for run in runs if run.size}
 
 
 def _held_fit(problem: FiveBarProblem, mech: FiveBar, key_rho: np.ndarray, strokes: list[ReturnStroke]) -> _Fit | None:
