@@ -133,7 +133,7 @@ class _Fit:
     def defects(self, problem: FiveBarProblem) -> list[str]:
         monotonic, ratio, closure = self.failures(problem)
         return ([monotonic_defect(self.slope)] if monotonic else []) + (
-            [ratio_defect(*self.ratios, problem.ratio_bounds)] if ratio else []) + (
+            [ratio_defect(self.ratios[0], self.ratios[1], problem.ratio_bounds)] if ratio else []) + (
             [closure_defect(self.margin, problem.min_closure_margin)] if closure else [])
 
 
@@ -164,8 +164,9 @@ def _least_bending_fits(problem: FiveBarProblem, mech: FiveBar, rho: np.ndarray,
         meets = ~np.any(_spline_failures(problem, margin, slope.min(axis=-1), ratios), axis=0)
         met[owner[rows]] = meets
         for i in np.flatnonzero(meets | (place == 0)):
-            fits[owner[rows[i]]] = _Fit(strokes[rows[i]], RelativeAngle(relative.rho1[i, 0], relative.coefficients[i]),
-                                        margin[i], ratios[i], slope[i])
+            k = owner[rows[i]]
+            fits[k] = _Fit(strokes[rows[i]], RelativeAngle(rho[k, 0], relative.coefficients[i]), margin[i], ratios[i],
+                           slope[i])
     runs = np.split(np.arange(len(owner)), np.flatnonzero(np.diff(owner)) + 1)     # rows by mechanism
     return fits, {owner[run[0]]: [strokes[row] for row in run] for run in runs if run.size}
 
@@ -221,10 +222,11 @@ def judge_candidates(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool 
         if k not in fits:
             candidates.append(Candidate(one, rho[k], [RETURN]))
             continue
-        fit, unheld = fits[k], ()
-        held = _held_fit(problem, one, rho[k], strokes[k]) if hold and fit.failures(problem).any() else None
-        if held is not None:
-            fit, unheld = held, tuple(fit.defects(problem))
+        fit, held = fits[k], None
+        if hold and fit.failures(problem).any():
+            held = _held_fit(problem, one, rho[k], strokes[k])
+        unheld = tuple(fit.defects(problem)) if held else ()
+        fit = held or fit
         candidates.append(Candidate(one, rho[k], fit.defects(problem), fit.stroke, fit.relative, fit.margin,
                                     (float(fit.ratios[0]), float(fit.ratios[1])), unheld))
     return candidates
