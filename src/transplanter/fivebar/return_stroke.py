@@ -35,15 +35,12 @@ SEQUENCE_LIMIT = 16
 
 @dataclass(frozen=True)
 class ReturnStroke:
-    """Carrier turns c_j, relative angles rho_j (unwrapped above rho1) and plate directions at the points.
-
-    For a batch of K mechanisms each array is (K, m) and ``found`` (K,) says which have one.
-    """
+    """Carrier turns c_j, relative angles rho_j (unwrapped above rho1) and plate directions at the points
+    (arrays (m,); (S, m) for S sequences)."""
 
     carrier_turns: np.ndarray
     relative_angles: np.ndarray
     directions: np.ndarray
-    found: np.ndarray | bool = True
 
 
 @dataclass(frozen=True)
