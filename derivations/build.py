@@ -17,8 +17,8 @@ from derivations._printer import print_function, print_signatures
 
 DERIVATIONS = Path(__file__).resolve().parent
 GENERATED = DERIVATIONS.parent / "src" / "transplanter" / "_generated"
-MODULES = ("burmester", "cam", "cam_support", "cusp", "fivebar", "fivebar_statics", "gears", "parallelogram",
-           "planetary", "train_pitch_curvature", "train_pitch_tangent")
+MODULES = ("burmester", "cam", "cam_support", "cusp", "fivebar", "fivebar_closure_band", "fivebar_statics", "gears",
+           "parallelogram", "planetary", "train_pitch_curvature", "train_pitch_tangent")
 # Files the derivations share, besides each module's own derivation: every stamp records them.
 SHARED_SOURCES = ("_printer.py", "planar.py", "spec.py")
 

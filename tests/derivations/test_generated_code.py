@@ -43,7 +43,14 @@ SHAPER_REACH_INPUTS = {
     "tip_radius": lambda rng: rng.uniform(21, 25, size=1),
     "lowest_radius": lambda rng: rng.uniform(20, 21, size=1),
 }
-INPUT_DOMAINS = {("cusp", "shaper_reach"): SHAPER_REACH_INPUTS}
+# a plate link L3 longer than sqrt(m) L4, so that some |BF| gives the margin m (else the band is empty)
+CLOSURE_BAND_INPUTS = {
+    "chain_lengths": lambda rng: np.r_[rng.uniform(150, 250), rng.uniform(50, 80), rng.uniform(150, 200)],
+    "frame_distance": lambda rng: rng.uniform(80, 150, size=1),
+    "margin": lambda rng: rng.uniform(0.0, 0.1, size=1),
+}
+INPUT_DOMAINS = {("cusp", "shaper_reach"): SHAPER_REACH_INPUTS,
+                 ("fivebar_closure_band", "fivebar_closure_band"): CLOSURE_BAND_INPUTS}
 
 
 @pytest.mark.parametrize("module,name", GENERATED_FUNCTIONS)

@@ -7,13 +7,14 @@ import numpy as np
 import pytest
 
 from transplanter.errors import ProblemError
+from transplanter.fivebar import return_stroke
 from transplanter.fivebar.candidate import evaluate_candidate, judge_candidates
 from transplanter.fivebar.linkage import FiveBar, from_hinges
 from transplanter.fivebar.problem import load_problem, parse_problem
-from transplanter.fivebar.reference_region import exhaustive_return_stroke, reference_candidate, reference_region
+from transplanter.fivebar.reference_region import exhaustive_return_strokes, reference_candidate, reference_region
 from transplanter.fivebar.region import PAIR_LIMIT, chain_families, solution_region
 from transplanter.fivebar.relative_angle import RelativeAngle
-from transplanter.fivebar.return_stroke import solve_return_strokes
+from transplanter.fivebar.return_stroke import SEQUENCE_LIMIT, stroke_sequences
 from transplanter.toml_fields import read_toml
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -67,9 +68,12 @@ def test_batch_with_ranges_equals_one_at_a_time(problem, rng):
         _same_candidate(new, evaluate_candidate(problem, batch[k, 0]))
 
 
-def test_return_stroke_by_dynamic_programming_equals_the_exhaustive_search(problem, rng):
-    """Seeded five-bars near a known one, with 7 return points taken off its path: the chosen option
-    sequence (or none) is the one of all 4^7 sequences."""
+@pytest.mark.parametrize("limit", [SEQUENCE_LIMIT, 1])
+def test_return_strokes_are_the_cheapest_of_the_exhaustive_search(rng, monkeypatch, limit):
+    """Seeded five-bars near a known one, with 7 return points taken off its path: the strokes kept are the
+    ``limit`` cheapest consistent ones of all 4^7 option sequences, cheapest first (none: none); some mechanisms
+    pass the points on more sequences than a limit of 1 keeps."""
+    monkeypatch.setattr(return_stroke, "SEQUENCE_LIMIT", limit)
     known = FiveBar(48.0, -0.5, 246.0, np.array([-78.6, -30.1]), 186.0, np.array([99.4, -11.3]),
                     np.array([35.0, -33.1]), -1.0)
     relative = RelativeAngle(-1.26, np.radians([0, 3, -4, 2, 0, 1, -2, 3, 0, -1, 2, 0]))
@@ -84,16 +88,17 @@ def test_return_stroke_by_dynamic_programming_equals_the_exhaustive_search(probl
                       for values in zip(*(vars(m).values() for m in mechs), strict=True)))
     rho1, last_rho = np.full(40, relative.rho1), np.full(40, float(relative.evaluate(key)))
     direction = float(last["direction"][0])
-    strokes = solve_return_strokes(batch, points, key, rho1, last_rho, direction)
-    found = 0
+    sequences = stroke_sequences(batch, points, key, rho1, last_rho, direction)
+    counts = []
     for k, mech in enumerate(mechs):
-        exhaustive = exhaustive_return_stroke(mech, points, key, rho1[k], last_rho[k], direction)
-        assert strokes.found[k] == (exhaustive is not None)
-        if exhaustive is not None:
-            found += 1
-            assert np.array_equal(strokes.carrier_turns[k], exhaustive.carrier_turns)
-            assert np.array_equal(strokes.directions[k], exhaustive.directions)
-    assert 0 < found < 40
+        exhaustive = exhaustive_return_strokes(mech, points, key, rho1[k], last_rho[k], direction)
+        rows = np.flatnonzero(sequences.owner == k)
+        assert len(rows) == min(len(exhaustive), limit)
+        for row, stroke in zip(rows, exhaustive, strict=False):
+            assert np.array_equal(sequences.stroke.carrier_turns[row], stroke.carrier_turns)
+            assert np.array_equal(sequences.stroke.directions[row], stroke.directions)
+        counts.append(len(exhaustive))
+    assert min(counts) == 0 and max(counts) > 1
 
 
 def test_default_sampling_starts_from_the_dyad_pair_of_2000_samples(problem, example_result):

@@ -76,7 +76,7 @@ def band_starts(problem: FiveBarProblem) -> BandStarts:
         if drawn is None:
             break
         trial_problem = problem.with_poses(drawn[:, :3], drawn[:, 3])
-        region = solution_region(trial_problem)
+        region = solution_region(trial_problem, hold=False)     # a quick look: the next set is cheaper than a hold
         trials.append(_trial(drawn[:, :3], drawn[:, 3], region))
         if region.feasible:
             carried = [dataclasses.replace(c, poses=drawn[:, :3], carrier_turns=drawn[:, 3]) for c in region.feasible]

@@ -9,6 +9,12 @@ Conditions (each failure is named in ``defects``):
 - the fitted rho(c) is strictly increasing, with the ratio i0 = 1/rho' inside the bounds;
 - the chain closes all round with sin^2(angle EBF) above the margin (eq 10).
 
+The fitted rho(c) is the least-bending spline through the key poses and a return stroke; the strokes are
+tried cheapest first until one meets the last three conditions. Where none does, ``hold`` tries them again
+with the least-bending spline that keeps those conditions at the grid turns (``held_relative_angle``), which
+exists whenever any spline through the points does: a problem with a subset of another's return points
+then keeps every five-bar the other keeps.
+
 ``judge_candidates`` checks a whole batch of mechanisms with array operations over
 (mechanisms x carrier turns), each stage only on the mechanisms the earlier ones kept;
 ``evaluate_candidate`` is the same judgement of one mechanism.
@@ -19,10 +25,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from transplanter.fivebar.held_relative_angle import hold_relative_angle
 from transplanter.fivebar.linkage import FiveBar, assembly_branch
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.relative_angle import RelativeAngle, fit_relative_angle, negative_intervals, ratio_range
-from transplanter.fivebar.return_stroke import ReturnStroke, solve_return_strokes
+from transplanter.fivebar.return_stroke import SEQUENCE_LIMIT, ReturnStroke, stroke_sequences
 from transplanter.geometry.planar import TWO_PI
 
 #: Carrier turns at which the whole-turn conditions are checked.
@@ -41,6 +48,7 @@ class Candidate:
     relative_angle: RelativeAngle | None = None
     min_margin: float = float("nan")
     ratio_range: tuple[float, float] = (float("nan"), float("nan"))
+    unheld_defects: tuple[str, ...] = ()     # what the least-bending relative angle broke, when this one is held
     #: The key poses (mm, rad) and carrier turns (rad) the candidate was found for, when they are a pose set
     #: drawn inside the problem's bands rather than the problem's own (None).
     poses: np.ndarray | None = None
@@ -111,15 +119,89 @@ def closure_defect(margin: float, minimum: float) -> str:
     return f"closure: min sin^2(EBF) = {margin:.4f} < {minimum:g}"
 
 
-def _positions(rows: np.ndarray, count: int) -> np.ndarray:
-    """Where each of ``count`` mechanisms sits in the subset ``rows`` (-1: not in it)."""
-    where = np.full(count, -1)
-    where[rows] = np.arange(len(rows))
-    return where
+def _spline_failures(problem: FiveBarProblem, margin, lowest, ratios) -> np.ndarray:
+    """(monotonic, ratio, closure) stacked on the first axis: which fitted relative angles break each, from their
+    smallest closure margin, smallest rho' and (i0 min, i0 max) (last axis of ``ratios``)."""
+    monotonic = ~(lowest > 0)
+    ratio = ~monotonic & ((ratios[..., 0] < problem.ratio_bounds[0]) | (ratios[..., 1] > problem.ratio_bounds[1]))
+    return np.stack([monotonic, ratio, ~(margin >= problem.min_closure_margin)])
 
 
-def judge_candidates(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool = True) -> list[Candidate]:
-    """Every mechanism of a batch (``mech`` fields (K, 1)) judged at once: one ``Candidate`` each, in order."""
+@dataclass(frozen=True)
+class _Fit:
+    """A relative angle fitted through the key poses and a return stroke, and its whole-turn figures."""
+
+    stroke: ReturnStroke
+    relative: RelativeAngle
+    margin: float
+    ratios: np.ndarray          # (i0 min, i0 max)
+    slope: np.ndarray           # rho' on GRID
+
+    def failures(self, problem: FiveBarProblem) -> np.ndarray:
+        return _spline_failures(problem, self.margin, self.slope.min(), self.ratios)
+
+    def defects(self, problem: FiveBarProblem) -> list[str]:
+        monotonic, ratio, closure = self.failures(problem)
+        return ([monotonic_defect(self.slope)] if monotonic else []) + (
+            [ratio_defect(self.ratios[0], self.ratios[1], problem.ratio_bounds)] if ratio else []) + (
+            [closure_defect(self.margin, problem.min_closure_margin)] if closure else [])
+
+
+def _least_bending_fits(problem: FiveBarProblem, mech: FiveBar, rho: np.ndarray,
+                        judged: np.ndarray) -> tuple[dict[int, _Fit], dict[int, list[ReturnStroke]]]:
+    """For each of the ``judged`` mechanisms (rows of the batch) that has consistent return strokes: the
+    least-bending relative angle through the first stroke (cheapest first) with which it meets the
+    conditions, or else through the cheapest; and its strokes, cheapest first."""
+    turns = problem.carrier_turns
+    sequences = stroke_sequences(mech[judged], problem.return_points, turns[-1], rho[judged, 0], rho[judged, -1],
+                                 problem.poses[-1, 2])
+    owner, rank = judged[sequences.owner], sequences.rank()
+    strokes = [ReturnStroke(*(values[row] for values in (sequences.stroke.carrier_turns,
+                                                          sequences.stroke.relative_angles,
+                                                          sequences.stroke.directions))) for row in range(len(owner))]
+    fits: dict[int, _Fit] = {}
+    met = np.zeros(len(rho), bool)
+    for place in range(SEQUENCE_LIMIT):      # each mechanism's next stroke, until one meets the conditions
+        rows = np.flatnonzero((rank == place) & ~met[owner])
+        if not rows.size:
+            break
+        relative = fit_relative_angle(
+            np.concatenate([np.broadcast_to(turns, (len(rows), len(turns))),
+                            sequences.stroke.carrier_turns[rows]], axis=1),
+            np.concatenate([rho[owner[rows]], sequences.stroke.relative_angles[rows]], axis=1), problem.spline_count)
+        margin, slope = whole_turn(mech[owner[rows]], relative)
+        ratios = np.stack(ratio_range(slope), -1)
+        meets = ~np.any(_spline_failures(problem, margin, slope.min(axis=-1), ratios), axis=0)
+        met[owner[rows]] = meets
+        for i in np.flatnonzero(meets | (place == 0)):
+            k = owner[rows[i]]
+            fits[k] = _Fit(strokes[rows[i]], RelativeAngle(rho[k, 0], relative.coefficients[i]), margin[i], ratios[i],
+                           slope[i])
+    runs = np.split(np.arange(len(owner)), np.flatnonzero(np.diff(owner)) + 1)     # rows by mechanism
+    return fits, {owner[run[0]]: [strokes[row] for row in run] for run in runs if run.size}
+
+
+def _held_fit(problem: FiveBarProblem, mech: FiveBar, key_rho: np.ndarray, strokes: list[ReturnStroke]) -> _Fit | None:
+    """The held relative angle (``held_relative_angle``) through the first of ``strokes`` with which it meets the
+    conditions by the whole-turn check, or None."""
+    for stroke in strokes:
+        relative = hold_relative_angle(problem, mech, key_rho, stroke, len(GRID))
+        if relative is not None:
+            margin, slope = whole_turn(mech, relative)
+            fit = _Fit(stroke, relative, margin, np.array(ratio_range(slope)), slope)
+            if not fit.failures(problem).any():
+                return fit
+    return None
+
+
+def judge_candidates(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool = True,
+                     hold: bool = False) -> list[Candidate]:
+    """Every mechanism of a batch (``mech`` fields (K, 1)) judged at once: one ``Candidate`` each, in order.
+
+    Each mechanism's consistent return strokes (``stroke_sequences``) are tried cheapest first with the
+    least-bending relative angle through the key poses and the stroke; the first that meets the conditions is
+    kept, or, when none does, the cheapest with what it breaks. With ``hold``, a mechanism none of whose
+    strokes meets them so tries them again with the held relative angle (``held_relative_angle``)."""
     turns = problem.carrier_turns
     rho = mech.relative_angle_at(problem.poses, turns)
     rho = rho[..., :1] + np.mod(rho - rho[..., :1], TWO_PI)
@@ -132,20 +214,8 @@ def judge_candidates(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool 
     branch_changes = np.any(assembly_branch(mech.hinge_b, e, f) != mech.branch, axis=-1)
     no_crank = ~crank_exists(mech)[:, 0]
     early = disorder | branch_changes | no_crank | np.any([np.zeros(count, bool), *outside.values()], axis=0)
+    fits, strokes = _least_bending_fits(problem, mech, rho, np.flatnonzero(~early))
 
-    judged = np.flatnonzero(~early)
-    stroke = solve_return_strokes(mech[judged], problem.return_points, turns[-1], rho[judged, 0], rho[judged, -1],
-                                  problem.poses[-1, 2])
-    fitted = judged[stroke.found]
-    points_c = np.concatenate([np.broadcast_to(turns, (len(fitted), len(turns))),
-                               stroke.carrier_turns[stroke.found]], axis=1)
-    points_rho = np.concatenate([rho[fitted], stroke.relative_angles[stroke.found]], axis=1)
-    relative = fit_relative_angle(points_c, points_rho, problem.spline_count)
-    margin, slope = whole_turn(mech[fitted], relative)
-    lowest = slope.min(axis=-1)
-    low, high = ratio_range(slope)
-
-    at_judged, at_fitted = _positions(judged, count), _positions(fitted, count)
     candidates = []
     for k in range(count):
         one = mech[k, 0]
@@ -159,26 +229,20 @@ def judge_candidates(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool 
         if defects:
             candidates.append(Candidate(one, rho[k], defects))
             continue
-        i = at_fitted[k]
-        if i < 0:
+        if k not in fits:
             candidates.append(Candidate(one, rho[k], [RETURN]))
             continue
-        if lowest[i] <= 0:
-            defects.append(monotonic_defect(slope[i]))
-        elif low[i] < problem.ratio_bounds[0] or high[i] > problem.ratio_bounds[1]:
-            defects.append(ratio_defect(low[i], high[i], problem.ratio_bounds))
-        if not margin[i] >= problem.min_closure_margin:
-            defects.append(closure_defect(margin[i], problem.min_closure_margin))
-        j = at_judged[k]
-        candidates.append(Candidate(one, rho[k], defects,
-                                    ReturnStroke(stroke.carrier_turns[j], stroke.relative_angles[j],
-                                                 stroke.directions[j]),
-                                    RelativeAngle(np.asarray(relative.rho1)[i, 0], relative.coefficients[i]),
-                                    margin[i],
-                                    (float(low[i]), float(high[i]))))
+        fit, held = fits[k], None
+        if hold and fit.failures(problem).any():
+            held = _held_fit(problem, one, rho[k], strokes[k])
+        unheld = tuple(fit.defects(problem)) if held else ()
+        fit = held or fit
+        candidates.append(Candidate(one, rho[k], fit.defects(problem), fit.stroke, fit.relative, fit.margin,
+                                    (float(fit.ratios[0]), float(fit.ratios[1])), unheld))
     return candidates
 
 
-def evaluate_candidate(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool = True) -> Candidate:
+def evaluate_candidate(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool = True,
+                       hold: bool = False) -> Candidate:
     """``judge_candidates`` for one mechanism."""
-    return judge_candidates(problem, mech.as_batch(), check_ranges)[0]
+    return judge_candidates(problem, mech.as_batch(), check_ranges, hold)[0]

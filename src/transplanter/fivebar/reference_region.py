@@ -1,5 +1,5 @@
 """The five-bar region judged the plain way: one five-bar at a time, condition after condition, each with
-its own calls, and the return stroke by trying every one of the 4^m option sequences.
+its own calls, and the return strokes by trying every one of the 4^m option sequences.
 
 It is the independent reference that the array judgement (``candidate.judge_candidates`` with
 ``return_stroke.solve_return_strokes``) must equal exactly (the tests), and the baseline that judgement is
@@ -29,13 +29,14 @@ from transplanter.fivebar.linkage import FiveBar, assembly_branch, from_hinges
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import chain_families
 from transplanter.fivebar.relative_angle import fit_relative_angle, ratio_range
-from transplanter.fivebar.return_stroke import ReturnStroke, _options
+from transplanter.fivebar.return_stroke import SEQUENCE_LIMIT, ReturnStroke, _options
 
 TWO_PI = 2 * np.pi
 
 
-def exhaustive_return_stroke(mech: FiveBar, points, last_turn, rho1, last_rho, last_direction):
-    """The return stroke of one mechanism chosen among all 4^m option sequences (None when none is allowed)."""
+def exhaustive_return_strokes(mech: FiveBar, points, last_turn, rho1, last_rho, last_direction) -> list[ReturnStroke]:
+    """Every one of the 4^m option sequences of one mechanism tried: the consistent ones, cheapest first (a stable
+    sort: ties in the order of ``itertools.product``)."""
     c, rho, direction, valid = (values[0] for values in _options(mech.as_batch(), points))
     rho = rho1 + np.mod(rho - rho1, TWO_PI)
     m = len(points)
@@ -45,16 +46,16 @@ def exhaustive_return_stroke(mech: FiveBar, points, last_turn, rho1, last_rho, l
     rs = np.c_[np.full(len(combos), last_rho), rho[pick], np.full(len(combos), rho1 + TWO_PI)]
     ok = np.all(np.isfinite(valid[pick]) & np.isfinite(cs[:, 1:-1]), axis=1)
     ok &= np.all(np.diff(cs, axis=1) > 0, axis=1) & np.all(np.diff(rs, axis=1) > 0, axis=1)
-    if not ok.any():
-        return None
     turn = np.diff(np.c_[np.full(len(combos), last_direction), direction[pick]], axis=1)
-    cost = np.where(ok, np.sum(np.angle(np.exp(1j * turn))**2, axis=1), np.inf)
-    chosen = (np.arange(m), combos[int(np.argmin(cost))])
-    return ReturnStroke(c[chosen], rho[chosen], direction[chosen])
+    cost = np.sum(np.angle(np.exp(1j * turn))**2, axis=1)
+    ranked = np.flatnonzero(ok)[np.argsort(cost[ok], kind="stable")]
+    return [ReturnStroke(c[(np.arange(m), combos[k])], rho[(np.arange(m), combos[k])],
+                         direction[(np.arange(m), combos[k])]) for k in ranked]
 
 
 def reference_candidate(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool = True) -> Candidate:
-    """One five-bar judged with its own calls, condition after condition (what ``evaluate_candidate`` must equal)."""
+    """One five-bar judged with its own calls, condition after condition, its return strokes tried one after
+    another, cheapest first (what ``evaluate_candidate`` without ``hold`` must equal)."""
     turns = problem.carrier_turns
     rho = mech.relative_angle_at(problem.poses, turns)
     rho = rho[0] + np.mod(rho - rho[0], TWO_PI)
@@ -70,20 +71,27 @@ def reference_candidate(problem: FiveBarProblem, mech: FiveBar, check_ranges: bo
         defects.append(CRANK)
     if defects:
         return Candidate(mech, rho, defects)
-    stroke = exhaustive_return_stroke(mech, problem.return_points, turns[-1], rho[0], rho[-1], problem.poses[-1, 2])
-    if stroke is None:
+    strokes = exhaustive_return_strokes(mech, problem.return_points, turns[-1], rho[0], rho[-1],
+                                        problem.poses[-1, 2])
+    if not strokes:
         return Candidate(mech, rho, [RETURN])
-    relative = fit_relative_angle(np.r_[turns, stroke.carrier_turns], np.r_[rho, stroke.relative_angles],
-                                  problem.spline_count)
-    margin, slope = whole_turn(mech, relative)
-    ratio = ratio_range(slope)
-    if slope.min() <= 0:
-        defects.append(monotonic_defect(slope))
-    elif ratio[0] < problem.ratio_bounds[0] or ratio[1] > problem.ratio_bounds[1]:
-        defects.append(ratio_defect(ratio[0], ratio[1], problem.ratio_bounds))
-    if not margin >= problem.min_closure_margin:
-        defects.append(closure_defect(margin, problem.min_closure_margin))
-    return Candidate(mech, rho, defects, stroke, relative, margin, ratio)
+    judged = []
+    for stroke in strokes[:SEQUENCE_LIMIT]:
+        relative = fit_relative_angle(np.r_[turns, stroke.carrier_turns], np.r_[rho, stroke.relative_angles],
+                                      problem.spline_count)
+        margin, slope = whole_turn(mech, relative)
+        ratio = ratio_range(slope)
+        defects = []
+        if slope.min() <= 0:
+            defects.append(monotonic_defect(slope))
+        elif ratio[0] < problem.ratio_bounds[0] or ratio[1] > problem.ratio_bounds[1]:
+            defects.append(ratio_defect(ratio[0], ratio[1], problem.ratio_bounds))
+        if not margin >= problem.min_closure_margin:
+            defects.append(closure_defect(margin, problem.min_closure_margin))
+        judged.append(Candidate(mech, rho, defects, stroke, relative, margin, ratio))
+        if not defects:
+            break
+    return judged[-1] if judged[-1].feasible else judged[0]
 
 
 def reference_region(problem: FiveBarProblem) -> list[Candidate]:

@@ -8,6 +8,11 @@ survivors are paired into five-bars, and every pair is judged over a whole turn 
 ``judge_candidates``, ``CHUNK`` pairs at a time. The feasible pairs are ranked by their
 smallest closure margin.
 
+When no pair is feasible with the least-bending relative angles, the pairs are judged again with the
+relative angles held to the conditions (``hold`` of ``judge_candidates``): a problem with a subset of
+another's return points then keeps every five-bar the other keeps, so it is never empty where the
+other is not (issue 28). A region that had to hold says so (``Region.held``).
+
 The pairs grow as the square of ``[region] samples`` (both families grow linearly), and
 without ``[ranges]`` every dyad within ``radius_mm`` is kept: 2000 samples then pair 3860 B-E
 with 626 A-F dyads of the example, 2.4 million five-bars. Each judged five-bar is a
@@ -57,6 +62,7 @@ class Region:
     carrier: ChainFamily     # 3R chain O-A-F
     candidates: list[Candidate]   # every pair, feasible ones first, best first
     pair_defects: dict            # condition -> number of pairs it removed (first failing condition)
+    held: bool = False            # the relative angles were held (``judge_candidates``): none met them unheld
 
     @property
     def feasible(self) -> list[Candidate]:
@@ -127,18 +133,29 @@ def _check_pair_count(problem: FiveBarProblem, receiving: ChainFamily, carrier: 
             f"the region judges (they grow as samples^2{unranged}); lower region.samples or give narrower [ranges]")
 
 
-def solution_region(problem: FiveBarProblem) -> Region:
-    require_problem(problem, FiveBarProblem, "fivebar")
-    receiving, carrier = chain_families(problem)
-    _check_pair_count(problem, receiving, carrier)
-    pairs = np.stack(np.meshgrid(np.flatnonzero(receiving.kept), np.flatnonzero(carrier.kept), indexing="ij"),
-                     -1).reshape(-1, 2)
+def _judged_pairs(problem: FiveBarProblem, receiving: ChainFamily, carrier: ChainFamily, pairs: np.ndarray,
+                  hold: bool) -> list[Candidate]:
     candidates = []
     for chunk in np.array_split(pairs, np.arange(CHUNK, len(pairs), CHUNK)):
         i, j = chunk[:, :1], chunk[:, 1:]
         mech = from_hinges(problem.poses[0], receiving.fixed[i], receiving.moving[i], carrier.fixed[j],
                            carrier.moving[j])
-        candidates += judge_candidates(problem, mech, check_ranges=False)
+        candidates += judge_candidates(problem, mech, check_ranges=False, hold=hold)
+    return candidates
+
+
+def solution_region(problem: FiveBarProblem, hold: bool | None = None) -> Region:
+    """The region of ``problem``; ``hold``: None holds the relative angles only when no pair is feasible
+    without (the module docstring), True always, False never (a quick look, e.g. while sampling poses)."""
+    require_problem(problem, FiveBarProblem, "fivebar")
+    receiving, carrier = chain_families(problem)
+    _check_pair_count(problem, receiving, carrier)
+    pairs = np.stack(np.meshgrid(np.flatnonzero(receiving.kept), np.flatnonzero(carrier.kept), indexing="ij"),
+                     -1).reshape(-1, 2)
+    held = bool(hold)
+    candidates = _judged_pairs(problem, receiving, carrier, pairs, held)
+    if hold is None and not any(candidate.feasible for candidate in candidates):
+        held, candidates = True, _judged_pairs(problem, receiving, carrier, pairs, True)
     defects: dict[str, int] = {}
     for candidate in candidates:
         if candidate.defects:
@@ -147,4 +164,4 @@ def solution_region(problem: FiveBarProblem) -> Region:
     margins = np.array([candidate.min_margin for candidate in candidates], float)
     infeasible = np.array([bool(candidate.defects) for candidate in candidates], bool)
     order = np.lexsort((-np.nan_to_num(margins, nan=-np.inf), infeasible))     # stable: ties keep pair order
-    return Region(receiving, carrier, [candidates[k] for k in order], defects)
+    return Region(receiving, carrier, [candidates[k] for k in order], defects, held)

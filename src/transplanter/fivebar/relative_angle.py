@@ -89,6 +89,16 @@ def bending_matrix(count: int) -> np.ndarray:
     return matrix
 
 
+def interpolation_rows(carrier_turns: np.ndarray, rho: np.ndarray, count: int) -> tuple[np.ndarray, np.ndarray]:
+    """(rows, target): the spline passes through (c_j, rho_j) iff rows @ q[1:] = target (q_0 = 0; c_0 = 0 is
+    pose 1, whose rho_0 is rho1). Batched like the points: rows (..., p - 1, count - 1)."""
+    if carrier_turns.shape[-1] > count:
+        raise InfeasibleError(f"relative angle: {carrier_turns.shape[-1]} points need at least "
+                              f"{carrier_turns.shape[-1]} spline control values, got {count}")
+    target = rho[..., 1:] - rho[..., :1] - carrier_turns[..., 1:]
+    return (basis_matrix(carrier_turns[..., 1:], count) - basis_matrix(np.zeros(1), count))[..., 1:], target
+
+
 def fit_relative_angle(carrier_turns: np.ndarray, rho: np.ndarray, count: int) -> RelativeAngle:
     """The least-bending spline through (c_j, rho_j); c_0 = 0 is pose 1.
 
@@ -97,11 +107,7 @@ def fit_relative_angle(carrier_turns: np.ndarray, rho: np.ndarray, count: int) -
     (K, p) turns and angles, it fits K splines at once (a batch ``RelativeAngle``).
     """
     c, rho = np.asarray(carrier_turns, float), np.asarray(rho, float)
-    if c.shape[-1] > count:
-        raise InfeasibleError(f"relative angle: {c.shape[-1]} points need at least {c.shape[-1]} spline control "
-                              f"values, got {count}")
-    target = rho[..., 1:] - rho[..., :1] - c[..., 1:]
-    rows = (basis_matrix(c[..., 1:], count) - basis_matrix(np.zeros(1), count))[..., 1:]
+    rows, target = interpolation_rows(c, rho, count)
     bending = bending_matrix(count)[1:, 1:]
     n, m = bending.shape[0], target.shape[-1]
     kkt = np.zeros(c.shape[:-1] + (n + m, n + m))
