@@ -1,4 +1,4 @@
-"""The closure band (issue 28): the relative angles at which the five-bar closes with at least a margin, from
+"""The closure band: the relative angles at which the five-bar closes with at least a margin, from
 the derived bounds on cos(BAF), against the independent forward kinematics (circle intersections)."""
 import numpy as np
 import pytest

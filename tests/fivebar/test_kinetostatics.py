@@ -129,7 +129,7 @@ def test_jacobians_match_finite_differences_of_the_forward_kinematics(held):
 
 
 def test_be_force_is_the_moment_about_f_over_the_transmission_angle():
-    """Issue 28: |F_BE| = M_F / (EF sin mu), mu the angle between EF and BE at E, M_F the moment about F of the
+    """|F_BE| = M_F / (EF sin mu), mu the angle between EF and BE at E, M_F the moment about F of the
     loads on the plate (the planting force and the plate's own weight; BE weightless, a two-force link)."""
     load = LoadSpec(force_n=np.array([-12.0, 25.0]), masses_kg={"plate": 0.5, "rod": 2.0})
     result = kinetostatics(MECH, RELATIVE, KEY_TURNS, load, TURNS)

@@ -1,4 +1,4 @@
-"""Issue 28: return points can only help. A problem with a subset of another's return points keeps every
+"""Return points can only help. A problem with a subset of another's return points keeps every
 five-bar the other's region finds (on the same passes), and the example designs with any of its return points
 dropped (P8 and P9 dropped: exit 2 before, 'none of the 1664 five-bars feasible')."""
 import dataclasses

@@ -11,7 +11,7 @@ smallest closure margin.
 When no pair is feasible with the least-bending relative angles, the pairs are judged again with the
 relative angles held to the conditions (``hold`` of ``judge_candidates``): a problem with a subset of
 another's return points then keeps every five-bar the other keeps, so it is never empty where the
-other is not (issue 28). A region that had to hold says so (``Region.held``).
+other is not. A region that had to hold says so (``Region.held``).
 
 The pairs grow as the square of ``[region] samples`` (both families grow linearly), and
 without ``[ranges]`` every dyad within ``radius_mm`` is kept: 2000 samples then pair 3860 B-E
