@@ -5,9 +5,14 @@ Options: IPOPT's adaptive barrier update, a stationarity tolerance ``tolerance``
 needs a tighter one) and a constraint violation tolerance of 1e-12, at most ``max_iterations``; no
 parameter multipliers (casadi then skips building the NLP's gradient function). Success is
 ``ACCEPTED``; any other end, or a stall (``solve.stall``), raises a ``SolverError`` naming it.
+
+CasADi loads its own OpenBLAS with IPOPT, at the first ``nlpsol``; unless the user has set
+``OPENBLAS_NUM_THREADS``, it is given one thread: the KKT systems here are a few hundred rows, and the
+idle threads spin (the main job took 60 s wall, 28 s of it system time, against 40 s with one thread).
 """
 from __future__ import annotations
 
+import os
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -24,6 +29,8 @@ ACCEPTED = frozenset({"Solve_Succeeded", "Solved_To_Acceptable_Level"})
 TOLERANCE = 1e-10
 CONSTRAINT_TOLERANCE = 1e-12
 MAX_ITERATIONS = 1000
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")     # read when casadi loads IPOPT's OpenBLAS (docstring)
 
 
 def ipopt_options(tolerance: float, max_iterations: int) -> dict:
