@@ -35,6 +35,7 @@ import numpy as np  # noqa: E402
 from fresh_process import cli_run  # noqa: E402  (bench/ is the script's own folder)
 from scipy.optimize import minimize  # noqa: E402
 
+from transplanter.errors import SolverError  # noqa: E402
 from transplanter.fivebar.design_solver import DesignSolver, HollowError  # noqa: E402
 from transplanter.fivebar.nlp import length_unit  # noqa: E402
 from transplanter.fivebar.problem import load_problem  # noqa: E402
@@ -109,7 +110,12 @@ def main():
     ours, theirs, refines = [], [], []
     for candidate in region.feasible[:CANDIDATES]:
         begin = time.perf_counter()
-        design = solver.solve(candidate)
+        try:
+            design = solver.solve(candidate)
+        except SolverError as error:        # no optimum to compare SLSQP's with: counted, left out of the medians
+            print(f"  candidate: package {time.perf_counter() - begin:.3f} s, ended with {error.status}; "
+                  "left out of the comparison")
+            continue
         ours.append(time.perf_counter() - begin)
         values = nlp.start(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points,
                            problem.poses, problem.carrier_turns)
@@ -121,8 +127,8 @@ def main():
         begin = time.perf_counter()
         try:
             refined = solver.refine(candidate).objective
-        except HollowError as error:        # the start fails: timed all the same, as the main job spends it
-            refined = f"failed ({error.reason[:60]}...)"
+        except SolverError as error:        # the start fails: timed all the same, as the main job spends it
+            refined = f"failed ({(error.reason if isinstance(error, HollowError) else error.status)[:60]}...)"
         refines.append(time.perf_counter() - begin)
         reached = layout.vector(nlp.start(design.mech, design.relative_angle, design.stroke,
                                           design.reached_return_points, design.poses, design.carrier_turns))
@@ -137,7 +143,8 @@ def main():
     print(f"first candidate, one-off builds included: package {build + ours[0]:.3f} s, "
           f"baseline {baseline_build + theirs[0]:.3f} s, ratio {(baseline_build + theirs[0]) / (build + ours[0]):.1f}x")
     ours, theirs = np.median(ours), np.median(theirs)
-    print(f"design NLP per candidate (median of {len(refines)}, first exchange round, same problem and start): "
+    print(f"design NLP per candidate (median of the {len(refines)} of the first {CANDIDATES} whose first round "
+          "converges, first exchange round, same problem and start): "
           f"package IPOPT {ours:.3f} s, SLSQP with casadi's exact gradient and Jacobian {theirs:.3f} s, "
           f"ratio {theirs / ours:.1f}x; package refinement per candidate, one solver in this process "
           f"(median of the first {len(refines)}): {np.median(refines):.3f} s, builds of the package solver: "
