@@ -21,12 +21,12 @@ along them. The rack's tip-corner trochoid below the flank is drawn as that join
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
 from transplanter._generated.cusp import variable_involute
 from transplanter.generated import numpy_twin
-from transplanter.geometry.hermite import hermite
 
 _VARIABLE_INVOLUTE = numpy_twin(variable_involute)
 ADDENDUM, DEDENDUM = 1.0, 1.25  # in modules
@@ -46,14 +46,26 @@ class PitchTable:
     def perimeter(self) -> float:
         return float(self.arc[-1])
 
+    @cached_property
+    def _pieces(self) -> np.ndarray:
+        """Per sample interval, one row: the cubic Hermite of the points in power form in t = (s - s_k) / h_k
+        (coefficients c0..c3, x and y each), the tangent at its start and the change to its end, s_k and 1 / h_k."""
+        h = np.diff(self.arc)[:, None]
+        start, step = self.points[:-1], np.diff(self.points, axis=0)
+        slope0, slope1 = h * self.tangents[:-1], h * self.tangents[1:]
+        return np.concatenate([start, slope0, 3 * step - 2 * slope0 - slope1, slope0 + slope1 - 2 * step,
+                               self.tangents[:-1], np.diff(self.tangents, axis=0), self.arc[:-1, None], 1 / h], axis=1)
+
     def at(self, s):
-        """Cubic Hermite interpolation in arc length (tangents are unit, so positions stay accurate)."""
+        """Cubic Hermite interpolation in arc length (tangents are unit, so positions stay accurate); the tangent
+        interpolated linearly and normalised."""
         s = np.mod(np.asarray(s, float), self.perimeter)
-        point = hermite(self.arc, self.points, self.tangents[:-1], self.tangents[1:], s)
         k = np.clip(np.searchsorted(self.arc, s, side="right") - 1, 0, len(self.arc) - 2)
-        t = ((s - self.arc[k]) / (self.arc[k + 1] - self.arc[k]))[..., None]
-        tangent = self.tangents[k] * (1 - t) + self.tangents[k + 1] * t
-        tangent /= np.linalg.norm(tangent, axis=-1, keepdims=True)
+        piece = self._pieces[k]
+        t = ((s - piece[..., 12]) * piece[..., 13])[..., None]
+        point = ((piece[..., 6:8] * t + piece[..., 4:6]) * t + piece[..., 2:4]) * t + piece[..., 0:2]
+        tangent = piece[..., 8:10] + t * piece[..., 10:12]
+        tangent /= np.sqrt(tangent[..., :1] ** 2 + tangent[..., 1:] ** 2)
         normal = np.stack([tangent[..., 1], -tangent[..., 0]], -1) * self.orientation
         return point, tangent, normal
 
