@@ -85,17 +85,22 @@ def _short_edges(outline: np.ndarray, table: PitchTable, module: float) -> np.nd
     return shapely.get_coordinates(ring)[:-1]
 
 
+def _dot(first: np.ndarray, second: np.ndarray) -> np.ndarray:
+    """Row-wise dot products of two (N, 2) arrays."""
+    return first[:, 0] * second[:, 0] + first[:, 1] * second[:, 1]
+
+
 def _normal_coordinates(table: PitchTable, samples: cKDTree, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Arc length s of the foot of each point's normal on the pitch curve, and its height h along that
     normal (outward positive): from the nearest table sample (``samples``, its points), two Newton steps."""
     _, nearest = samples.query(points, workers=1)
     offset = points - table.points[nearest]
-    s = table.arc[nearest] + np.sum(offset * table.tangents[nearest], axis=1)
+    s = table.arc[nearest] + _dot(offset, table.tangents[nearest])
     for _ in range(2):
         foot, tangent, normal = table.at(s)
         offset = points - foot
-        s = s + np.sum(offset * tangent, axis=1)
-    return np.mod(s, table.perimeter), np.sum(offset * normal, axis=1)
+        s = s + _dot(offset, tangent)
+    return np.mod(s, table.perimeter), _dot(offset, normal)
 
 
 def _cut(height: np.ndarray, width: float, perimeter: float, ends: tuple[np.ndarray, ...]):
