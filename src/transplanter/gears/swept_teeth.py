@@ -103,9 +103,9 @@ def _normal_coordinates(table: PitchTable, samples: cKDTree, points: np.ndarray)
     return np.mod(s, table.perimeter), _dot(offset, normal)
 
 
-def _cut(height: np.ndarray, width: float, perimeter: float, ends: tuple[np.ndarray, ...]):
-    """Lower ``height`` (bins of arc ``width`` round a pitch curve of ``perimeter``) to the segments with ends
-    (s, h) = ``ends`` = (s_a, h_a, s_b, h_b) where they cross the bins' edges (both bins by an edge)."""
+def _cut(at_edge: np.ndarray, width: float, perimeter: float, ends: tuple[np.ndarray, ...]):
+    """Lower ``at_edge``, the lowest height met on each bin edge (edge k at arc k ``width`` round a pitch curve
+    of ``perimeter``), to the segments with ends (s, h) = ``ends`` = (s_a, h_a, s_b, h_b) where they cross it."""
     s_a, h_a, s_b, h_b = ends
     run = np.mod(s_b - s_a + perimeter / 2, perimeter) - perimeter / 2
     back = run < 0
@@ -113,14 +113,11 @@ def _cut(height: np.ndarray, width: float, perimeter: float, ends: tuple[np.ndar
     first = np.floor(s_a / width).astype(int)
     crossed = np.floor((s_a + run) / width).astype(int) - first           # bin edges crossed
     some = np.flatnonzero(crossed)
-    s_a, h_a, h_b, run, first, crossed = s_a[some], h_a[some], h_b[some], run[some], first[some], crossed[some]
+    slope = (h_b[some] - h_a[some]) / run[some]                            # run > 0 where an edge is crossed
+    s_a, h_a, first, crossed = s_a[some], h_a[some], first[some], crossed[some]
     segment = np.repeat(np.arange(len(some)), crossed)
     edge = np.arange(crossed.sum()) + np.repeat(first + 1 - (np.cumsum(crossed) - crossed), crossed)
-    share = (edge * width - s_a[segment]) / np.where(run > 0, run, 1.0)[segment]
-    level = h_a[segment] + share * (h_b - h_a)[segment]
-    count = len(height)
-    np.minimum.at(height, edge % count, level)
-    np.minimum.at(height, (edge - 1) % count, level)
+    np.minimum.at(at_edge, edge % len(at_edge), h_a[segment] + (edge * width - s_a[segment]) * slope[segment])
 
 
 def _lower_envelope(table: PitchTable, tip_height: float, module: float, positions) -> np.ndarray:
@@ -135,7 +132,7 @@ def _lower_envelope(table: PitchTable, tip_height: float, module: float, positio
     perimeter = table.perimeter
     count = int(np.ceil(perimeter / (BIN_MODULES * module)))
     width = perimeter / count
-    height = np.full(count, tip_height)
+    height, at_edge = np.full(count, tip_height), np.full(count, tip_height)
     samples = cKDTree(table.points[:-1])
     # polar radius of the blank's tip, a little grown: points beyond it cut nothing
     tip = table.points + (tip_height + MARGIN_MODULES * module) * table.normals
@@ -158,10 +155,11 @@ def _lower_envelope(table: PitchTable, tip_height: float, module: float, positio
         # a segment with an end never projected (outside the grown tip by the polar test, though made
         # near by another segment of its other end) cuts only at that other end, recorded above
         cuts = (keep[:edged, at] | keep[:edged, after]) & grown[:edged, at] & grown[:edged, after]
-        _cut(height, width, perimeter, (s[:edged, at][cuts], h[:edged, at][cuts],
-                                        s[:edged, after][cuts], h[:edged, after][cuts]))
+        _cut(at_edge, width, perimeter, (s[:edged, at][cuts], h[:edged, at][cuts],
+                                         s[:edged, after][cuts], h[:edged, after][cuts]))
         cuts = (keep[:-1] | keep[1:]) & grown[:-1] & grown[1:]
-        _cut(height, width, perimeter, (s[:-1][cuts], h[:-1][cuts], s[1:][cuts], h[1:][cuts]))
+        _cut(at_edge, width, perimeter, (s[:-1][cuts], h[:-1][cuts], s[1:][cuts], h[1:][cuts]))
+    height = np.minimum(height, np.minimum(at_edge, np.roll(at_edge, -1)))     # a bin meets both its edges
     point, _, normal = table.at((np.arange(count) + 0.5) * width)
     return point + height[:, None] * normal
 
