@@ -16,9 +16,9 @@ stages under 4 s in all, outlines at least as near the converged ones as the bas
 mesh check passing.
 
 A second line per stage times the same two calls against the former per-position envelope (kept below
-too): segments as index pairs into one flat cloud of each chunk's points, and the pitch table's Hermite
-evaluated apart from its tangents; the package's outlines must equal its to 1e-9 mm. Target: the main
-job's two stages under 1 s.
+too): segments as index pairs into one flat cloud of each chunk's points, each crossing's level scattered
+into both bins by its edge, and the pitch table's Hermite evaluated apart from its tangents; the
+package's outlines must equal its to 1e-9 mm. Target: the main job's two stages under 1 s.
 """
 from __future__ import annotations
 
