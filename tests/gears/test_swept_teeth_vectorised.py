@@ -20,10 +20,13 @@ def _ellipse_pair():
 
 def test_pitch_table_interpolates_as_the_hermite_of_its_samples():
     """Points are the cubic Hermite of the samples with the unit tangents as slopes, tangents the normalised
-    linear blend of the sample tangents, normals those turned outward, on both gears of the pair."""
+    linear blend of the sample tangents, normals those turned outward, on both gears of the pair (at and next to
+    every sample too, where the interval is looked up)."""
     design = _ellipse_pair()
     for table in (driver_table(design), driven_table(design)):
-        s = np.linspace(-table.perimeter, 2 * table.perimeter, 5001)
+        knots = table.arc[:-1]
+        s = np.r_[np.linspace(-table.perimeter, 2 * table.perimeter, 5001), knots, np.nextafter(knots, -1),
+                  np.nextafter(knots, np.inf), table.perimeter]
         point, tangent, normal = table.at(s)
         arc = np.mod(s, table.perimeter)
         expected = hermite(table.arc, table.points, table.tangents[:-1], table.tangents[1:], arc)
