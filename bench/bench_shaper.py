@@ -3,7 +3,7 @@
     python bench/bench_shaper.py
 
 The pairs are the two stages of the five-bar example's planetary train (examples/vegetable_planting.toml:
-63 and 82 teeth of module 1.5, a 16-tooth shaper), the job that made the shaper path slow. Both paths
+57 and 77 teeth of module 1.5 in today's design, a 16-tooth shaper), the job that made the shaper path slow. Both paths
 run in this process on the same pitch curves: the package's ``shaper_profile`` and ``mate_profile``,
 and the previous ones, kept below as the baseline. The baseline densified the cutter (and the cut
 driver) to module / 80, placed it every module / 40 along the pitch curve with four linear steps in
