@@ -21,12 +21,12 @@ along them. The rack's tip-corner trochoid below the flank is drawn as that join
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
 from transplanter._generated.cusp import variable_involute
 from transplanter.generated import numpy_twin
-from transplanter.geometry.hermite import hermite
 
 _VARIABLE_INVOLUTE = numpy_twin(variable_involute)
 ADDENDUM, DEDENDUM = 1.0, 1.25  # in modules
@@ -46,15 +46,55 @@ class PitchTable:
     def perimeter(self) -> float:
         return float(self.arc[-1])
 
+    @cached_property
+    def _pieces(self) -> np.ndarray:
+        """Per sample interval, one column: the cubic Hermite of the points in power form in t = (s - s_k) / h_k
+        (coefficients c0..c3, x and y each), the tangent at its start and the change to its end, s_k and 1 / h_k."""
+        h = np.diff(self.arc)[:, None]
+        start, step = self.points[:-1], np.diff(self.points, axis=0)
+        slope0, slope1 = h * self.tangents[:-1], h * self.tangents[1:]
+        return np.ascontiguousarray(np.concatenate(
+            [start, slope0, 3 * step - 2 * slope0 - slope1, slope0 + slope1 - 2 * step,
+             self.tangents[:-1], np.diff(self.tangents, axis=0), self.arc[:-1, None], 1 / h], axis=1).T)
+
+    @cached_property
+    def _cells(self) -> tuple[np.ndarray, float]:
+        """The interval (last sample at or before) of the start of each of twice as many equal cells of arc
+        length as samples, and the cells per mm."""
+        count = 2 * len(self.arc)
+        per_mm = count / self.perimeter
+        first = np.searchsorted(self.arc, np.arange(count + 1) / per_mm, side="right") - 1
+        return np.clip(first, 0, len(self.arc) - 2), per_mm
+
+    def _interval(self, s: np.ndarray) -> np.ndarray:
+        """Sample interval k holding each arc length s in [0, perimeter) (the last one at the perimeter): the
+        interval of s's cell, one back where rounding put s a cell late, then forward past every sample <= s."""
+        first, per_mm = self._cells
+        with np.errstate(invalid="ignore"):         # a NaN arc length takes any cell and gives NaN as before
+            k = first[np.clip((s * per_mm).astype(np.intp), 0, len(first) - 1)]
+        k -= (self.arc[k] > s) & (k > 0)
+        last = len(self.arc) - 2
+        while (move := (self.arc[k + 1] <= s) & (k < last)).any():
+            k += move
+        return k
+
     def at(self, s):
-        """Cubic Hermite interpolation in arc length (tangents are unit, so positions stay accurate)."""
-        s = np.mod(np.asarray(s, float), self.perimeter)
-        point = hermite(self.arc, self.points, self.tangents[:-1], self.tangents[1:], s)
-        k = np.clip(np.searchsorted(self.arc, s, side="right") - 1, 0, len(self.arc) - 2)
-        t = ((s - self.arc[k]) / (self.arc[k + 1] - self.arc[k]))[..., None]
-        tangent = self.tangents[k] * (1 - t) + self.tangents[k + 1] * t
-        tangent /= np.linalg.norm(tangent, axis=-1, keepdims=True)
-        normal = np.stack([tangent[..., 1], -tangent[..., 0]], -1) * self.orientation
+        """Cubic Hermite interpolation in arc length (tangents are unit, so positions stay accurate); the tangent
+        interpolated linearly and normalised."""
+        s = np.asarray(s, float)
+        flat = np.mod(s.ravel(), self.perimeter)
+        piece = self._pieces.take(self._interval(flat), axis=1)
+        t = (flat - piece[12]) * piece[13]
+        x = ((piece[6] * t + piece[4]) * t + piece[2]) * t + piece[0]
+        y = ((piece[7] * t + piece[5]) * t + piece[3]) * t + piece[1]
+        along_x, along_y = piece[8] + t * piece[10], piece[9] + t * piece[11]
+        length = np.sqrt(along_x * along_x + along_y * along_y)
+        along_x /= length
+        along_y /= length
+        shape = (*s.shape, 2)
+        point = np.stack([x, y], -1).reshape(shape)
+        tangent = np.stack([along_x, along_y], -1).reshape(shape)
+        normal = (self.orientation * np.stack([along_y, -along_x], -1)).reshape(shape)
         return point, tangent, normal
 
 

@@ -48,13 +48,14 @@ def _polar(points: np.ndarray):
     return np.arctan2(points[..., 1], points[..., 0]), points[..., 0] ** 2 + points[..., 1] ** 2
 
 
-def _segments(points: np.ndarray, facing: np.ndarray, reach: float, place, chunk: int = 24):
-    """Points and the segments between them (index pairs) bounding the region that ``points``, a closed
-    outline, sweeps through its positions (``place(points, rows) -> (rows, W, 2)``), a chunk at a time.
+def _positions(points: np.ndarray, facing: np.ndarray, reach: float, place, chunk: int = 24):
+    """``points``, a closed outline, placed at its positions (``place(points, rows) -> (rows, W, 2)``) a chunk of
+    positions at a time, with the outline's edges among the placed vertices (column pairs) and how many of the
+    chunk's rows keep them: chunks share their last and first rows, whose edges count once, in the later chunk.
 
-    Between positions k and k + 1 that region is the outline at k together with the quadrilaterals
-    its edges sweep: its boundary lies on the edges at k and on each vertex's chord from k to k + 1
-    (the fold inside a swept edge, where the envelope touches, is met to second order in the step).
+    Between positions k and k + 1 the region the outline sweeps is the outline at k together with the
+    quadrilaterals its edges sweep: its boundary lies on the edges at k and on each vertex's chord from k to
+    k + 1 (the fold inside a swept edge, where the envelope touches, is met to second order in the step).
     Only the vertices whose polar angle (own frame) is within ``reach`` of ``facing`` take part.
     """
     angle, _ = _polar(points)
@@ -66,13 +67,9 @@ def _segments(points: np.ndarray, facing: np.ndarray, reach: float, place, chunk
         near = np.abs(np.mod(angle - middle + np.pi, 2 * np.pi) - np.pi) <= half
         index = np.flatnonzero(near)
         edge = np.flatnonzero(near & np.roll(near, -1))
-        cloud = place(points[index], rows)                          # (rows, W, 2)
-        width = len(index)
-        row = width * np.arange(len(rows) - (rows[-1] != last))[:, None]  # the last position also keeps its edges
-        at = np.searchsorted(index, edge)
-        after = np.searchsorted(index, (edge + 1) % len(points))
-        still = np.arange(width * (len(rows) - 1))
-        yield cloud.reshape(-1, 2), np.r_[(row + at).ravel(), still], np.r_[(row + after).ravel(), still + width]
+        edged = len(rows) - (rows[-1] != last)          # the last position also keeps its edges
+        yield (place(points[index], rows), np.searchsorted(index, edge),
+               np.searchsorted(index, (edge + 1) % len(points)), edged)
 
 
 def _short_edges(outline: np.ndarray, table: PitchTable, module: float) -> np.ndarray:
@@ -88,60 +85,81 @@ def _short_edges(outline: np.ndarray, table: PitchTable, module: float) -> np.nd
     return shapely.get_coordinates(ring)[:-1]
 
 
+def _dot(first: np.ndarray, second: np.ndarray) -> np.ndarray:
+    """Row-wise dot products of two (N, 2) arrays."""
+    return first[:, 0] * second[:, 0] + first[:, 1] * second[:, 1]
+
+
 def _normal_coordinates(table: PitchTable, samples: cKDTree, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Arc length s of the foot of each point's normal on the pitch curve, and its height h along that
     normal (outward positive): from the nearest table sample (``samples``, its points), two Newton steps."""
     _, nearest = samples.query(points, workers=1)
     offset = points - table.points[nearest]
-    s = table.arc[nearest] + np.sum(offset * table.tangents[nearest], axis=1)
+    s = table.arc[nearest] + _dot(offset, table.tangents[nearest])
     for _ in range(2):
         foot, tangent, normal = table.at(s)
         offset = points - foot
-        s = s + np.sum(offset * tangent, axis=1)
-    return np.mod(s, table.perimeter), np.sum(offset * normal, axis=1)
+        s = s + _dot(offset, tangent)
+    return np.mod(s, table.perimeter), _dot(offset, normal)
 
 
-def _lower_envelope(table: PitchTable, tip_height: float, module: float, segments) -> np.ndarray:
-    """Blank (heights up to ``tip_height`` over the pitch curve) cut down by every segment in
-    ``segments`` (all in the gear frame), in the pitch curve's normal coordinates (s, h).
+def _cut(at_edge: np.ndarray, width: float, perimeter: float, ends: tuple[np.ndarray, ...]):
+    """Lower ``at_edge``, the lowest height met on each bin edge (edge k at arc k ``width`` round a pitch curve
+    of ``perimeter``), to the segments with ends (s, h) = ``ends`` = (s_a, h_a, s_b, h_b) where they cross it."""
+    s_a, h_a, s_b, h_b = ends
+    run = np.mod(s_b - s_a + perimeter / 2, perimeter) - perimeter / 2
+    back = run < 0
+    s_a, h_a, h_b, run = np.where(back, s_b, s_a), np.where(back, h_b, h_a), np.where(back, h_a, h_b), np.abs(run)
+    first = np.floor(s_a / width).astype(int)
+    crossed = np.floor((s_a + run) / width).astype(int) - first           # bin edges crossed
+    some = np.flatnonzero(crossed)
+    slope = (h_b[some] - h_a[some]) / run[some]                            # run > 0 where an edge is crossed
+    s_a, h_a, first, crossed = s_a[some], h_a[some], first[some], crossed[some]
+    segment = np.repeat(np.arange(len(some)), crossed)
+    edge = np.arange(crossed.sum()) + np.repeat(first + 1 - (np.cumsum(crossed) - crossed), crossed)
+    np.minimum.at(at_edge, edge % len(at_edge), h_a[segment] + (edge * width - s_a[segment]) * slope[segment])
 
-    Each bin of arc length keeps the lowest height any segment reaches over it, taken at the
-    segment's ends and where it crosses the bin's edges (a segment is straight in (s, h) to second
-    order in its length). Teeth stand along the pitch curve's normals, not along the radii, so a
-    tooth leaning on a non-circular gear keeps its flanks.
+
+def _lower_envelope(table: PitchTable, tip_height: float, module: float, positions) -> np.ndarray:
+    """Blank (heights up to ``tip_height`` over the pitch curve) cut down by the region an outline sweeps through
+    ``positions`` (``_positions``, in the gear frame), in the pitch curve's normal coordinates (s, h).
+
+    Each bin of arc length keeps the lowest height any bounding segment (an edge at a position, a vertex's
+    chord between positions) reaches over it, taken at the segment's ends and where it crosses the bin's
+    edges (a segment is straight in (s, h) to second order in its length). Teeth stand along the pitch
+    curve's normals, not along the radii, so a tooth leaning on a non-circular gear keeps its flanks.
     """
     perimeter = table.perimeter
     count = int(np.ceil(perimeter / (BIN_MODULES * module)))
     width = perimeter / count
-    height = np.full(count, tip_height)
+    height, at_edge = np.full(count, tip_height), np.full(count, tip_height)
     samples = cKDTree(table.points[:-1])
     # polar radius of the blank's tip, a little grown: points beyond it cut nothing
     tip = table.points + (tip_height + MARGIN_MODULES * module) * table.normals
     tip_angle, tip_squared = _polar(tip)
     order = np.argsort(tip_angle)
-    for points_at, a, b in segments:
-        angle, squared = _polar(points_at)
+    for cloud, at, after, edged in positions:
+        angle, squared = _polar(cloud)
         near = squared < np.interp(angle, tip_angle[order], tip_squared[order], period=2 * np.pi)
-        touching = near[a] | near[b]
-        near[a[touching]], near[b[touching]] = True, True                  # both ends of a segment that may cut
-        s, h = np.zeros(len(points_at)), np.full(len(points_at), np.inf)
-        s[near], h[near] = _normal_coordinates(table, samples, points_at[near])
+        # both ends of a segment that may cut
+        touching, chord = near[:edged, at] | near[:edged, after], near[:-1] | near[1:]
+        grown = near.copy()
+        grown[:edged, at] |= touching
+        grown[:edged, after] |= touching
+        grown[:-1] |= chord
+        grown[1:] |= chord
+        s, h = np.zeros(near.shape), np.full(near.shape, np.inf)
+        s[grown], h[grown] = _normal_coordinates(table, samples, cloud[grown])
         keep = h < tip_height
-        low = np.flatnonzero(keep)
-        np.minimum.at(height, np.minimum((s[low] / width).astype(int), count - 1), h[low])
+        np.minimum.at(height, np.minimum((s[keep] / width).astype(int), count - 1), h[keep])
         # a segment with an end never projected (outside the grown tip by the polar test, though made
         # near by another segment of its other end) cuts only at that other end, recorded above
-        cuts = (keep[a] | keep[b]) & near[a] & near[b]
-        a, b = a[cuts], b[cuts]
-        run = np.mod(s[b] - s[a] + perimeter / 2, perimeter) - perimeter / 2
-        a, b, run = np.where(run < 0, b, a), np.where(run < 0, a, b), np.abs(run)
-        first = np.floor(s[a] / width).astype(int)
-        crossed = np.floor((s[a] + run) / width).astype(int) - first           # bin edges crossed
-        segment = np.repeat(np.arange(len(a)), crossed)
-        edge = first[segment] + 1 + np.arange(crossed.sum()) - np.repeat(np.cumsum(crossed) - crossed, crossed)
-        share = (edge * width - s[a][segment]) / np.where(run[segment] > 0, run[segment], 1.0)
-        level = h[a][segment] + share * (h[b][segment] - h[a][segment])
-        np.minimum.at(height, np.r_[edge % count, (edge - 1) % count], np.r_[level, level])
+        cuts = (keep[:edged, at] | keep[:edged, after]) & grown[:edged, at] & grown[:edged, after]
+        _cut(at_edge, width, perimeter, (s[:edged, at][cuts], h[:edged, at][cuts],
+                                         s[:edged, after][cuts], h[:edged, after][cuts]))
+        cuts = (keep[:-1] | keep[1:]) & grown[:-1] & grown[1:]
+        _cut(at_edge, width, perimeter, (s[:-1][cuts], h[:-1][cuts], s[1:][cuts], h[1:][cuts]))
+    height = np.minimum(height, np.minimum(at_edge, np.roll(at_edge, -1)))     # a bin meets both its edges
     point, _, normal = table.at((np.arange(count) + 0.5) * width)
     return point + height[:, None] * normal
 
@@ -173,7 +191,7 @@ def shaper_profile(table: PitchTable, module: float, alpha: float, cutter_teeth:
         return center[rows, None, :] + rotate_about(points[None], ORIGIN, turn[rows, None])
 
     return _lower_envelope(table, ADDENDUM * module, module,
-                           _segments(_short_edges(cutter, table, module), local_facing, reach, place))
+                           _positions(_short_edges(cutter, table, module), local_facing, reach, place))
 
 
 def mate_profile(design: GearPairDesign, driver_outline: np.ndarray, driven: PitchTable, module: float,
@@ -195,4 +213,4 @@ def mate_profile(design: GearPairDesign, driver_outline: np.ndarray, driven: Pit
 
     # the driver's one-per-bin vertices, thinned where they stay within a hair of their chords
     cutter = _short_edges(thinned(driver_outline, SIMPLIFY_MODULES * module), driven, module)
-    return _lower_envelope(driven, ADDENDUM * module, module, _segments(cutter, phi1, reach, place))
+    return _lower_envelope(driven, ADDENDUM * module, module, _positions(cutter, phi1, reach, place))
