@@ -126,10 +126,10 @@ def test_fivebar_region_scales_with_the_poses():
 
 def test_fivebar_design_nlp_scales_with_the_poses():
     """The design NLP measures lengths in the power of ten at or below the problem's reach, so the
-    example in micrometres, millimetres and metres (ranges and return tolerance scaled alike) refines the
-    first candidate that refines at every scale to the same mechanism (with a fixed 100 mm unit, all 17
-    candidates failed at 1e-3). Whether one start stalls (the stall watch ends IPOPT after 100 iterations
-    off a bound) can turn on rounding, so which candidate is the first is not held fixed."""
+    example in micrometres, millimetres and metres (ranges and return tolerance scaled alike) solves the
+    first candidate whose solve converges at every scale to the same mechanism (with a fixed 100 mm unit,
+    all 17 candidates failed at 1e-3). Whether one start stalls (the stall watch ends IPOPT after 100
+    iterations off a bound) can turn on rounding, so which candidate is the first is not held fixed."""
     from transplanter import fivebar
     from transplanter.errors import SolverError
     from transplanter.fivebar.design_solver import DesignSolver
@@ -137,23 +137,23 @@ def test_fivebar_design_nlp_scales_with_the_poses():
     from transplanter.fivebar.region import solution_region
 
     base = read_toml(ROOT / "examples" / "vegetable_planting.toml")
-    problems = {}
+    solvers, starts = {}, {}
     for scale in SCALES:
         data = _scaled(base, scale, "key_poses", "return_points", "region.radius_mm",
                        *(f"ranges.{key}" for key in base["ranges"]))
         data["conditions"]["return_tolerance_mm"] = base["conditions"]["return_tolerance_mm"] * scale
-        problems[scale] = fivebar.parse_problem(data)
-        assert length_unit(problems[scale]) == pytest.approx(100.0 * scale, rel=1e-12)
-    starts = {scale: solution_region(problem).feasible for scale, problem in problems.items()}
+        problem = fivebar.parse_problem(data)
+        assert length_unit(problem) == pytest.approx(100.0 * scale, rel=1e-12)
+        solvers[scale], starts[scale] = DesignSolver(problem), solution_region(problem).feasible
     assert len({len(feasible) for feasible in starts.values()}) == 1
     designs = {}
     for index in range(len(starts[1.0])):
         try:
-            designs = {scale: DesignSolver(problem).refine(starts[scale][index]) for scale, problem in problems.items()}
+            designs = {scale: solver.solve(starts[scale][index]) for scale, solver in solvers.items()}
             break
         except SolverError:
             continue
-    assert designs, "no candidate refines at every scale"
+    assert designs, "no candidate's solve converges at every scale"
     one = designs[1.0]
     for scale, design in designs.items():
         for name in ("carrier_length", "rod_length", "receiving_length", "hinge_b", "e_local", "f_local"):
