@@ -114,7 +114,7 @@ def _fivebar(command: Command, problem, args) -> CommandResult:
     if args.design:
         return fivebar.evaluate_design(problem, fivebar.load_design(args.design))
     with progress.step("synthesis"):
-        return fivebar.synthesize(problem, pick=args.pick, progress=_report)
+        return fivebar.synthesize(problem, pick=args.pick, progress=_report, tolerance=not args.no_tolerance)
 
 
 def _parallelogram(command: Command, problem, args) -> CommandResult:
@@ -196,7 +196,9 @@ COMMANDS = (
             flags=(Flag(("--design",), {"metavar": "DESIGN.toml",
                                         "help": "evaluate this given design instead of designing one"}, exclusive=True),
                    Flag(("--pick",), {"metavar": "N", "type": int, "help": "build alternative N of the ranked "
-                                      "alternatives (default 1, the best; report.md lists them)"}, exclusive=True))),
+                                      "alternatives (default 1, the best; report.md lists them)"}, exclusive=True),
+                   Flag(("--no-tolerance",), {"action": "store_true", "help": "skip the tolerance analysis of the "
+                                              "built mechanism (report section and figures)"}))),
     Command("reverse", "planetary non-circular gear train that makes the arm tip follow a closed path (the "
             "rice-transplanter, reverse-gear-design and cusp-pitch-curve papers): inverse kinematics, monotonicity, "
             "gears, round trip", "reverse-design problem file (TOML, mm and degrees)", "the figures", reverse),

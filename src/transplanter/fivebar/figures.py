@@ -215,8 +215,8 @@ def draw_pressure_angle(result: FiveBarResult) -> Figure:
 
 def draw_figures(result: FiveBarResult) -> dict[str, Figure]:
     """The figures of a five-bar design by file stem: ``region``, ``relative_angle``, ``gears``, ``trajectory``,
-    ``tradeoff``, ``loads``, ``pressure_angle``, and with a seedling support ``support`` and the cam's own
-    (``cam_motion``, ...).
+    ``tradeoff``, ``loads``, ``pressure_angle``, with a seedling support ``support`` and the cam's own
+    (``cam_motion``, ...), and with a tolerance analysis ``tolerance_band`` and ``tolerance_contributions``.
 
     Parameters
     ----------
@@ -236,4 +236,6 @@ def draw_figures(result: FiveBarResult) -> dict[str, Figure]:
     if result.support is not None:
         figures["support"] = draw_support(result.support)
         figures.update(draw_cam_figures(result.support.cam))
+    if result.tolerance is not None:
+        figures.update(result.tolerance.draw_figures())
     return figures

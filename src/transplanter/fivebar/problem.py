@@ -64,6 +64,8 @@ from transplanter.fivebar.key_pose_bands import (
 )
 from transplanter.fivebar.load_spec import LoadSpec, parse_load
 from transplanter.fivebar.support_problem import SupportSpec, parse_support
+from transplanter.fivebar.tolerance_model import DIMENSION_NAMES
+from transplanter.tolerance.dimensions import ToleranceSettings, parse_tolerances
 from transplanter.toml_fields import LONGEST_LABEL, LONGEST_TITLE, ClassFields, FieldReader, read_toml, warn_if_radians
 from transplanter.trains.toothed_train import (
     CUTTERS,
@@ -77,7 +79,7 @@ from transplanter.trains.toothed_train import (
 RANGE_FIELDS = {"ep": "|EP| (mm)", "fp": "|FP| (mm)", "x_e": "x of E in pose 1 (mm)", "x_f": "x of F in pose 1 (mm)"}
 _TOP_KEYS = {"title", "description", "key_poses", "return_points", "ranges", "conditions", "requirements", "spline",
              "region", "gears",
-             "support", "load"}
+             "support", "load", "tolerances"}
 
 
 @dataclass(frozen=True)
@@ -127,6 +129,9 @@ class FiveBarProblem:
         velocity over the pushing stroke, no masses).
     source, title : str
         Where the problem came from (file name or ``"<dict>"``) and its title.
+    tolerances : ToleranceSettings
+        The ``[tolerances]`` table: tolerances of the built mechanism's dimensions (``fivebar.tolerance_model``)
+        and the analysis settings (``tolerance.dimensions``).
 
     Raises
     ------
@@ -155,6 +160,7 @@ class FiveBarProblem:
     load: LoadSpec = field(default_factory=LoadSpec)
     source: str = "<dict>"
     title: str = ""
+    tolerances: ToleranceSettings = field(default_factory=ToleranceSettings)
 
     def __post_init__(self):
         check = ClassFields(self)
@@ -403,4 +409,5 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
                           return_labels=tuple(return_labels), ranges=ranges, min_closure_margin=margin,
                           ratio_bounds=ratio, spline_count=count, samples=samples, radius_mm=radius,
                           gearing=gearing, support=support, source=source,
-                          title=read.text(data, "title", "", LONGEST_TITLE))
+                          title=read.text(data, "title", "", LONGEST_TITLE),
+                          tolerances=parse_tolerances(data.get("tolerances", {}), DIMENSION_NAMES, source))

@@ -165,6 +165,7 @@ def fivebar_result_json(result: FiveBarResult) -> dict:
         **result.pressure.to_json(),
         "load": load_json(result.loads),
         **support,
+        **({"tolerance": result.tolerance.to_json()} if result.tolerance else {}),
         "timings_s": result.timings_s,
     }
 
@@ -273,6 +274,7 @@ def to_markdown(result: FiveBarResult, files: Sequence[str] = ()) -> str:
     lines += ["## Loads (quasi-static, frictionless hinges, a lossless train)", "", *load_markdown(result.loads), "",
               result.pressure.summary(), ""]
     lines += support_markdown(result.support)
+    lines += result.tolerance.to_markdown() if result.tolerance else []
     lines += [f"![{name}]({name})" for name in files if name.endswith(".png")]
     return "\n".join(lines) + "\n"
 

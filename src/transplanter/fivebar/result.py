@@ -17,6 +17,7 @@ from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import Region
 from transplanter.fivebar.support import SupportDesign
 from transplanter.fivebar.verification import Verification
+from transplanter.tolerance import ToleranceAnalysis, ToleranceModel
 from transplanter.trains.planetary import PlanetaryTrain
 from transplanter.trains.pressure_angle import StagePressureAngles
 from transplanter.trains.toothed_train import ToothedTrain
@@ -64,6 +65,8 @@ class FiveBarResult(CommandResult):
         The pose sets the region was built for (``fivebar.band_search``): the bands' centres first.
     support : SupportDesign or None
         The seedling support timed to the design (``[support]``), else None.
+    tolerance : ToleranceAnalysis or None
+        How precise the built mechanism will be (``tolerance.analyse``), else None (``tolerance=False``).
     """
 
     problem: FiveBarProblem
@@ -81,6 +84,7 @@ class FiveBarResult(CommandResult):
     pose_bands: PoseBands | None = None
     band_trials: tuple[PoseSetTrial, ...] = ()
     support: SupportDesign | None = None
+    tolerance: ToleranceAnalysis | None = None
 
     @property
     def source(self) -> str:
@@ -97,6 +101,12 @@ class FiveBarResult(CommandResult):
         support."""
         return [*self.verification.failures, *self.toothed.failures, *self.pressure.failures(),
                 *(self.support.failures if self.support else [])]
+
+    def tolerance_model(self) -> ToleranceModel:
+        """The built mechanism as a function of its manufactured dimensions (``fivebar.tolerance_model``)."""
+        from transplanter.fivebar.tolerance_model import tolerance_model
+
+        return tolerance_model(self)
 
     @property
     def chosen(self) -> Alternative:

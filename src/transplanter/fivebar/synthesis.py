@@ -10,6 +10,7 @@ candidates.
 """
 from __future__ import annotations
 
+import dataclasses
 import time
 from numbers import Integral
 
@@ -27,6 +28,7 @@ from transplanter.fivebar.result import FiveBarResult
 from transplanter.fivebar.support import design_support
 from transplanter.fivebar.verification import verify
 from transplanter.fivebar.whole_turn import fine_turns
+from transplanter.tolerance import analyse
 from transplanter.trains.pressure_angle import stage_pressure_angles
 from transplanter.trains.toothed_train import design_toothed_train
 
@@ -84,7 +86,8 @@ def pick_alternative(alternatives: list[Alternative], pick: int, source: str) ->
     return alternatives[pick - 1]
 
 
-def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progress | None = None) -> FiveBarResult:
+def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progress | None = None,
+               tolerance: bool = True) -> FiveBarResult:
     """Design the five-bar and its four-gear planetary train for ``problem``, and verify it.
 
     Every feasible region candidate is refined by the design NLP; the results are judged by
@@ -102,7 +105,10 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
     progress : callable, optional
         ``progress(step, done, total)``, called with done = 0 when a step starts and after each
         unit of it; steps ``"region"``, ``"refinement"`` (one unit per candidate), ``"gears"``,
-        ``"verification"``, ``"support"`` (with ``[support]``), ``"loads"``.
+        ``"verification"``, ``"support"`` (with ``[support]``), ``"loads"``, ``"tolerance"``.
+    tolerance : bool, optional
+        Analyse how precise the built mechanism will be (``tolerance.analyse`` with the problem's
+        ``[tolerances]``; default True).
 
     Returns
     -------
@@ -171,9 +177,15 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
     pressure = stage_pressure_angles(design.relative_angle, toothed.train.correction, problem.gearing, fine_turns())
     loads = kinetostatics(design.mech, design.relative_angle, problem.carrier_turns, problem.load)
     timings["loads"] = _done(progress, "loads", start)
-    return FiveBarResult(problem, region, region.feasible[chosen.starts[0]], design, toothed, verification, timings,
-                         tuple(alternatives), tuple(failed), pick, pressure, loads, given.pose_bands, starts.trials,
-                         support)
+    result = FiveBarResult(problem, region, region.feasible[chosen.starts[0]], design, toothed, verification, timings,
+                           tuple(alternatives), tuple(failed), pick, pressure, loads, given.pose_bands, starts.trials,
+                           support)
+    if not tolerance:
+        return result
+    start = _step(progress, "tolerance")
+    analysis = analyse(result, problem.tolerances)
+    timings["tolerance"] = _done(progress, "tolerance", start)
+    return dataclasses.replace(result, tolerance=analysis)
 
 
 def _step(progress: Progress | None, step: str) -> float:

@@ -1,0 +1,211 @@
+"""The built five-bar as a function of its manufactured dimensions, for the tolerance analysis.
+
+Dimensions (the names of the report's design table where they are there; mm or deg):
+
+- link lengths ``carrier_length_OA``, ``rod_length_AF``, ``receiving_plate_length_BE`` and the push plate's
+  triangle ``plate_link_length_EF``, ``push_plate_EP``, ``push_plate_FP``; the frame's ``frame_length_OB``
+  (B stays on its designed direction from O); the carrier's ``center_distance_a1`` (O to the intermediate
+  shaft) and ``bend_angle`` (A-O-shaft): with OA they place the three holes of the carrier, so a2 follows;
+  ISO 2768-m by size (the bend angle by its shorter leg);
+- ``clearance_<hinge>_x`` / ``_y`` for O, A, F, E, B: where the pin sits in its hole, a constant offset in the
+  frame's axes, within the radial play (``HINGE_PLAY_MM``: no shaft diameter is set by the drawings);
+- ``backlash_stage_1`` / ``_2``: the driven gear's lost motion (deg), within half the ISO/TR 10064-2
+  minimum normal backlash 2/3 (0.06 + 0.0005 a + 0.03 m) mm over the driven gear's mean pitch radius;
+- ``phase_<gear>``: each gear's assembly phase on its shaft (deg), +-``PHASE_DEG``.
+
+Motion. The gears map the carrier turn c to the rod's angle relative to the carrier: the sun, fixed to
+the frame, stands at c + phase_sun against the carrier; seen along the line of centres O->shaft (turned by
+the bend's error) stage 1 turns the intermediate shaft by psi, stage 2 (along the line shaft->A) turns the
+planet by chi, and the rod sits on the planet at its phase. Each stage's driven gear lags its designed
+motion by its lost motion plus the backlash a larger centre distance opens, delta a tan(alpha) / r
+(taken up against the load, which resists the motion). psi and chi enter as their second-order expansion
+about the designed motion at each c (the next term is below 1e-9 rad at the tolerances of a built
+mechanism). The linkage then closes through the generated eq (9) root on the design's branch (exact: eq (8)
+has no residual there but rounding), with the hinge offsets carried as shifts of F and B.
+
+``built_motion`` is written once over a backend: CasADi (one turn, symbolic, for the exact Jacobian) and
+numpy (N built mechanisms by T turns at once, for the Monte Carlo).
+"""
+from __future__ import annotations
+
+import casadi as ca
+import numpy as np
+
+from transplanter._generated.fivebar import (
+    fivebar_closure_margin,
+    fivebar_half_angle_quadratic,
+    fivebar_transmission_margin,
+)
+from transplanter.fivebar.relative_angle import RelativeAngle
+from transplanter.generated import CASADI, NUMPY
+from transplanter.geometry.planar import TWO_PI
+from transplanter.tolerance.dimensions import Dimension
+from transplanter.tolerance.iso2768 import angular_limit_deg, linear_limit_mm
+from transplanter.tolerance.model import ToleranceModel
+
+#: Radial play of every hinge (mm) where the drawings set no shaft diameter to take an H7/g6 fit from.
+HINGE_PLAY_MM = 0.02
+#: Assembly phase of each gear on its shaft (deg).
+PHASE_DEG = 0.1
+#: Whole-turn samples the conditions and the trajectory band are judged on (2 deg apart).
+TURN_SAMPLES = 180
+HINGES = ("O", "A", "F", "E", "B")
+GEARS = ("sun", "first_intermediate", "second_intermediate", "planet")
+LINKS = ("carrier_length_OA", "rod_length_AF", "plate_link_length_EF", "receiving_plate_length_BE",
+         "push_plate_EP", "push_plate_FP", "frame_length_OB", "center_distance_a1")
+#: Rows of the motion: P (mm), plate angle (rad), sin^2(EBF), sin^2(BEF), x of E and F (mm).
+ROWS = ("x_P", "y_P", "plate_angle", "closure_margin", "transmission_margin", "x_E", "x_F")
+DIMENSION_NAMES = (*LINKS, "bend_angle", *(f"clearance_{h}_{axis}" for h in HINGES for axis in "xy"),
+                   "backlash_stage_1", "backlash_stage_2", *(f"phase_{gear}" for gear in GEARS))
+
+
+def minimum_backlash_mm(center_distance: float, module: float) -> float:
+    """ISO/TR 10064-2's minimum normal backlash (mm) for a centre distance and module (mm)."""
+    return 2 / 3 * (0.06 + 0.0005 * center_distance + 0.03 * module)
+
+
+def _unit(lib, angle):
+    return lib.cos(angle), lib.sin(angle)
+
+
+def _gear_rows(relative: RelativeAngle, train, c: np.ndarray) -> np.ndarray:
+    """Per carrier turn: c, chi(c), psi', psi'' (against c), chi' and chi'' against psi, and the driven gears'
+    pitch radii at their contact (mm); (8, T)."""
+    k, p = train.correction, train.exponent
+    s1, s2 = relative.evaluate(c, 1), relative.evaluate(c, 2)
+    psi_1, psi_2 = k * s1**p, k * p * s1 ** (p - 1) * s2
+    chi_1, chi_2 = s1 / psi_1, (s2 * psi_1 - s1 * psi_2) / psi_1**3
+    a1, a2 = train.center_distances
+    first = a1 - train.sun.evaluate(np.mod(c, TWO_PI))[0]
+    planet = a2 - train.second_intermediate.evaluate(train.intermediate_turn(np.mod(c, TWO_PI)))[0]
+    chi = relative.evaluate(c) - relative.evaluate(np.zeros(1))[0]
+    return np.vstack([c, chi, psi_1, psi_2, chi_1, chi_2, first, planet])
+
+
+def built_motion(lib, result, v: dict, g) -> tuple:
+    """The ``ROWS`` of the built mechanism with dimensions ``v`` (by name, in their units) at the turns of gear
+    rows ``g`` (``_gear_rows``), on a backend ``lib`` (``generated.CASADI`` or ``generated.NUMPY``)."""
+    mech, toothed, relative = result.design.mech, result.toothed, result.design.relative_angle
+    rad = np.pi / 180
+    c, chi0, psi_1, psi_2, chi_1, chi_2, r_first, r_planet = g
+
+    # the carrier's holes: O, the shaft at a1 and the bend, A at OA on the carrier's axis
+    a1_0, a2_0 = toothed.train.center_distances
+    bend_0 = toothed.bend_angle
+    shaft_x, shaft_y = (v["center_distance_a1"] * w for w in _unit(lib, v["bend_angle"] * rad))
+    to_a_x, to_a_y = v["carrier_length_OA"] - shaft_x, -shaft_y
+    line_1 = v["bend_angle"] * rad - bend_0
+    line_2 = lib.atan2(to_a_y, to_a_x) - np.arctan2(-a1_0 * np.sin(bend_0), mech.carrier_length - a1_0 * np.cos(bend_0))
+    tan_alpha = np.tan(toothed.pressure_angle)
+    lag_1 = v["backlash_stage_1"] * rad + (v["center_distance_a1"] - a1_0) * tan_alpha / r_first
+    lag_2 = v["backlash_stage_2"] * rad + (lib.sqrt(to_a_x**2 + to_a_y**2) - a2_0) * tan_alpha / r_planet
+    sun_off = v["phase_sun"] * rad - line_1
+    psi_off = (line_2 - line_1 + psi_1 * sun_off + psi_2 * sun_off**2 / 2 - lag_1
+               + (v["phase_first_intermediate"] - v["phase_second_intermediate"]) * rad)
+    chi = chi0 + chi_1 * psi_off + chi_2 * psi_off**2 / 2
+    rho = relative.rho1 + line_2 + chi - lag_2 + v["phase_planet"] * rad
+
+    # the linkage, closed by the generated eq (9) root on the design's branch, hinge offsets as shifts of F and B
+    theta1 = mech.carrier_angle - c
+    theta2 = theta1 + rho
+    shift = [sum(v[f"clearance_{h}_{axis}"] for h in ("O", "A", "F")) for axis in "xy"]
+    b_dir = np.asarray(mech.hinge_b) / np.hypot(*mech.hinge_b)
+    hinge_b = [v["frame_length_OB"] * b_dir[i] + v[f"clearance_B_{axis}"] + v[f"clearance_E_{axis}"]
+               for i, axis in enumerate("xy")]
+    b_rel = [hinge_b[i] - shift[i] for i in range(2)]
+    l1, l2, l3, l4 = (v[name] for name in ("carrier_length_OA", "rod_length_AF", "plate_link_length_EF",
+                                           "receiving_plate_length_BE"))
+    lengths = [l1, l2, l3, l4, lib.sqrt(b_rel[0] ** 2 + b_rel[1] ** 2)]
+    crank = [theta1, theta2, lib.atan2(b_rel[1], -b_rel[0])]
+    qa, qb, qc = fivebar_half_angle_quadratic(lib, lengths, crank)[0]
+    root = lib.sqrt(qb**2 - 4 * qa * qc)
+    f_rel = [l1 * u1 + l2 * u2 for u1, u2 in zip(_unit(lib, theta1), _unit(lib, theta2), strict=True)]
+    first_root = 2 * lib.atan2(-qb + root, 2 * qa)
+    e_first = _unit(lib, first_root)
+    on_branch = ((f_rel[0] - b_rel[0]) * e_first[1] - (f_rel[1] - b_rel[1]) * e_first[0]) * mech.branch > 0
+    theta4 = lib.if_else(on_branch, first_root, 2 * lib.atan2(-qb - root, 2 * qa))
+    e = [hinge_b[i] + l4 * w for i, w in enumerate(_unit(lib, theta4))]
+    f = [f_rel[i] + shift[i] for i in range(2)]
+
+    # the push plate: P from E and F by its triangle, on the designed side of EF
+    plate_axis = np.asarray(mech.f_local) - mech.e_local
+    side = np.sign(np.cross(plate_axis, -np.asarray(mech.e_local)))
+    ef, ep, fp = v["plate_link_length_EF"], v["push_plate_EP"], v["push_plate_FP"]
+    cos_e = (ef**2 + ep**2 - fp**2) / (2 * ef * ep)
+    direction = lib.atan2(f[1] - e[1], f[0] - e[0])
+    to_p = _unit(lib, direction + side * lib.atan2(lib.sqrt(1 - cos_e**2), cos_e))
+    closure = fivebar_closure_margin(lib, lengths, crank)[0][0]
+    transmission = fivebar_transmission_margin(lib, lengths, crank)[0][0]
+    return (e[0] + ep * to_p[0], e[1] + ep * to_p[1], direction - np.arctan2(plate_axis[1], plate_axis[0]),
+            closure, transmission, e[0], f[0])
+
+
+def _dimensions(result) -> tuple[Dimension, ...]:
+    """Every toleranced dimension with its nominal value and default tolerance."""
+    mech, toothed = result.design.mech, result.toothed
+    a1, a2 = toothed.train.center_distances
+    nominal = {"carrier_length_OA": mech.carrier_length, "rod_length_AF": mech.rod_length,
+               "plate_link_length_EF": mech.link_length, "receiving_plate_length_BE": mech.receiving_length,
+               "push_plate_EP": mech.ep, "push_plate_FP": mech.fp, "frame_length_OB": np.hypot(*mech.hinge_b),
+               "center_distance_a1": a1}
+    links = [Dimension(name, float(value), linear_limit_mm(value), "mm", "ISO 2768-m")
+             for name, value in nominal.items()]
+    bend = Dimension("bend_angle", float(np.degrees(toothed.bend_angle)),
+                     angular_limit_deg(min(a1, mech.carrier_length)), "deg", "ISO 2768-m, shorter leg")
+    play = [Dimension(f"clearance_{h}_{axis}", 0.0, HINGE_PLAY_MM, "mm", "radial play")
+            for h in HINGES for axis in "xy"]
+    turns = np.linspace(0, TWO_PI, TURN_SAMPLES, endpoint=False)
+    rows = _gear_rows(result.design.relative_angle, toothed.train, turns)
+    backlash = [Dimension(f"backlash_stage_{j + 1}", 0.0,
+                          float(np.degrees(minimum_backlash_mm(a, toothed.module) / 2
+                                           / (np.cos(toothed.pressure_angle) * rows[6 + j].mean()))),
+                          "deg", "half the minimum backlash") for j, a in enumerate((a1, a2))]
+    phases = [Dimension(f"phase_{gear}", 0.0, PHASE_DEG, "deg", "assembly phase") for gear in GEARS]
+    return (*links, bend, *play, *backlash, *phases)
+
+
+def _conditions(result, key_count: int, return_count: int):
+    """The hard conditions of the five-bar, judged on the motion of N built mechanisms."""
+    problem = result.problem
+    names = DIMENSION_NAMES
+    returns = slice(key_count, key_count + return_count)
+
+    def violated(motion: np.ndarray, dimensions: np.ndarray) -> dict[str, np.ndarray]:
+        found = {}
+        value = {"ep": dimensions[:, names.index("push_plate_EP")], "fp": dimensions[:, names.index("push_plate_FP")],
+                 "x_e": motion[:, ROWS.index("x_E"), 0], "x_f": motion[:, ROWS.index("x_F"), 0]}
+        for key, (low, high) in problem.ranges.items():
+            found[f"ranges.{key}"] = ~((value[key] >= low) & (value[key] <= high))
+        found["closure margin"] = ~(np.min(motion[:, ROWS.index("closure_margin")], axis=1)
+                                    >= problem.min_closure_margin)
+        if problem.min_transmission_angle is not None:
+            found["transmission angle"] = ~(np.min(motion[:, ROWS.index("transmission_margin")], axis=1)
+                                            >= np.sin(problem.min_transmission_angle) ** 2)
+        if return_count:
+            miss = np.linalg.norm(motion[:, :2, returns] - problem.return_points.T[None], axis=1)
+            found["return tolerance"] = ~(np.max(miss, axis=1) <= problem.return_tolerance_mm)
+        return found
+
+    return violated
+
+
+def tolerance_model(result) -> ToleranceModel:
+    """The designed five-bar of a ``FiveBarResult`` as a function of its manufactured dimensions: the key
+    poses first, then the return points, then ``TURN_SAMPLES`` turns over the whole turn."""
+    problem = result.problem
+    returns = result.design.stroke.carrier_turns
+    turns = np.r_[problem.carrier_turns, returns, np.linspace(0, TWO_PI, TURN_SAMPLES, endpoint=False)]
+    rows = _gear_rows(result.design.relative_angle, result.toothed.train, turns)
+    d, g = ca.SX.sym("dimensions", len(DIMENSION_NAMES)), ca.SX.sym("gear_row", len(rows))
+    at_turn = ca.Function("fivebar_built_motion", [d, g],
+                          [ca.vertcat(*built_motion(CASADI, result, dict(zip(DIMENSION_NAMES, ca.vertsplit(d),
+                                                                             strict=True)), ca.vertsplit(g)))])
+
+    def sampled(dimensions: np.ndarray) -> np.ndarray:
+        v = {name: dimensions[:, i, None] for i, name in enumerate(DIMENSION_NAMES)}
+        with np.errstate(invalid="ignore"):        # a chain that does not close: NaN, judged by the conditions
+            return np.stack(np.broadcast_arrays(*built_motion(NUMPY, result, v, rows)), axis=1)
+
+    return ToleranceModel(problem.title or problem.source, _dimensions(result), at_turn, rows, sampled,
+                          np.degrees(turns), problem.labels, slice(len(turns) - TURN_SAMPLES, None),
+                          _conditions(result, len(problem.carrier_turns), len(returns)))

@@ -1,0 +1,73 @@
+"""What a mechanism hands the tolerance analysis: its dimensions and its motion as a function of them.
+
+The motion of a built mechanism is a matrix (rows, T): one column per input angle of ``turns_deg`` (the key
+poses first; ``whole_turn`` the columns that sample the whole turn evenly), rows 0-2 the plate reference
+point P (x, y, mm) and the plate angle (rad); further rows are the mechanism's own (margins, hinge
+positions) that its ``conditions`` read. The mechanism gives it twice from one formula written over a backend, as generated code is:
+
+- ``at_turn``, a CasADi Function (dimensions (n,), the mechanism's data of one turn, a column of
+  ``turn_data``) -> the rows at that turn, built from the same generated closure the synthesis uses, so
+  its Jacobian (CasADi's automatic differentiation) is exact;
+- ``sampled``, numpy: dimensions (N, n) -> motion (N, rows, T) of N built mechanisms at once.
+
+Dimensions are in ``dimensions`` order, each in its unit (mm or deg). ``conditions`` takes the motion of N
+built mechanisms (N, rows, T) and their dimensions (N, n) and returns, per hard condition, which of them
+violate it ((N,) booleans).
+"""
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+
+import casadi as ca
+import numpy as np
+
+from transplanter.tolerance.dimensions import Dimension
+
+Conditions = Callable[[np.ndarray, np.ndarray], dict[str, np.ndarray]]
+
+
+@dataclass(frozen=True)
+class ToleranceModel:
+    """A built mechanism's motion as a function of its manufactured dimensions (see the module docstring)."""
+
+    title: str
+    dimensions: tuple[Dimension, ...]
+    at_turn: ca.Function
+    turn_data: np.ndarray
+    sampled: Callable[[np.ndarray], np.ndarray]
+    turns_deg: np.ndarray
+    key_labels: tuple[str, ...]
+    whole_turn: slice
+    conditions: Conditions
+
+    @property
+    def nominal(self) -> np.ndarray:
+        return np.array([d.nominal for d in self.dimensions])
+
+    @property
+    def tolerances(self) -> np.ndarray:
+        return np.array([d.tolerance for d in self.dimensions])
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        return tuple(d.name for d in self.dimensions)
+
+    def with_dimensions(self, dimensions: tuple[Dimension, ...]) -> ToleranceModel:
+        return replace(self, dimensions=dimensions)
+
+    def evaluate(self, dimensions: np.ndarray) -> np.ndarray:
+        """The motion (rows, T) of one built mechanism, by the CasADi Function."""
+        turns = self.turn_data.shape[1]
+        return np.asarray(self.at_turn.map(turns)(np.repeat(np.asarray(dimensions, float)[:, None], turns, 1),
+                                                  self.turn_data))
+
+    def jacobian(self) -> np.ndarray:
+        """d motion / d dimensions at the nominal dimensions by automatic differentiation: (rows, T, n), per
+        unit of each dimension."""
+        x, data = ca.SX.sym("dimensions", len(self.dimensions)), ca.SX.sym("turn", self.turn_data.shape[0])
+        rows = self.at_turn.size1_out(0)
+        per_turn = ca.Function("motion_jacobian", [x, data], [ca.jacobian(self.at_turn(x, data), x)])
+        turns = self.turn_data.shape[1]
+        blocks = np.asarray(per_turn.map(turns)(np.repeat(self.nominal[:, None], turns, 1), self.turn_data))
+        return blocks.reshape(rows, turns, len(self.dimensions))
