@@ -38,7 +38,7 @@ from transplanter._generated.fivebar import (
 )
 from transplanter.fivebar.relative_angle import RelativeAngle
 from transplanter.generated import CASADI, NUMPY
-from transplanter.geometry.planar import TWO_PI
+from transplanter.geometry.planar import TWO_PI, cross
 from transplanter.tolerance.dimensions import Dimension
 from transplanter.tolerance.iso2768 import angular_limit_deg, linear_limit_mm
 from transplanter.tolerance.model import ToleranceModel
@@ -129,7 +129,7 @@ def built_motion(lib, result, v: dict, g) -> tuple:
 
     # the push plate: P from E and F by its triangle, on the designed side of EF
     plate_axis = np.asarray(mech.f_local) - mech.e_local
-    side = np.sign(np.cross(plate_axis, -np.asarray(mech.e_local)))
+    side = np.sign(cross(plate_axis, -np.asarray(mech.e_local)))
     ef, ep, fp = v["plate_link_length_EF"], v["push_plate_EP"], v["push_plate_FP"]
     cos_e = (ef**2 + ep**2 - fp**2) / (2 * ef * ep)
     direction = lib.atan2(f[1] - e[1], f[0] - e[0])

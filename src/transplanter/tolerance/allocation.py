@@ -3,7 +3,9 @@
 Variables y_i = log t_i, each within ``ALLOCATION_RANGE`` times the dimension's default tolerance;
 maximise sum_i y_i (the volume of the tolerance box) subject to, at every key pose k,
 9 lambda_max(C_k(t)) <= pose_position_mm^2 and 9 sum_i sigma_i^2 j_ki^2 <= pose_angle^2 (``bands``), with
-sigma_i = t_i times the distribution's factor. The Jacobian is the nominal design's, so the rows are
+sigma_i = t_i times the distribution's factor. lambda_max(C) <= q is written as q I - C positive
+semidefinite: q - C_xx >= 0, q - C_yy >= 0 and det(q I - C) >= 0, rows smooth where the closed-form
+eigenvalue is not (a round ellipse). The Jacobian is the nominal design's, so the rows are
 smooth in y and the NLP small (one variable per dimension, two rows per key pose); it goes through the
 package's one NLP layer. The result is checked by evaluating the bands at the allocated tolerances.
 """
@@ -43,14 +45,16 @@ def allocate(key_jacobian: np.ndarray, defaults: np.ndarray, sigma_per_tolerance
     nlp = NLPBuilder()
     y = nlp.variables("log_tolerance", len(defaults), low, high)
     sigma = ca.exp(y) * sigma_per_tolerance
-    position_rows, angle_rows = [], []
+    diagonal_rows, determinant_rows, angle_rows = [], [], []
     for k in range(key_jacobian.shape[1]):
         jx, jy, ja = (ca.DM(key_jacobian[r, k]) for r in range(3))
-        a, b, c = (ca.sum1((u * sigma) * (w * sigma)) for u, w in ((jx, jx), (jx, jy), (jy, jy)))
-        largest = (a + c) / 2 + ca.sqrt(((a - c) / 2) ** 2 + b**2)
-        position_rows.append(9 * largest / position_mm**2)
+        # q I - C over q = (position_mm / 3)^2, so the rows are of order one
+        a, b, c = (ca.sum1((u * sigma) * (w * sigma)) * 9 / position_mm**2 for u, w in ((jx, jx), (jx, jy), (jy, jy)))
+        diagonal_rows += [1 - a, 1 - c]
+        determinant_rows.append((1 - a) * (1 - c) - b**2)
         angle_rows.append(9 * ca.sum1((ja * sigma) ** 2) / np.radians(angle_deg) ** 2)
-    nlp.constraints("position_band", ca.vertcat(*position_rows), -np.inf, 1.0)
+    nlp.constraints("position_band_diagonal", ca.vertcat(*diagonal_rows), 0.0, np.inf)
+    nlp.constraints("position_band_determinant", ca.vertcat(*determinant_rows), 0.0, np.inf)
     nlp.constraints("angle_band", ca.vertcat(*angle_rows), -np.inf, 1.0)
     layout = nlp.build(-ca.sum1(y) / len(defaults))
     solution = Solver("tolerance_allocation", layout).solve({"log_tolerance": low},

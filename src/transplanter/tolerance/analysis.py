@@ -10,7 +10,13 @@ import numpy as np
 
 from transplanter.errors import SolverError
 from transplanter.tolerance.allocation import Allocation, allocate
-from transplanter.tolerance.bands import position_covariance, statistical_bands, variance_shares, worst_case_bands
+from transplanter.tolerance.bands import (
+    position_covariance,
+    relative_difference,
+    statistical_bands,
+    variance_shares,
+    worst_case_bands,
+)
 from transplanter.tolerance.dimensions import ToleranceSettings
 from transplanter.tolerance.model import ToleranceModel
 from transplanter.tolerance.monte_carlo import MonteCarlo, monte_carlo
@@ -88,8 +94,8 @@ class ToleranceAnalysis:
     def disagreement(self) -> tuple[np.ndarray, np.ndarray]:
         """|Monte Carlo / first order - 1| of the key poses' 3-sigma position and angle bands."""
         k, mc = self.key_count, self.monte_carlo
-        return (np.abs(mc.position_3sigma_mm[:k] / self.first_order_3sigma_mm[:k] - 1),
-                np.abs(mc.angle_3sigma_deg[:k] / self.first_order_3sigma_deg[:k] - 1))
+        return (relative_difference(mc.position_3sigma_mm[:k], self.first_order_3sigma_mm[:k]),
+                relative_difference(mc.angle_3sigma_deg[:k], self.first_order_3sigma_deg[:k]))
 
     def to_json(self) -> dict[str, Any]:
         from transplanter.tolerance.report import tolerance_json

@@ -41,8 +41,19 @@ def worst_case_bands(jacobian: np.ndarray, tolerance: np.ndarray) -> tuple[np.nd
     return position, np.degrees(np.sum(np.abs(jacobian[2]) * tolerance, axis=-1))
 
 
-def variance_shares(jacobian: np.ndarray, sigma: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def variance_shares(jacobian: np.ndarray, sigma: np.ndarray) -> tuple[np.ndarray, ...]:
     """Each dimension's share (T, n) of the position variance and of the angle variance per column."""
-    position = (jacobian[0] ** 2 + jacobian[1] ** 2) * sigma**2
-    angle = (jacobian[2] * sigma) ** 2
-    return (position / position.sum(axis=-1, keepdims=True), angle / angle.sum(axis=-1, keepdims=True))
+    return tuple(_fractions(part) for part in ((jacobian[0] ** 2 + jacobian[1] ** 2) * sigma**2,
+                                               (jacobian[2] * sigma) ** 2))
+
+
+def relative_difference(value: np.ndarray, reference: np.ndarray) -> np.ndarray:
+    """|value / reference - 1|, 0 where both are 0 (nothing moves) and inf where only the reference is."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(value == reference, 0.0, np.abs(value / reference - 1))
+
+
+def _fractions(variances: np.ndarray) -> np.ndarray:
+    """Each entry's share of its row's sum (0 in a row of zeros)."""
+    total = variances.sum(axis=-1, keepdims=True)
+    return np.divide(variances, total, out=np.zeros_like(variances), where=total > 0)

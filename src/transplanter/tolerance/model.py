@@ -3,7 +3,8 @@
 The motion of a built mechanism is a matrix (rows, T): one column per input angle of ``turns_deg`` (the key
 poses first; ``whole_turn`` the columns that sample the whole turn evenly), rows 0-2 the plate reference
 point P (x, y, mm) and the plate angle (rad); further rows are the mechanism's own (margins, hinge
-positions) that its ``conditions`` read. The mechanism gives it twice from one formula written over a backend, as generated code is:
+positions) that its ``conditions`` read. The mechanism gives it twice from one formula written over a
+backend, as generated code is:
 
 - ``at_turn``, a CasADi Function (dimensions (n,), the mechanism's data of one turn, a column of
   ``turn_data``) -> the rows at that turn, built from the same generated closure the synthesis uses, so

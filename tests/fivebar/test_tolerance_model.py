@@ -1,0 +1,188 @@
+"""The built five-bar as a function of its manufactured dimensions (``fivebar.tolerance_model``) and the main
+job's tolerance analysis: the model at its nominal dimensions is the verified mechanism, its exact Jacobian
+equals central differences of the forward simulation, the gears' phases move rho as the designed motion says,
+a planted change moves the key poses by J delta to second order, and first order meets the Monte Carlo at the
+default tolerances and parts from it at ten times those."""
+import dataclasses
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from transplanter.cli import main
+from transplanter.fivebar.loop_closure import close_loop
+from transplanter.fivebar.tolerance_model import DIMENSION_NAMES, TURN_SAMPLES
+from transplanter.fivebar.verification import TURN_SAMPLES as VERIFIED_SAMPLES
+from transplanter.tolerance import analyse
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples/vegetable_planting.toml"
+pytestmark = pytest.mark.filterwarnings("error")      # a numpy warning is a failure
+
+
+@pytest.fixture(scope="module")
+def analysis(example_result):
+    return example_result.tolerance
+
+
+@pytest.fixture(scope="module")
+def model(analysis):
+    return analysis.model
+
+
+def _turns(model):
+    return np.radians(model.turns_deg)
+
+
+def _close(result, mech, turns, rho):
+    state = close_loop(mech, turns, rho)
+    return np.vstack([state["p"].T, state["direction"]])
+
+
+def test_nominal_built_mechanism_is_the_verified_one(example_result, model):
+    motion = model.evaluate(model.nominal)
+    problem, check = example_result.problem, example_result.verification
+    k = len(problem.labels)
+    assert np.abs(motion[:2, :k].T - problem.poses[:, :2]).max() < 1e-9
+    assert np.abs(np.angle(np.exp(1j * (motion[2, :k] - problem.poses[:, 2])))).max() < 1e-11
+    step = VERIFIED_SAMPLES // TURN_SAMPLES
+    assert np.abs(motion[:2, model.whole_turn].T - check.trajectory[::step]).max() < 1e-9
+    assert model.names == DIMENSION_NAMES
+
+
+def test_numpy_and_casadi_motions_agree(model, rng):
+    dimensions = model.nominal + model.tolerances * rng.uniform(-1, 1, (4, len(model.nominal)))
+    sampled = model.sampled(dimensions)
+    for row, motion in zip(dimensions, sampled, strict=True):
+        assert np.allclose(model.evaluate(row), motion, rtol=1e-12, atol=1e-10)
+
+
+def test_sensitivities_equal_central_differences_of_the_forward_simulation(analysis, model):
+    n = len(model.nominal)
+    step = 1e-2 * model.tolerances
+    moved = model.nominal + np.vstack([np.diag(step), -np.diag(step)])
+    motion = model.sampled(moved)
+    difference = (motion[:n] - motion[n:]) / (2 * step[:, None, None])             # (n, rows, T)
+    difference[:, 2] = np.angle(np.exp(1j * (motion[:n, 2] - motion[n:, 2]))) / (2 * step[:, None])
+    exact = np.moveaxis(analysis.jacobian, -1, 0)
+    scale = np.abs(exact).max(axis=2, keepdims=True)
+    assert np.all(np.abs(exact - difference) <= 1e-6 * scale + 1e-12), np.max(np.abs(exact - difference) / scale)
+
+
+@pytest.mark.parametrize("name", ["rod_length_AF", "receiving_plate_length_BE", "clearance_B_x", "clearance_E_y"])
+def test_linkage_sensitivities_equal_differences_of_the_verification_closure(example_result, analysis, model, name):
+    """The same derivative from the verification's own route (``close_loop``, the design's rho), a mechanism
+    rebuilt with the dimension moved."""
+    mech, relative = example_result.design.mech, example_result.design.relative_angle
+    turns = _turns(model)
+    rho = relative.evaluate(turns)
+    h = 1e-3
+
+    def moved(delta):
+        if name == "rod_length_AF":
+            return dataclasses.replace(mech, rod_length=mech.rod_length + delta)
+        if name == "receiving_plate_length_BE":
+            return dataclasses.replace(mech, receiving_length=mech.receiving_length + delta)
+        shift = np.array([delta, 0.0] if name.endswith("_x") else [0.0, delta])
+        return dataclasses.replace(mech, hinge_b=mech.hinge_b + shift)
+
+    difference = (_close(example_result, moved(h), turns, rho) - _close(example_result, moved(-h), turns, rho)) / (2 * h)
+    exact = analysis.jacobian[:3, :, model.names.index(name)]
+    assert np.abs(exact - difference).max() <= 1e-6 * np.abs(exact).max()
+
+
+def test_gear_phases_move_rho_as_the_designed_motion_says(example_result, model):
+    """The planet's phase adds to rho; the sun's shifts the carrier turn the train sees, rho1 + chi(c + phase)."""
+    mech, relative = example_result.design.mech, example_result.design.relative_angle
+    turns, phase = _turns(model), 0.1
+    for name, rho in (("phase_planet", relative.evaluate(turns) + np.radians(phase)),
+                      ("phase_sun", relative.evaluate(turns + np.radians(phase)))):
+        dimensions = model.nominal.copy()
+        dimensions[model.names.index(name)] = phase
+        motion = model.sampled(dimensions[None])[0]
+        assert np.abs(motion[:2] - _close(example_result, mech, turns, rho)[:2]).max() < 1e-6, name
+
+
+def test_planted_change_moves_the_key_poses_by_j_delta_to_second_order(analysis, model):
+    k = len(model.key_labels)
+    nominal = model.sampled(model.nominal[None])[0][:2, :k]
+    j = model.names.index("carrier_length_OA")
+    misses = []
+    for delta in (0.05, 0.1):
+        dimensions = model.nominal.copy()
+        dimensions[j] += delta
+        moved = model.sampled(dimensions[None])[0][:2, :k]
+        predicted = nominal + analysis.jacobian[:2, :k, j] * delta
+        misses.append(np.abs(moved - predicted).max())
+        assert misses[-1] < 1e-2 * np.abs(analysis.jacobian[:2, :k, j] * delta).max()
+    assert 3.5 < misses[1] / misses[0] < 4.5             # the miss is of second order in delta
+
+
+def test_first_order_meets_the_monte_carlo_at_the_default_tolerances(analysis):
+    position, angle = analysis.disagreement()
+    assert np.all(position <= 0.10) and np.all(angle <= 0.10), (position, angle)
+    section = analysis.to_json()
+    assert all(pose["first_order_holds"] for pose in section["key_poses"])
+    assert "agree within 10 % at every key pose" in "\n".join(analysis.to_markdown())
+
+
+def test_ten_times_the_tolerances_part_first_order_from_the_monte_carlo(model):
+    wide = analyse(model, {d.name: 10 * d.tolerance for d in model.dimensions})
+    position, angle = wide.disagreement()
+    assert np.any(np.r_[position, angle] > 0.10)
+    section = wide.to_json()
+    assert not all(pose["first_order_holds"] for pose in section["key_poses"])
+    assert "First order breaks" in "\n".join(wide.to_markdown())
+
+
+def test_report_section(example_result, analysis, model):
+    report = example_result.to_json()
+    section = report["tolerance"]
+    json.dumps(report, allow_nan=False)
+    assert [d["name"] for d in section["dimensions"]] == list(DIMENSION_NAMES)
+    design_table = report["design"]
+    for d in section["dimensions"]:
+        if d["name"] in design_table:
+            assert d["nominal"] == pytest.approx(design_table[d["name"]], rel=1e-12)
+    labels = example_result.problem.labels
+    assert [p["label"] for p in section["key_poses"]] == list(labels)
+    j = model.names.index("rod_length_AF")
+    assert section["sensitivity"]["rod_length_AF"][labels[1]] == pytest.approx(
+        [analysis.jacobian[0, 1, j], analysis.jacobian[1, 1, j], np.degrees(analysis.jacobian[2, 1, j])])
+    assert set(section["violation_fraction"]) >= {"closure margin", "return tolerance", "ranges.ep"}
+    assert len(section["largest_contributions"]) == 3
+    allocation = section["allocation"]
+    assert max(allocation["first_order_3sigma_mm"]) <= section["allocation"]["pose_position_mm"] * (1 + 1e-6)
+    markdown = example_result.to_markdown()
+    assert "## Tolerances (the built mechanism)" in markdown and "Dimensions that matter most" in markdown
+    assert {"tolerance_band", "tolerance_contributions"} <= set(example_result.draw_figures())
+
+
+def test_no_tolerance_flag_skips_the_analysis(monkeypatch, capsys):
+    from transplanter import fivebar
+    from transplanter.errors import InfeasibleError
+
+    seen = {}
+
+    def synthesize(problem, **options):
+        seen.update(options)
+        raise InfeasibleError("stopped here")
+
+    monkeypatch.setattr(fivebar, "synthesize", synthesize)
+    assert main(["fivebar", str(EXAMPLE), "--quiet", "--no-tolerance"]) == 2
+    assert seen["tolerance"] is False
+
+
+@pytest.mark.parametrize("entry, fragment", [("rod_length_AF = -0.1", "tolerances.rod_length_AF = -0.1"),
+                                             ("rod_length = 0.1", "tolerances.rod_length = 0.1"),
+                                             ("pose_position_mm = 0.0", "tolerances.pose_position_mm = 0.0"),
+                                             ("phase_sun = nan", "tolerances.phase_sun = nan")])
+def test_bad_tolerances_give_one_line_and_exit_2_before_the_work(tmp_path, capsys, monkeypatch, entry, fragment):
+    from transplanter import fivebar
+
+    path = tmp_path / "problem.toml"
+    path.write_text(EXAMPLE.read_text() + f"\n[tolerances]\n{entry}\n")
+    monkeypatch.setattr(fivebar, "synthesize", lambda *a, **k: pytest.fail("the work started"))
+    assert main(["fivebar", str(path), "--quiet"]) == 2
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert len(lines) == 1 and fragment in lines[0], lines
