@@ -45,7 +45,8 @@ def main():
     start = time.perf_counter()
     analysis = analyse(model)
     whole = time.perf_counter() - start
-    print(f"Monte Carlo of {SAMPLES} built five-bars ({len(model.dimensions)} dimensions, {motion.shape[2]} turns each)")
+    print(f"Monte Carlo of {SAMPLES} built five-bars ({len(model.dimensions)} dimensions, "
+          f"{motion.shape[2]} turns each)")
     print(f"  package (arrays):        {package:8.3f} s")
     print(f"  baseline (sample loop):  {baseline:8.3f} s")
     print(f"  ratio:                   {baseline / package:8.1f} x")

@@ -29,8 +29,8 @@ def draw_band(analysis: ToleranceAnalysis) -> Figure:
     model, mc, k = analysis.model, analysis.monte_carlo, analysis.key_count
     whole = model.whole_turn
     fig = Figure(figsize=(10, 7.5), layout="constrained")
-    top, bottom = np.ravel(fig.subfigures(2, 1, height_ratios=(1.1, 1)))
-    position, angle = top.subplots(1, 2)
+    grid = fig.add_gridspec(2, 2 * k)
+    position, angle = fig.add_subplot(grid[0, :k]), fig.add_subplot(grid[0, k:])
     turns = model.turns_deg[whole]
     position.plot(turns, analysis.first_order_3sigma_mm[whole], "k-", label="first order")
     position.plot(turns, mc.position_3sigma_mm[whole], "r--", label="Monte Carlo")
@@ -45,7 +45,7 @@ def draw_band(analysis: ToleranceAnalysis) -> Figure:
         for i, turn in enumerate(model.turns_deg[:k]):
             ax.axvline(turn, color="tab:green", lw=0.6, label="key poses" if i == 0 else None)
     position.legend(fontsize=8, **LEGEND_BESIDE)
-    axes = np.atleast_1d(bottom.subplots(1, k))
+    axes = [fig.add_subplot(grid[1, 2 * i:2 * i + 2]) for i in range(k)]
     first = analysis.key_covariance()
     for i, ax in enumerate(axes):
         ax.plot(*_ellipse(first[i]).T, "k-", label="first order")
