@@ -3,7 +3,7 @@
     python bench/bench_tolerance.py
 
 Both close the same 10,000 seeded built mechanisms (every toleranced dimension drawn at once) at the key
-poses, the return points and 180 turns, with the same formula (``fivebar.tolerance_model.built_motion``):
+poses, the return points and 120 turns, with the same formula (``fivebar.tolerance_model.built_motion``):
 
 - Package: ``tolerance.monte_carlo``, the numpy backend over arrays of mechanisms, then the hard conditions.
 - Baseline: a Python loop over the samples, each mechanism closed alone by the same numpy formula (the

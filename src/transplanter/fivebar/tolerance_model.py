@@ -19,9 +19,9 @@ the bend's error) stage 1 turns the intermediate shaft by psi, stage 2 (along th
 planet by chi, and the rod sits on the planet at its phase. Each stage's driven gear lags its designed
 motion by its lost motion plus the backlash a larger centre distance opens, delta a tan(alpha) / r
 (taken up against the load, which resists the motion). psi and chi enter as their second-order expansion
-about the designed motion at each c (the next term is below 1e-9 rad at the tolerances of a built
-mechanism). The linkage then closes through the generated eq (9) root on the design's branch (exact: eq (8)
-has no residual there but rounding), with the hinge offsets carried as shifts of F and B.
+about the designed motion at each c (the next term moves P by about 1e-6 mm at a 0.1 deg phase). The
+linkage then closes through the generated eq (9) root on the design's branch (exact: eq (8) has no
+residual there but rounding), with the hinge offsets carried as shifts of F and B.
 
 ``built_motion`` is written once over a backend: CasADi (one turn, symbolic, for the exact Jacobian) and
 numpy (N built mechanisms by T turns at once, for the Monte Carlo).
@@ -47,8 +47,8 @@ from transplanter.tolerance.model import ToleranceModel
 HINGE_PLAY_MM = 0.02
 #: Assembly phase of each gear on its shaft (deg).
 PHASE_DEG = 0.1
-#: Whole-turn samples the conditions and the trajectory band are judged on (2 deg apart).
-TURN_SAMPLES = 180
+#: Whole-turn samples the conditions and the trajectory band are judged on (3 deg apart).
+TURN_SAMPLES = 120
 HINGES = ("O", "A", "F", "E", "B")
 GEARS = ("sun", "first_intermediate", "second_intermediate", "planet")
 LINKS = ("carrier_length_OA", "rod_length_AF", "plate_link_length_EF", "receiving_plate_length_BE",
