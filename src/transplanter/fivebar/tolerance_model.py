@@ -28,6 +28,9 @@ numpy (N built mechanisms by T turns at once, for the Monte Carlo).
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+from typing import Any
+
 import casadi as ca
 import numpy as np
 
@@ -164,13 +167,30 @@ def _dimensions(result) -> tuple[Dimension, ...]:
     return (*links, bend, *play, *backlash, *phases)
 
 
-def _conditions(result, key_count: int, return_count: int):
-    """The hard conditions of the five-bar, judged on the motion of N built mechanisms."""
-    problem = result.problem
-    names = DIMENSION_NAMES
-    returns = slice(key_count, key_count + return_count)
+@dataclass(frozen=True)
+class SampledMotion:
+    """The motion (N, rows, T) of N built mechanisms (dimensions (N, n)) by the numpy backend."""
 
-    def violated(motion: np.ndarray, dimensions: np.ndarray) -> dict[str, np.ndarray]:
+    result: Any
+    turn_data: np.ndarray
+
+    def __call__(self, dimensions: np.ndarray) -> np.ndarray:
+        v = {name: dimensions[:, i, None] for i, name in enumerate(DIMENSION_NAMES)}
+        with np.errstate(invalid="ignore"):        # a chain that does not close: NaN, judged by the conditions
+            return np.stack(np.broadcast_arrays(*built_motion(NUMPY, self.result, v, self.turn_data)), axis=1)
+
+
+@dataclass(frozen=True)
+class HardConditions:
+    """Which of N built mechanisms violate each hard condition of the five-bar problem."""
+
+    result: Any
+    key_count: int
+    return_count: int
+
+    def __call__(self, motion: np.ndarray, dimensions: np.ndarray) -> dict[str, np.ndarray]:
+        problem, names = self.result.problem, DIMENSION_NAMES
+        returns = slice(self.key_count, self.key_count + self.return_count)
         found = {}
         value = {"ep": dimensions[:, names.index("push_plate_EP")], "fp": dimensions[:, names.index("push_plate_FP")],
                  "x_e": motion[:, ROWS.index("x_E"), 0], "x_f": motion[:, ROWS.index("x_F"), 0]}
@@ -181,12 +201,10 @@ def _conditions(result, key_count: int, return_count: int):
         if problem.min_transmission_angle is not None:
             found["transmission angle"] = ~(np.min(motion[:, ROWS.index("transmission_margin")], axis=1)
                                             >= np.sin(problem.min_transmission_angle) ** 2)
-        if return_count:
+        if self.return_count:
             miss = np.linalg.norm(motion[:, :2, returns] - problem.return_points.T[None], axis=1)
             found["return tolerance"] = ~(np.max(miss, axis=1) <= problem.return_tolerance_mm)
         return found
-
-    return violated
 
 
 def tolerance_model(result) -> ToleranceModel:
@@ -200,12 +218,7 @@ def tolerance_model(result) -> ToleranceModel:
     at_turn = ca.Function("fivebar_built_motion", [d, g],
                           [ca.vertcat(*built_motion(CASADI, result, dict(zip(DIMENSION_NAMES, ca.vertsplit(d),
                                                                              strict=True)), ca.vertsplit(g)))])
-
-    def sampled(dimensions: np.ndarray) -> np.ndarray:
-        v = {name: dimensions[:, i, None] for i, name in enumerate(DIMENSION_NAMES)}
-        with np.errstate(invalid="ignore"):        # a chain that does not close: NaN, judged by the conditions
-            return np.stack(np.broadcast_arrays(*built_motion(NUMPY, result, v, rows)), axis=1)
-
-    return ToleranceModel(problem.title or problem.source, _dimensions(result), at_turn, rows, sampled,
-                          np.degrees(turns), problem.labels, slice(len(turns) - TURN_SAMPLES, None),
-                          _conditions(result, len(problem.carrier_turns), len(returns)))
+    return ToleranceModel(problem.title or problem.source, _dimensions(result), at_turn, rows,
+                          SampledMotion(result, rows), np.degrees(turns), problem.labels,
+                          slice(len(turns) - TURN_SAMPLES, None),
+                          HardConditions(result, len(problem.carrier_turns), len(returns)))

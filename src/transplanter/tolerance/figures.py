@@ -32,19 +32,19 @@ def draw_band(analysis: ToleranceAnalysis) -> Figure:
     grid = fig.add_gridspec(2, 2 * k)
     position, angle = fig.add_subplot(grid[0, :k]), fig.add_subplot(grid[0, k:])
     turns = model.turns_deg[whole]
-    position.plot(turns, analysis.first_order_3sigma_mm[whole], "k-", label="first order")
-    position.plot(turns, mc.position_3sigma_mm[whole], "r--", label="Monte Carlo")
-    position.plot(turns, analysis.worst_case_mm[whole], ":", color="grey", label="worst case")
-    angle.plot(turns, analysis.first_order_3sigma_deg[whole], "k-")
-    angle.plot(turns, mc.angle_3sigma_deg[whole], "r--")
-    angle.plot(turns, analysis.worst_case_deg[whole], ":", color="grey")
+    position.plot(turns, analysis.first_order_3sigma_mm[whole], "k-")
+    position.plot(turns, mc.position_3sigma_mm[whole], "r--")
+    position.plot(turns, analysis.worst_case_mm[whole], ":", color="grey")
+    angle.plot(turns, analysis.first_order_3sigma_deg[whole], "k-", label="first order")
+    angle.plot(turns, mc.angle_3sigma_deg[whole], "r--", label="Monte Carlo")
+    angle.plot(turns, analysis.worst_case_deg[whole], ":", color="grey", label="worst case")
     for ax, unit in ((position, "P, 3σ semi-major axis (mm)"), (angle, "plate angle, 3σ (deg)")):
-        ax.set_xlabel("carrier turn (deg)")
+        ax.set_xlabel("input turn (deg)")
         ax.set_ylabel(unit)
         ax.set_ylim(bottom=0)
         for i, turn in enumerate(model.turns_deg[:k]):
             ax.axvline(turn, color="tab:green", lw=0.6, label="key poses" if i == 0 else None)
-    position.legend(fontsize=8, **LEGEND_BESIDE)
+    angle.legend(fontsize=8, **LEGEND_BESIDE)
     axes = [fig.add_subplot(grid[1, 2 * i:2 * i + 2]) for i in range(k)]
     first = analysis.key_covariance()
     for i, ax in enumerate(axes):
@@ -53,7 +53,7 @@ def draw_band(analysis: ToleranceAnalysis) -> Figure:
         ax.set_title(model.key_labels[i], fontsize=9, parse_math=False)
         ax.set_aspect("equal", adjustable="datalim")
         ax.set_xlabel("x error (mm)")
-    axes[0].set_ylabel("y error (mm)")
+        ax.set_ylabel("y error (mm)")
     axes[-1].legend(fontsize=8, **LEGEND_BESIDE)
     fig.suptitle(f"3σ bands of the built mechanism: {model.title}", **PROBLEM_TITLE)
     return fig
@@ -71,6 +71,7 @@ def draw_contributions(analysis: ToleranceAnalysis) -> Figure:
     ax.barh(rows + 0.2, 100 * angle[order], 0.4, label="plate angle")
     ax.set_yticks(rows, names[order], fontsize=8)
     ax.set_xlabel("mean share of the key poses' variance (%)")
+    ax.set_ylabel("dimension")
     ax.legend(fontsize=8, **LEGEND_BESIDE)
     fig.suptitle(analysis.model.title, **PROBLEM_TITLE)
     return fig
