@@ -23,7 +23,8 @@ from best_time import best_time  # bench/ is the script's own folder
 
 from transplanter import fivebar
 from transplanter.tolerance import analyse
-from transplanter.tolerance.monte_carlo import SEED, draw, monte_carlo
+from transplanter.tolerance.dimensions import SEED
+from transplanter.tolerance.monte_carlo import draw, monte_carlo
 
 ROOT = Path(__file__).resolve().parents[1]
 SAMPLES = 10_000
