@@ -70,10 +70,6 @@ class ToleranceSettings:
                                    ">= 0 in the dimension's unit (mm or deg)")
         return tuple(replace(d, tolerance=float(self.tolerances.get(d.name, d.tolerance))) for d in dimensions)
 
-    def scaled(self, factor: float, dimensions: tuple[Dimension, ...]) -> ToleranceSettings:
-        """These settings with every tolerance of ``dimensions`` ``factor`` times larger."""
-        return replace(self, tolerances={d.name: factor * d.tolerance for d in self.applied(dimensions)})
-
 
 def parse_tolerances(table: Mapping, names: tuple[str, ...], source: str) -> ToleranceSettings:
     """The ``[tolerances]`` table of a problem file: ``name = tolerance`` for any of ``names`` (the dimension's
