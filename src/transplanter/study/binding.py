@@ -10,11 +10,12 @@ LONGEST_LABEL = 48
 
 
 def binding_requirement(message: str, problem: dict) -> str:
-    """The first field of ``problem`` that ``message`` names (e.g. ``ranges.ep``), or else the message's
-    leading phrase with its numbers masked, so that cases stopped by the same requirement share a label."""
+    """The requirement in ``message`` (a case's one-line error, without its source): the first field of
+    ``problem`` it names (e.g. ``ranges.ep``), or else its leading phrase with the numbers masked, so that cases
+    stopped by the same requirement share a label."""
     for table, key in _FIELD.findall(message):
         if isinstance(problem.get(table), (dict, list)):
             return f"{table}.{key}"
-    phrase = re.split(r"[;(]| \[", message.split(": ", 1)[-1] if ": " in message else message)[0]
+    phrase = re.split(r"[;(]| \[", message.removeprefix("failed: "))[0]
     phrase = re.sub(r"-?\d+(\.\d+)?(e[-+]?\d+)?", "#", phrase).strip(" :,")
     return phrase if len(phrase) <= LONGEST_LABEL else phrase[:LONGEST_LABEL - 3] + "..."

@@ -27,7 +27,8 @@ def run_case(command_name: str, problem: dict, source: str) -> dict[str, Any]:
     """Run ``command_name`` on ``problem`` (the problem file's content) as the command line does, without
     figures or files: the case's status, the command's exit class (0 passed, 1 failed a check, 2 no result;
     None for an error the command does not expect, a bug), its one-line error, the requirement that binds,
-    the seconds it took and its report (report.json's content)."""
+    the seconds it took and its report (report.json's content). Errors are recorded without the ``source``
+    they start with."""
     from transplanter.cli import COMMANDS
 
     command = next(c for c in COMMANDS if c.name == command_name)
@@ -39,7 +40,7 @@ def run_case(command_name: str, problem: dict, source: str) -> dict[str, Any]:
             result = command.run(command, command.package.parse_problem(problem, source),
                                  argparse.Namespace(design=None, pick=None))
         except TransplanterError as error:
-            status, exit_class, message = NO_RESULT, 2, one_line(error)
+            status, exit_class, message = NO_RESULT, 2, one_line(str(error).removeprefix(f"{source}: "))
         except Exception as error:      # a bug of the job: recorded, and the study goes on
             status, exit_class, message = ERROR, None, one_line(f"{type(error).__name__}: {error}")
         else:

@@ -104,6 +104,7 @@ def load_study(path: str | Path) -> StudySpec:
 
 
 def _range_values(read: FieldReader, row: dict, where: str) -> tuple[float, ...]:
+    """low, low + step, ... up to high; whole numbers when low, high and step are."""
     low, high = read.numbers(row, "range", where, 2)[[0, -1]]
     step = read.number(row, "step", where)
     if len(row["range"]) != 2 or not low <= high or not step > 0:
@@ -111,7 +112,8 @@ def _range_values(read: FieldReader, row: dict, where: str) -> tuple[float, ...]
     count = math.floor((high - low) / step * (1 + 1e-12)) + 1
     if count > MOST_CASES:
         read.fail(f"{where}.step", step, f"a step giving at most {MOST_CASES} values over the range")
-    return tuple(float(low + k * step) for k in range(count))
+    whole = all(isinstance(v, int) and not isinstance(v, bool) for v in [*row["range"], row["step"]])
+    return tuple(int(low) + k * int(step) if whole else float(low + k * step) for k in range(count))
 
 
 def _varied(read: FieldReader, row: dict, where: str, problem: dict) -> Varied:
