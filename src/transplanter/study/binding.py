@@ -6,7 +6,7 @@ import re
 #: A field of a problem file as messages name it: a table and a key (``ranges.ep``, ``conditions.ratio``).
 _FIELD = re.compile(r"\b([a-z_]+)\.([a-z_][a-z0-9_]*)\b")
 #: The longest label a map's legend shows.
-LONGEST_LABEL = 48
+LONGEST_LABEL = 60
 
 
 def binding_requirement(message: str, problem: dict) -> str:

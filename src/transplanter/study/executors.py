@@ -11,7 +11,7 @@ from typing import Any
 from transplanter.errors import ProblemError
 
 #: Seconds to wait for a Dask scheduler before calling it unreachable.
-CONNECT_TIMEOUT_S = 10.0
+CONNECT_TIMEOUT_S = 5.0
 
 
 def _ignore_interrupt():
