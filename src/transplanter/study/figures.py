@@ -3,6 +3,7 @@ fields, the collected quantities over the sweep, and the Pareto front of two obj
 from __future__ import annotations
 
 import itertools
+import textwrap
 
 import numpy as np
 from matplotlib.figure import Figure
@@ -32,6 +33,11 @@ def _category(row: dict[str, str]) -> str:
     return "passed" if row["status"] == PASSED else row["binding"] or row["status"]
 
 
+def _titled(figure: Figure, spec: StudySpec, what: str):
+    """The study's title (wrapped) over the figure, and what the figure shows under it."""
+    figure.suptitle(textwrap.fill(spec.title, 90) + "\n" + what, **PROBLEM_TITLE)
+
+
 def feasibility_map(spec: StudySpec, rows: list[dict[str, str]], first: str, second: str | None) -> Figure:
     """Cases over two varied fields (or one, against the binding requirement), coloured by the requirement that
     binds: "passed" where every check passes."""
@@ -51,8 +57,8 @@ def feasibility_map(spec: StudySpec, rows: list[dict[str, str]], first: str, sec
     else:
         axes.set_yticks(range(len(categories)), categories)
         axes.set_ylabel("what binds")
-    axes.set_title(f"{spec.title}: feasibility, by what binds", **PROBLEM_TITLE)
-    axes.legend(title="what binds", **LEGEND_BESIDE)
+    _titled(figure, spec, "feasibility, by what binds")
+    axes.legend(title="what binds", fontsize="small", **LEGEND_BESIDE)
     return figure
 
 
@@ -70,7 +76,7 @@ def quantities_over_sweep(spec: StudySpec, rows: list[dict[str, str]], quantitie
         axes.set_xlabel(axis_label(field))
         axes.set_ylabel(axis_label(quantity))
     grid[0][-1].legend(**LEGEND_BESIDE)
-    figure.suptitle(f"{spec.title}: collected quantities over the sweep", **PROBLEM_TITLE)
+    _titled(figure, spec, "collected quantities over the sweep")
     return figure
 
 
@@ -87,7 +93,7 @@ def pareto_figure(spec: StudySpec, rows: list[dict[str, str]]) -> Figure:
     axes.plot(x[order], y[order], "o-", color="C1", label="Pareto front")
     axes.set_xlabel(f"{axis_label(first.quantity)}, {first.goal}imised")
     axes.set_ylabel(f"{axis_label(second.quantity)}, {second.goal}imised")
-    axes.set_title(f"{spec.title}: Pareto front", **PROBLEM_TITLE)
+    _titled(figure, spec, "Pareto front")
     axes.legend(**LEGEND_BESIDE)
     return figure
 
