@@ -116,7 +116,8 @@ def _loop(study: _Study, todo: deque[Case], executor, window: int, local: LocalW
         while todo or suspects or running:
             if suspects and not running:
                 submit(*suspects.popleft())
-            while todo and not suspects and len(running) < window:
+            alone = any(item.attempts for item in running.values())    # a case whose worker died runs alone
+            while todo and not suspects and not alone and len(running) < window:
                 submit(todo.popleft(), 0)
             done, _ = wait(list(running), timeout=TICK_S, return_when=FIRST_COMPLETED)
             broken = False
