@@ -2,10 +2,12 @@
 or a Dask cluster (``distributed.Client``, used through its ``concurrent.futures`` face)."""
 from __future__ import annotations
 
+import contextlib
 import multiprocessing
 import os
 import signal
 from concurrent.futures import Executor, ProcessPoolExecutor
+from pathlib import Path
 from typing import Any
 
 from transplanter.errors import ProblemError
@@ -17,6 +19,15 @@ CONNECT_TIMEOUT_S = 5.0
 def _ignore_interrupt():
     """Workers leave Ctrl-C to the study, which stops them (a worker's KeyboardInterrupt would be a case's)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _descendants(pid: int | None) -> list[int]:
+    """The processes ``pid`` started, and theirs (Linux: /proc; none elsewhere)."""
+    children = []
+    for task in Path(f"/proc/{pid}/task").glob("*/children"):
+        with contextlib.suppress(OSError):
+            children += [int(child) for child in task.read_text().split()]
+    return [pid for child in children for pid in (*_descendants(child), child)]
 
 
 class LocalWorkers:
@@ -33,11 +44,16 @@ class LocalWorkers:
                                    initializer=_ignore_interrupt)
 
     def stop(self):
-        """Kill the workers at once (their cases are lost) and free the pool."""
+        """Kill the workers and the processes they started (the five-bar's second lane is a fork of its
+        worker) at once, their cases lost, and free the pool."""
         # the pool has no public way to end a running call: its processes are killed one by one
-        for process in list((getattr(self.executor, "_processes", None) or {}).values()):
-            process.kill()
-        self.executor.shutdown(wait=True, cancel_futures=True)
+        workers = list((getattr(self.executor, "_processes", None) or {}).values())
+        for pid in [pid for worker in workers for pid in (*_descendants(worker.pid), worker.pid)]:
+            with contextlib.suppress(OSError):
+                os.kill(pid, signal.SIGKILL)
+        self.executor.shutdown(wait=False, cancel_futures=True)
+        for worker in workers:
+            worker.join(timeout=5)
 
     def restart(self):
         """New workers in place of killed or dead ones."""
