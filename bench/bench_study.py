@@ -5,8 +5,10 @@ the scheduling overhead, each worker's memory over the cases, and a resume after
 
 - The cases: examples/vegetable_planting_study.toml with ``--cases`` Latin hypercube samples, run once on one
   local worker and once on two, in this process (the same cases, the same table: checked). Printed: both wall
-  times and their ratio (target: two workers at most 0.6 of one), and the scheduling overhead of the one-worker
-  run, the wall time beyond the cases' own seconds, against those seconds (target: under 5 %).
+  times to the last case recorded and their ratio (target: two workers at most 0.6 of one), and the scheduling
+  overhead of the one-worker run, its wall time beyond the cases' own seconds (the worker's start-up
+  included), against those seconds (target: under 5 %). A five-bar case refines its candidates in two lanes,
+  the second a forked process: one worker already keeps two cores busy while it refines.
 - Memory: each worker's resident and peak memory (VmRSS, VmHWM) after each of its cases, first and last
   (target: flat, no leak from the solver caches).
 - Resume: ``transplanter study`` on ``--resume-cases`` cases, killed (SIGKILL, the whole process group) after
@@ -48,17 +50,20 @@ def _memory(pid: int) -> tuple[float, float]:
 
 
 def timed_study(cases: int, workers: int, folder: Path):
-    """Run the study; its wall time, its rows and each worker's memory after each case."""
+    """Run the study; its wall time to the last case recorded (the report and figures after it are not
+    scheduling), its rows and each worker's memory after each case."""
     memory: dict[int, list[tuple[float, float]]] = {}
+    last = []
 
     def sample(row):
+        last[:] = [time.perf_counter()]
         for child in multiprocessing.active_children():
             with contextlib.suppress(OSError, KeyError):        # a worker that ended meanwhile
                 memory.setdefault(child.pid, []).append(_memory(child.pid))
 
     start = time.perf_counter()
     outcome = run(_spec(cases, workers), folder, on_case=sample)
-    return time.perf_counter() - start, outcome.rows, memory
+    return last[0] - start, outcome.rows, memory
 
 
 def _ids(path: Path) -> list[str]:
@@ -68,6 +73,7 @@ def _ids(path: Path) -> list[str]:
 
 def killed_and_resumed(cases: int, folder: Path) -> tuple[int, int, int]:
     """Cases kept at the kill, lost, and run twice after ``--resume``."""
+    folder.mkdir()
     study = folder / "study.toml"
     study.write_text(EXAMPLE.read_text().replace("samples = 8", f"samples = {cases}")
                      .replace('problem = "vegetable_planting.toml"',
@@ -82,9 +88,8 @@ def killed_and_resumed(cases: int, folder: Path) -> tuple[int, int, int]:
     kept = _ids(out / "cases.csv")
     subprocess.run([*command, "--resume"], check=True, stdout=subprocess.DEVNULL)
     ids = _ids(out / "cases.csv")
-    expected = {case for case in ids}
     twice = sum(count - 1 for count in Counter(ids).values())
-    return len(kept), cases - len(expected), twice
+    return len(kept), cases - len(set(ids)), twice
 
 
 def main():
@@ -103,8 +108,8 @@ def main():
               f"({Counter(r['status'] for r in rows_one)}); same table on one and two workers: {same}")
         print(f"wall time: one worker {one:.1f} s, two workers {two:.1f} s: ratio {two / one:.2f} "
               f"(target at most 0.6)")
-        print(f"scheduling overhead (one worker): {one - case_seconds:.1f} s beyond the cases' own {case_seconds:.1f} s"
-              f" = {(one - case_seconds) / case_seconds:.1%} (target under 5 %)")
+        print(f"scheduling overhead (one worker, its start-up included): {one - case_seconds:.1f} s beyond the "
+              f"cases' own {case_seconds:.1f} s = {(one - case_seconds) / case_seconds:.1%} (target under 5 %)")
         for pid, samples in memory.items():
             print(f"worker {pid}: after {len(samples)} cases resident {samples[0][0]:.0f} -> {samples[-1][0]:.0f} MB, "
                   f"peak {samples[0][1]:.0f} -> {samples[-1][1]:.0f} MB")
