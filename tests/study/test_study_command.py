@@ -1,6 +1,7 @@
 """``transplanter study``: exit codes, one line for bad input, Ctrl-C keeps the finished cases, --resume."""
 from __future__ import annotations
 
+import contextlib
 import csv
 import signal
 import subprocess
@@ -11,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.study.studies import gear_study_data
+from tests.study.studies import EXAMPLES, gear_study_data
 from transplanter.cli import main
 from transplanter.study.binding import binding_requirement
 
@@ -79,3 +80,36 @@ def test_bad_input_is_one_line_and_exit_2_before_any_case_runs(tmp_path, capsys,
 ])
 def test_the_binding_requirement_is_a_field_the_error_names_or_its_leading_phrase(message, binding):
     assert binding_requirement(message, {"ranges": {"ep": [1, 2]}}) == binding
+
+
+def _children(pid: int) -> list[int]:
+    return [int(c) for task in Path(f"/proc/{pid}/task").glob("*/children") for c in task.read_text().split()]
+
+
+def _alive(pid: int) -> bool:
+    """Whether ``pid`` runs (a zombie, dead but not yet reaped, does not)."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+@pytest.mark.skipif(not Path("/proc/self/task").exists(), reason="reads the process tree from /proc")
+def test_ctrl_c_during_a_five_bar_case_ends_its_worker_and_the_workers_forked_lane(tmp_path):
+    study = tmp_path / "study.toml"
+    study.write_text(f'command = "fivebar"\nproblem = "{EXAMPLES / "vegetable_planting.toml"}"\n'
+                     '[[vary]]\nfield = "key_poses.2.angle_deg"\nvalues = [90.0]\n[executor]\nworkers = 1\n')
+    process = subprocess.Popen([sys.executable, "-m", "transplanter", "study", str(study), "--out",
+                                str(tmp_path / "o")], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    workers: list[int] = []
+    lanes: list[int] = []
+    while process.poll() is None and not lanes:
+        time.sleep(0.1)
+        with contextlib.suppress(OSError):      # a process that ended meanwhile
+            workers = [pid for pid in _children(process.pid)
+                       if "spawn_main" in Path(f"/proc/{pid}/cmdline").read_text()]
+            lanes = [lane for worker in workers for lane in _children(worker)]
+    process.send_signal(signal.SIGINT)
+    _, error = process.communicate(timeout=60)
+    assert lanes and process.returncode == 130 and error.splitlines() == ["transplanter: interrupted"]
+    assert not any(_alive(pid) for pid in [*workers, *lanes])
