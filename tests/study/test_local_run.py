@@ -19,9 +19,10 @@ from transplanter.study.case_run import run_case
 
 @pytest.fixture(scope="module")
 def finished(tmp_path_factory):
-    """The gear study run whole on two local workers."""
+    """The gear study run whole on two local workers, with a Pareto front of two objectives."""
     out = tmp_path_factory.mktemp("study") / "out"
-    return run(gear_study(), out)
+    return run(gear_study(objectives=[{"quantity": "center_distance", "goal": "min"},
+                                      {"quantity": "ratio_range.1", "goal": "max"}]), out)
 
 
 def test_each_case_is_the_commands_own_result(finished):
@@ -50,7 +51,9 @@ def test_the_summary_lists_every_file_and_the_failure_classes(finished):
     report = json.loads((finished.folder / "report.json").read_text())
     listed = {name for names in report["files"].values() for name in names}
     assert listed == {path.name for path in finished.folder.iterdir() if path.is_file()}
-    assert {"feasibility.png", "quantities.png", "cases.csv", "report.md"} <= listed
+    assert {"feasibility.png", "quantities.png", "pareto.png", "cases.csv", "report.md"} <= listed
+    passed = {row["case_id"] for row in finished.rows if row["status"] == "passed"}
+    assert report["best_cases"] and set(report["best_cases"]) <= passed
     undercut = [row for row in finished.rows if row["status"] == "no result"]
     assert {"status": "no result", "exit_class": 2, "binding": "pair.teeth", "cases": len(undercut),
             "example_error": undercut[-1]["error"]} in report["failure_classes"]
