@@ -127,6 +127,12 @@ def _parallelogram(command: Command, problem, args) -> CommandResult:
         return parallelogram.synthesize(problem, pick=args.pick, progress=_report)
 
 
+def _study(args) -> int:
+    from transplanter.study.command import run_study
+
+    return run_study(args, shown=sys.stderr.isatty() and not args.quiet)
+
+
 def _derive(args) -> int:
     from transplanter.derive import run_build
 
@@ -250,6 +256,16 @@ def _parser() -> argparse.ArgumentParser:
     commands = parser.add_subparsers(dest="command", required=True)
     for command in COMMANDS:
         _add_command(commands, command)
+    study = commands.add_parser("study", help="many cases of one design command from a study file, on local "
+                                "processes or a Dask cluster; each case kept as it finishes")
+    study.add_argument("file", help="study file (TOML; docs/study.md)")
+    study.add_argument("--out", metavar="DIR", dest="study_out", required=True,
+                       help="write cases.csv, cases/<case_id>/report.json, report.md, report.json and the figures here")
+    study.add_argument("--resume", action="store_true", help="run only the cases DIR lacks")
+    study.add_argument("--scheduler", metavar="tcp://HOST:8786",
+                       help="run the cases on this Dask cluster (pip install 'transplanter[cluster]')")
+    study.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
+    study.set_defaults(run=_study)
     derive = commands.add_parser("derive", help="regenerate src/transplanter/_generated from derivations/")
     derive.add_argument("--check", action="store_true", help="exit 1 if the generated code is out of step")
     derive.set_defaults(run=_derive)

@@ -7,8 +7,11 @@ import tomllib
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-#: import name -> distribution that provides it (Pillow is a dependency of matplotlib)
-PROVIDED_BY = {"PIL": "matplotlib"}
+#: import name -> distribution that provides it (Pillow is a dependency of matplotlib, distributed of dask's
+#: extra)
+PROVIDED_BY = {"PIL": "matplotlib", "distributed": "dask"}
+#: Modules the package imports only where an optional extra is installed (and says so when it is not).
+OPTIONAL = {"distributed"}
 
 
 def _imported_top_level_modules() -> set[str]:
@@ -26,5 +29,9 @@ def test_every_imported_third_party_module_is_a_runtime_dependency():
     declared = {entry.split(">")[0].split("=")[0].split("<")[0].strip().lower()
                 for entry in tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["dependencies"]}
     third_party = _imported_top_level_modules() - set(sys.stdlib_module_names) - {"transplanter", "__future__"}
-    missing = {name for name in third_party if PROVIDED_BY.get(name, name).lower() not in declared}
+    extras = {entry.split("[")[0].split(">")[0].strip().lower()
+              for name, entries in tomllib.loads((ROOT / "pyproject.toml").read_text())["project"][
+                  "optional-dependencies"].items() if name != "dev" for entry in entries}
+    missing = {name for name in third_party
+               if PROVIDED_BY.get(name, name).lower() not in (declared | extras if name in OPTIONAL else declared)}
     assert not missing, f"imported by src/transplanter but not in [project] dependencies: {sorted(missing)}"

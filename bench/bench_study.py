@@ -1,0 +1,127 @@
+"""Time a study of the five-bar example with its key poses shifted within their bands: two workers against one,
+the scheduling overhead, each worker's memory over the cases, and a resume after a kill.
+
+    python bench/bench_study.py [--cases 64] [--resume-cases 8]
+
+- The cases: examples/vegetable_planting_study.toml with ``--cases`` Latin hypercube samples, run once on one
+  local worker and once on two, in this process (the same cases, the same table: checked). Printed: both wall
+  times to the last case recorded and their ratio (target: two workers at most 0.6 of one), and the scheduling
+  overhead of the one-worker run, its wall time beyond the cases' own seconds (the worker's start-up
+  included), against those seconds (target: under 5 %). A five-bar case refines its candidates in two lanes,
+  the second a forked process: one worker already keeps two cores busy while it refines.
+- Memory: each worker's resident and peak memory (VmRSS, VmHWM) after each of its cases, first and last
+  (target: flat, no leak from the solver caches).
+- Resume: ``transplanter study`` on ``--resume-cases`` cases, killed (SIGKILL, the whole process group) after
+  a few cases, then ``--resume``: the cases lost and the cases run twice (target: 0 and 0).
+"""
+from __future__ import annotations
+
+import argparse
+import contextlib
+import csv
+import multiprocessing
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from collections import Counter
+from pathlib import Path
+
+from transplanter.study import load_study, run
+from transplanter.study.spec import StudySpec
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLE = ROOT / "examples/vegetable_planting_study.toml"
+
+
+def _spec(cases: int, workers: int) -> StudySpec:
+    from dataclasses import replace
+
+    spec = load_study(EXAMPLE)
+    return replace(spec, samples=cases, executor=replace(spec.executor, workers=workers))
+
+
+def _memory(pid: int) -> tuple[float, float]:
+    """Resident and peak resident memory of process ``pid`` (MB)."""
+    fields = dict(line.split(":", 1) for line in Path(f"/proc/{pid}/status").read_text().splitlines() if ":" in line)
+    return int(fields["VmRSS"].split()[0]) / 1024, int(fields["VmHWM"].split()[0]) / 1024
+
+
+def timed_study(cases: int, workers: int, folder: Path):
+    """Run the study; its wall time to the last case recorded (the report and figures after it are not
+    scheduling), the time until its first case started (checks, the workers' start-up), its rows and each
+    worker's memory after each case."""
+    memory: dict[int, list[tuple[float, float]]] = {}
+    recorded = []
+
+    def sample(row):
+        recorded.append((time.perf_counter(), float(row["seconds"])))
+        for child in multiprocessing.active_children():
+            with contextlib.suppress(OSError, KeyError):        # a worker that ended meanwhile
+                memory.setdefault(child.pid, []).append(_memory(child.pid))
+
+    start = time.perf_counter()
+    outcome = run(_spec(cases, workers), folder, on_case=sample)
+    first_started = recorded[0][0] - recorded[0][1] - start
+    return recorded[-1][0] - start, first_started, outcome.rows, memory
+
+
+def _ids(path: Path) -> list[str]:
+    with path.open() as stream:
+        return [row["case_id"] for row in csv.DictReader(stream)]
+
+
+def killed_and_resumed(cases: int, folder: Path) -> tuple[int, int, int]:
+    """Cases kept at the kill, lost, and run twice after ``--resume``."""
+    folder.mkdir()
+    study = folder / "study.toml"
+    study.write_text(EXAMPLE.read_text().replace("samples = 8", f"samples = {cases}")
+                     .replace('problem = "vegetable_planting.toml"',
+                              f'problem = "{ROOT / "examples/vegetable_planting.toml"}"'))
+    out = folder / "out"
+    command = [sys.executable, "-m", "transplanter", "study", str(study), "--out", str(out), "--quiet"]
+    process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    while process.poll() is None and not ((out / "cases.csv").exists() and len(_ids(out / "cases.csv")) >= 2):
+        time.sleep(0.1)
+    os.killpg(process.pid, signal.SIGKILL)
+    process.wait()
+    kept = _ids(out / "cases.csv")
+    subprocess.run([*command, "--resume"], check=True, stdout=subprocess.DEVNULL)
+    ids = _ids(out / "cases.csv")
+    twice = sum(count - 1 for count in Counter(ids).values())
+    return len(kept), cases - len(set(ids)), twice
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--cases", type=int, default=64)
+    parser.add_argument("--resume-cases", type=int, default=8)
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as temporary:
+        folder = Path(temporary)
+        one, start_up, rows_one, _ = timed_study(args.cases, 1, folder / "one")
+        two, _, rows_two, memory = timed_study(args.cases, 2, folder / "two")
+        same = sorted((r["case_id"], r["status"], r["transmission_angle_min_deg"]) for r in rows_one) == \
+            sorted((r["case_id"], r["status"], r["transmission_angle_min_deg"]) for r in rows_two)
+        case_seconds = sum(float(r["seconds"]) for r in rows_one)
+        print(f"{args.cases} cases of the five-bar example, key poses within their bands "
+              f"({Counter(r['status'] for r in rows_one)}); same table on one and two workers: {same}")
+        print(f"wall time: one worker {one:.1f} s, two workers {two:.1f} s: ratio {two / one:.2f} "
+              f"(target at most 0.6)")
+        between = one - start_up - case_seconds
+        print(f"scheduling overhead (one worker): {start_up:.1f} s to start the first case (checks, the worker's "
+              f"start-up), then {between:.1f} s between cases beyond their own {case_seconds:.1f} s = "
+              f"{between / case_seconds:.1%}; with the start-up {(one - case_seconds) / case_seconds:.1%} "
+              "(target under 5 %)")
+        for pid, samples in memory.items():
+            print(f"worker {pid}: over the study's {len(samples)} cases resident {samples[0][0]:.0f} -> "
+                  f"{samples[-1][0]:.0f} MB, peak {samples[0][1]:.0f} -> {samples[-1][1]:.0f} MB")
+        kept, lost, twice = killed_and_resumed(args.resume_cases, folder / "killed")
+        print(f"killed after {kept} of {args.resume_cases} cases, resumed: {lost} cases lost, {twice} run twice "
+              "(target 0 and 0)")
+
+
+if __name__ == "__main__":
+    main()
