@@ -17,6 +17,7 @@ import tempfile
 from pathlib import Path
 
 from transplanter.errors import ProblemError
+from transplanter.folder_swap import put_in_place
 
 #: Kind of file by suffix, as report.json lists them under "files".
 KINDS = {".json": "report", ".md": "report", ".png": "figure", ".dxf": "drawing", ".svg": "drawing",
@@ -125,32 +126,22 @@ def _work_folder(out: str | Path, target: Path) -> Path:
 
 @contextlib.contextmanager
 def staged(out: str | Path | None):
-    """Yield a temporary folder beside ``out`` (None when ``out`` is None) and move it into place on success."""
+    """Yield a temporary folder beside ``out`` (None when ``out`` is None) and put it in place of ``out`` in one
+    step when the block succeeds (``folder_swap.put_in_place``)."""
     if out is None:
         yield None
         return
     check_target(out)
     target = Path(out).resolve() if Path(out).is_symlink() else Path(out).absolute()   # a link keeps pointing there
     work = _work_folder(out, target)
-    stage = work / target.name
-    stage.mkdir()                       # made as any folder is (mkdtemp's own is private to the user)
     try:
+        stage = work / target.name
+        stage.mkdir()                   # made as any folder is (mkdtemp's own is private to the user)
         yield stage
-    except BaseException:
-        shutil.rmtree(work, ignore_errors=True)
-        raise
-    earlier = work / "earlier"
-    try:
-        if target.exists():
-            target.replace(earlier)
         try:
-            stage.replace(target)
-        except OSError:
-            if earlier.exists():
-                earlier.replace(target)
-            raise
-    except OSError as error:
-        raise ProblemError(f"--out = {out}: cannot put the results there ({error.strerror}): expected a folder this "
-                           f"user can replace; it is left as it was") from None
+            put_in_place(stage, target, work / "earlier")
+        except OSError as error:
+            raise ProblemError(f"--out = {out}: cannot put the results there ({error.strerror}): expected a folder "
+                               "this user can replace; it is left as it was") from None
     finally:
         shutil.rmtree(work, ignore_errors=True)
