@@ -78,8 +78,14 @@ def _publish(args, result: CommandResult, files: list[str]) -> int:
 
 
 def _say(line: str, warned: list):
-    """The one stderr line of a run that ends with exit 1, 2 or 130, the run's warnings folded into it."""
-    print(line + "".join(f"; warning: {w.message}" for w in warned), file=sys.stderr)
+    """The one stderr line of a run that ends with exit 1, 2 or 130, the run's warnings folded into it; a line
+    break inside (a file name holding one) is written as its escape, so the line stays one."""
+    text = line + "".join(f"; warning: {w.message}" for w in warned)
+    print(text.translate(_ESCAPES), file=sys.stderr)
+
+
+#: Characters that would end or hide part of a line, and how ``_say`` writes them.
+_ESCAPES = {code: repr(chr(code))[1:-1] for code in [*range(32), 127, 0x85, 0x2028, 0x2029] if code != 9}
 
 
 def _save_figures(figures: dict, out: Path, dpi: int = 120) -> list[str]:
