@@ -11,10 +11,10 @@ candidates.
 from __future__ import annotations
 
 import time
-from numbers import Integral
 
 import numpy as np
 
+from transplanter.api_arguments import require_pick, require_progress
 from transplanter.errors import InfeasibleError, ProblemError, SolverError
 from transplanter.fivebar.alternatives import Alternative, Progress, refine_all, with_gear_sizes
 from transplanter.fivebar.band_search import band_starts
@@ -64,15 +64,6 @@ def _no_feasible_pair(problem: FiveBarProblem, region: Region):
                           f"{relaxation_hint(problem, region)}")
 
 
-def _checked_pick(pick) -> int:
-    """``pick`` as a whole number of at least 1 (None: 1), before any work starts."""
-    if pick is None:
-        return 1
-    if isinstance(pick, bool) or not isinstance(pick, Integral) or pick < 1:
-        raise ProblemError(f"--pick = {pick!r}: expected a whole number of at least 1 (1: the best-ranked alternative)")
-    return int(pick)
-
-
 def pick_alternative(alternatives: list[Alternative], pick: int, source: str) -> Alternative:
     """Alternative number ``pick`` (1-based, in ranked order); a ``ProblemError`` naming the valid range
     when there is no such alternative."""
@@ -120,7 +111,8 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
     SolverError
         No refinement succeeded (the reason for each candidate is given).
     """
-    pick = _checked_pick(pick)
+    pick = require_pick(pick)
+    require_progress(progress)
     timings: dict[str, object] = {}
     start = _step(progress, "region")
     starts = band_starts(problem)
