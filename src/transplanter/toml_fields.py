@@ -211,10 +211,11 @@ class FieldReader:
             self.fail(field, value, f"a point [x, y] of two finite numbers (mm) within ±{MAGNITUDE_LIMIT:.0e}")
         return np.array(value, float)
 
-    def points(self, table, key: str, where: str) -> np.ndarray:
+    def points(self, table, key: str, where: str, largest: int | None = None) -> np.ndarray:
         value = table.get(key, [])
         if not is_sequence(value):
             self.fail(f"{where}.{key}", value, "a list of points [[x, y], ...]")
+        self.count(f"{where}.{key}", value, largest, "points")
         return np.array([self.point(p, f"{where}.{key}[{k}]") for k, p in enumerate(value)]).reshape(-1, 2)
 
     def integer(self, table, key: str, where: str, low: int, high: int, default: int | None = None) -> int:
@@ -228,9 +229,16 @@ class FieldReader:
             self.fail(field, value, f"a whole number from {low} to {high}")
         return int(value)
 
-    def numbers(self, table, key: str, where: str, minimum_count: int = 1) -> np.ndarray:
+    def count(self, field: str, value, largest: int | None, what: str):
+        """Refuse a list ``value`` of more than ``largest`` items (None: no cap), before its items are read: the
+        work that follows grows with their number."""
+        if largest is not None and is_sequence(value) and len(value) > largest:
+            self.fail(field, f"{len(value)} {what}", f"at most {largest} {what} (the cap on this list's size)")
+
+    def numbers(self, table, key: str, where: str, minimum_count: int = 1, largest: int | None = None) -> np.ndarray:
         field = f"{where}.{key}"
         value = table.get(key)
+        self.count(field, value, largest, "numbers")
         if not is_sequence(value) or len(value) < minimum_count or not all(_within(v, field) for v in value):
             self.fail(field, value, f"a list of at least {minimum_count} finite numbers within ±{_limit(field):.0e}")
         return np.array(value, float)
