@@ -18,6 +18,7 @@ from pathlib import Path
 
 from transplanter.errors import ProblemError
 from transplanter.folder_swap import put_in_place
+from transplanter.toml_fields import shown_name
 
 #: Kind of file by suffix, as report.json lists them under "files".
 KINDS = {".json": "report", ".md": "report", ".png": "figure", ".dxf": "drawing", ".svg": "drawing",
@@ -63,6 +64,13 @@ def _earlier_output(folder: Path) -> bool:
 def check_target(out: str | Path):
     """Refuse (ProblemError) an ``--out`` that is a file or a folder holding files of something else."""
     target = Path(out)
+    try:
+        target.lstat()
+    except FileNotFoundError:
+        return
+    except OSError as error:            # a name too long, a part of it that is a file, a folder not to be entered
+        raise ProblemError(f"--out = {shown_name(out)}: {error.strerror}; expected a folder this user can create and "
+                           "write into, each part of its name at most 255 bytes") from None
     if target.exists() and not target.is_dir():
         raise ProblemError(f"--out = {out}: a file is there; expected a folder to write the results into")
     if target.is_dir() and any(target.iterdir()) and not _earlier_output(target):

@@ -253,3 +253,12 @@ def test_library_progress_is_silent_unless_a_caller_shows_it(capsys):
             progress.report("refinement", 3, 17)
     assert shown.getvalue() == "transplanter: refinement 2/17\n"
     assert capsys.readouterr().err == ""
+
+
+@pytest.mark.parametrize("name, reason", [("a" * 300, "File name too long"), ("report.md/inside", "Not a directory")])
+def test_an_out_the_system_cannot_take_is_named_as_out(tmp_path, capsys, name, reason):
+    (tmp_path / "report.md").write_text("a file, not a folder\n")
+    out = tmp_path / name
+    assert main(["burmester", PROBLEM, "--out", str(out), "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"transplanter: error: --out = {out}: {reason}; expected a folder") and err.count("\n") == 1
