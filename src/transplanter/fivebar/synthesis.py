@@ -51,7 +51,22 @@ def _empty_family(problem: FiveBarProblem, name: str, family: ChainFamily):
     raise InfeasibleError(
         f"{problem.source}: no {name} survives: {stage} removes the last {family.reasons[stage]} of "
         f"{len(family.fixed)} traced dyads ({', '.join(f'{k}: {v}' for k, v in family.reasons.items())}); "
-        f"closest: {listed}")
+        f"closest: {listed}; {_what_would_keep(problem, family, closest[0], other)}")
+
+
+def _what_would_keep(problem: FiveBarProblem, family: ChainFamily, k: int, other: list[str]) -> str:
+    """The ranges, widened just enough (to 0.1 mm outward), that keep dyad ``k`` of an emptied family; or, when it
+    lies within them, the other conditions that drop it."""
+    widened = []
+    for key, values in family.measures.items():
+        low, high = problem.ranges.get(key, (-np.inf, np.inf))
+        if family.shortfalls[key][k] > 0:
+            value = values[k]
+            widened.append(f"ranges.{key} = [{min(low, np.floor(value * 10) / 10):g}, "
+                           f"{max(high, np.ceil(value * 10) / 10):g}]")
+    if widened:
+        return "what would work: " + " and ".join(widened) + " keeps the closest"
+    return f"what would work: the closest lie within the ranges; {' / '.join(other)} drops them: move the key poses"
 
 
 def _no_feasible_pair(problem: FiveBarProblem, region: Region):
