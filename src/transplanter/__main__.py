@@ -1,5 +1,3 @@
-import sys
+from transplanter.cli import console
 
-from transplanter.cli import main
-
-sys.exit(main())
+console()

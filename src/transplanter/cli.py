@@ -25,12 +25,20 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
-from typing import Any
+from typing import Any, NoReturn
 
 from transplanter import __version__, burmester, cam, fivebar, gears, parallelogram, pickup, progress, reverse
 from transplanter.command_result import CommandResult
 from transplanter.errors import TransplanterError
-from transplanter.output_folder import FAILED_PREFIX, check_file, files_by_kind, report_json, staged, staged_file
+from transplanter.folder_swap import INTERRUPTS, interrupts_held
+from transplanter.output_folder import (
+    FAILED_PREFIX,
+    check_file,
+    files_by_kind,
+    report_json,
+    staged,
+    staged_file,
+)
 
 #: What ``--plot`` may be named (the formats matplotlib writes without extra packages).
 PLOT_SUFFIXES = {".png", ".pdf", ".svg", ".jpg", ".jpeg", ".eps", ".ps", ".tif", ".tiff", ".webp"}
@@ -70,8 +78,14 @@ def _publish(args, result: CommandResult, files: list[str]) -> int:
 
 
 def _say(line: str, warned: list):
-    """The one stderr line of a run that ends with exit 1, 2 or 130, the run's warnings folded into it."""
-    print(line + "".join(f"; warning: {w.message}" for w in warned), file=sys.stderr)
+    """The one stderr line of a run that ends with exit 1, 2 or 130, the run's warnings folded into it; a line
+    break inside (a file name holding one) is written as its escape, so the line stays one."""
+    text = line + "".join(f"; warning: {w.message}" for w in warned)
+    print(text.translate(_ESCAPES), file=sys.stderr)
+
+
+#: Characters that would end or hide part of a line, and how ``_say`` writes them.
+_ESCAPES = {code: repr(chr(code))[1:-1] for code in [*range(32), 127, 0x85, 0x2028, 0x2029] if code != 9}
 
 
 def _save_figures(figures: dict, out: Path, dpi: int = 120) -> list[str]:
@@ -274,10 +288,22 @@ def _parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     """Run a command; its warnings (a pose in radians, a figure that cannot be laid out) are printed one line each
-    after a run that exits 0, and folded into the one line of a run that does not."""
+    after a run that exits 0, and folded into the one line of a run that does not. Ctrl-C and SIGTERM end it
+    with 130 (``_interrupt``); the handlers in place before are given back."""
     args = _parser().parse_args(argv)
-    with warnings.catch_warnings(record=True) as args.warned:
-        code = _run(args)
+    _RUN.stopped = _RUN.working = False
+    handlers = {number: signal.signal(number, _interrupt) for number in INTERRUPTS} \
+        if threading.current_thread() is threading.main_thread() else {}
+    try:
+        with warnings.catch_warnings(record=True) as args.warned:
+            code = _run(args)
+    finally:
+        for number, handler in handlers.items():
+            signal.signal(number, handler)
+    if _RUN.stopped and code != 130:    # noted after the run's own last look: its output is complete
+        _say("transplanter: interrupted after the run" + (f"; {args.out} holds its new output, complete"
+                                                          if getattr(args, "out", None) else ""), args.warned)
+        return 130
     for warning in args.warned if code == 0 else ():
         print(f"transplanter: warning: {warning.message}", file=sys.stderr)
     return code
@@ -285,17 +311,17 @@ def main(argv: list[str] | None = None) -> int:
 
 def _run(args) -> int:
     out = getattr(args, "out", None)
-    _STOP.clear()
-    handlers = {number: signal.signal(number, _interrupt) for number in (signal.SIGINT, signal.SIGTERM)} \
-        if threading.current_thread() is threading.main_thread() else {}
     try:
         quiet = getattr(args, "json", False) or getattr(args, "quiet", False)
         with (_stderr_until_interrupted(), progress.showing(sys.stderr, enabled=sys.stderr.isatty() and not quiet),
               staged(out) as args.folder):
-            code = args.run(args)
-            if _STOP.is_set():          # a solver that caught the interrupt and went on
+            try:
+                _RUN.working = True
+                code = args.run(args)
+            finally:
+                _RUN.working = False    # from here an interrupt is noted, not raised: the run ends as it began
+            if _RUN.stopped:            # a solver that caught the interrupt and went on, or an interrupt just now
                 raise KeyboardInterrupt
-            return code
     except TransplanterError as error:
         _say(f"transplanter: error: {error}", args.warned)
         return 2
@@ -306,20 +332,56 @@ def _run(args) -> int:
     except KeyboardInterrupt:
         _say("transplanter: interrupted" + (f"; {out} is left as it was" if out else ""), args.warned)
         return 130
-    finally:
-        for number, handler in handlers.items():
-            signal.signal(number, handler)
+    return code
 
 
-#: Set by Ctrl-C or SIGTERM during a run. IPOPT's callbacks turn the KeyboardInterrupt raised inside a solve into a
-#: failed solve, and the refinements would go on: the run checks this after each candidate and before publishing.
-_STOP = threading.Event()
+class _Run:
+    """The state of a run that its signal handler reads and sets (plain attributes: reading one calls no Python
+    code that an interrupt could cut into).
+
+    Attributes
+    ----------
+    working : bool
+        The run is at its work: an interrupt raises KeyboardInterrupt there. Past it (the new output being put
+        in place) an interrupt is only noted.
+    stopped : bool
+        Ctrl-C or SIGTERM came. IPOPT's callbacks turn the KeyboardInterrupt raised inside a solve into a failed
+        solve, and the refinements would go on: the run looks at this after each candidate and before publishing.
+    """
+
+    working = False
+    stopped = False
+
+
+_RUN = _Run()
 
 
 def _interrupt(signum, frame):
-    """Ctrl-C or SIGTERM (a timeout, a job scheduler) ends the run: the output folder's partial copy is removed."""
-    _STOP.set()
-    raise KeyboardInterrupt
+    """Ctrl-C or SIGTERM (a timeout, a job scheduler) ends the run at its work: the output folder's partial copy is
+    removed and the earlier output kept. Past the work it is noted and the run ends with 130 once the new output
+    is in place. A second one does nothing: raised inside the clean-up, it would cut it short."""
+    first = not _RUN.stopped
+    _RUN.stopped = True
+    if first and _RUN.working:
+        raise KeyboardInterrupt
+
+
+def console() -> NoReturn:
+    """The ``transplanter`` program: ``main()``, then exit with its code. An interrupt after the run (its
+    output complete) ends it with 130 and says so in one line; one while the interpreter shuts down (which
+    sets the default action again, and can take a moment when a forked lane was stopped) is ignored: the run's
+    ending is already decided."""
+    late = threading.Event()
+    for number in INTERRUPTS:
+        signal.signal(number, lambda signum, frame: late.set())
+    code = main()
+    with interrupts_held():
+        for number in INTERRUPTS:
+            signal.signal(number, signal.SIG_IGN)
+        if late.is_set() and code != 130:
+            print("transplanter: interrupted after the run; its output is complete", file=sys.stderr)
+            code = 130
+    sys.exit(code)
 
 
 class _UntilInterrupted(io.TextIOBase):
@@ -330,7 +392,7 @@ class _UntilInterrupted(io.TextIOBase):
         self.stream = stream
 
     def write(self, text: str) -> int:
-        if not _STOP.is_set():
+        if not _RUN.stopped:
             self.stream.write(text)
         return len(text)
 
@@ -353,10 +415,10 @@ def _stderr_until_interrupted():
 
 def _report(step: str, done: int, total: int) -> None:
     """``progress.report``, where a run stops after an interrupt that a solver swallowed."""
-    if _STOP.is_set():
+    if _RUN.stopped:
         raise KeyboardInterrupt
     progress.report(step, done, total)
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    console()

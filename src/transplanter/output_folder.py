@@ -17,6 +17,8 @@ import tempfile
 from pathlib import Path
 
 from transplanter.errors import ProblemError
+from transplanter.folder_swap import put_in_place
+from transplanter.toml_fields import shown_name
 
 #: Kind of file by suffix, as report.json lists them under "files".
 KINDS = {".json": "report", ".md": "report", ".png": "figure", ".dxf": "drawing", ".svg": "drawing",
@@ -62,6 +64,13 @@ def _earlier_output(folder: Path) -> bool:
 def check_target(out: str | Path):
     """Refuse (ProblemError) an ``--out`` that is a file or a folder holding files of something else."""
     target = Path(out)
+    try:
+        target.lstat()
+    except FileNotFoundError:
+        return
+    except OSError as error:            # a name too long, a part of it that is a file, a folder not to be entered
+        raise ProblemError(f"--out = {shown_name(out)}: {error.strerror}; expected a folder this user can create and "
+                           "write into, each part of its name at most 255 bytes") from None
     if target.exists() and not target.is_dir():
         raise ProblemError(f"--out = {out}: a file is there; expected a folder to write the results into")
     if target.is_dir() and any(target.iterdir()) and not _earlier_output(target):
@@ -125,32 +134,22 @@ def _work_folder(out: str | Path, target: Path) -> Path:
 
 @contextlib.contextmanager
 def staged(out: str | Path | None):
-    """Yield a temporary folder beside ``out`` (None when ``out`` is None) and move it into place on success."""
+    """Yield a temporary folder beside ``out`` (None when ``out`` is None) and put it in place of ``out`` in one
+    step when the block succeeds (``folder_swap.put_in_place``)."""
     if out is None:
         yield None
         return
     check_target(out)
     target = Path(out).resolve() if Path(out).is_symlink() else Path(out).absolute()   # a link keeps pointing there
     work = _work_folder(out, target)
-    stage = work / target.name
-    stage.mkdir()                       # made as any folder is (mkdtemp's own is private to the user)
     try:
+        stage = work / target.name
+        stage.mkdir()                   # made as any folder is (mkdtemp's own is private to the user)
         yield stage
-    except BaseException:
-        shutil.rmtree(work, ignore_errors=True)
-        raise
-    earlier = work / "earlier"
-    try:
-        if target.exists():
-            target.replace(earlier)
         try:
-            stage.replace(target)
-        except OSError:
-            if earlier.exists():
-                earlier.replace(target)
-            raise
-    except OSError as error:
-        raise ProblemError(f"--out = {out}: cannot put the results there ({error.strerror}): expected a folder this "
-                           f"user can replace; it is left as it was") from None
+            put_in_place(stage, target, work / "earlier")
+        except OSError as error:
+            raise ProblemError(f"--out = {out}: cannot put the results there ({error.strerror}): expected a folder "
+                               "this user can replace; it is left as it was") from None
     finally:
         shutil.rmtree(work, ignore_errors=True)

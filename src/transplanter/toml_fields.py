@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 import numbers
 import os
+import stat
 import tomllib
 import warnings
 from pathlib import Path
@@ -18,6 +19,7 @@ from typing import NoReturn, TypeGuard
 import numpy as np
 
 from transplanter.errors import ProblemError, TransplanterWarning
+from transplanter.toml_nesting import nesting_depth
 
 #: Largest magnitude a number of a problem may have: lengths and coordinates in mm (a kilometre
 #: of mechanism and more), counts, ratios and speeds. Beyond it squares and sums of squares of
@@ -50,25 +52,60 @@ def warn_if_radians(source: str, field: str, angles_deg: np.ndarray):
                       "is in degrees", TransplanterWarning, stacklevel=3)
 
 
+#: Largest problem file read (bytes): the bundled examples are a few kB; a design study's file a few hundred.
+LARGEST_FILE = 16 * 2**20
+#: Deepest nesting of arrays and inline tables a problem file may have (the bundled examples nest two deep).
+DEEPEST_NESTING = 64
+
+
 def read_toml(path: str | Path) -> dict:
-    """The content of the TOML file at ``path``.
+    """The content of the TOML file at ``path``: a regular file (not a FIFO or a device, which could block
+    or never end) of at most ``LARGEST_FILE`` bytes, nested at most ``DEEPEST_NESTING`` deep.
 
     Raises
     ------
     ProblemError
-        When ``path`` is not a file name, the file is missing or unreadable, or not valid TOML.
+        When ``path`` is not a file name, the file is missing, unreadable, not a regular file, too large,
+        nested too deeply, or not valid TOML.
     """
     if not isinstance(path, (str, os.PathLike)) or not str(path):
         raise ProblemError(f"path = {shown(path)}: expected the name of a TOML problem file (str or Path)")
     path = Path(path)
+    name = shown_name(path)
     try:
-        return tomllib.loads(path.read_text())
+        kind = os.stat(path).st_mode
+        if not stat.S_ISREG(kind):
+            raise ProblemError(f"{name}: {_KINDS.get(stat.S_IFMT(kind), 'not a regular file')}; expected a TOML "
+                               "problem file")
+        with path.open("rb") as handle:
+            content = handle.read(LARGEST_FILE + 1)
+        if len(content) > LARGEST_FILE:
+            raise ProblemError(f"{name}: larger than {LARGEST_FILE // 2**20} MB; expected a TOML problem file "
+                               "of at most that size")
+        text = content.decode()
     except FileNotFoundError:
-        raise ProblemError(f"{path}: no such file") from None
+        raise ProblemError(f"{name}: no such file") from None
     except OSError as error:
-        raise ProblemError(f"{path}: cannot be read ({error.strerror}): expected a TOML problem file") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
-        raise ProblemError(f"{path}: not valid TOML ({error})") from None
+        raise ProblemError(f"{name}: cannot be read ({error.strerror}): expected a TOML problem file") from None
+    except UnicodeDecodeError as error:
+        raise ProblemError(f"{name}: not valid TOML ({error})") from None
+    if (depth := nesting_depth(text)) > DEEPEST_NESTING:
+        raise ProblemError(f"{name}: arrays or tables nested {depth} deep; expected at most {DEEPEST_NESTING}")
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise ProblemError(f"{name}: not valid TOML ({error})") from None
+
+
+_KINDS = {stat.S_IFDIR: "a folder", stat.S_IFIFO: "a FIFO (named pipe)", stat.S_IFCHR: "a character device",
+          stat.S_IFBLK: "a block device", stat.S_IFSOCK: "a socket"}
+
+
+def shown_name(path: str | Path) -> str:
+    """A file name as a message shows it: as it is, or quoted with its escapes where it holds a line break or
+    another character that is not printed (a message stays one line)."""
+    text = str(path)
+    return text if text.isprintable() else repr(text)
 
 
 #: Longest text a message quotes in full; longer values are cut and their length given.
@@ -174,10 +211,11 @@ class FieldReader:
             self.fail(field, value, f"a point [x, y] of two finite numbers (mm) within ±{MAGNITUDE_LIMIT:.0e}")
         return np.array(value, float)
 
-    def points(self, table, key: str, where: str) -> np.ndarray:
+    def points(self, table, key: str, where: str, largest: int | None = None) -> np.ndarray:
         value = table.get(key, [])
         if not is_sequence(value):
             self.fail(f"{where}.{key}", value, "a list of points [[x, y], ...]")
+        self.count(f"{where}.{key}", value, largest, "points")
         return np.array([self.point(p, f"{where}.{key}[{k}]") for k, p in enumerate(value)]).reshape(-1, 2)
 
     def integer(self, table, key: str, where: str, low: int, high: int, default: int | None = None) -> int:
@@ -191,9 +229,16 @@ class FieldReader:
             self.fail(field, value, f"a whole number from {low} to {high}")
         return int(value)
 
-    def numbers(self, table, key: str, where: str, minimum_count: int = 1) -> np.ndarray:
+    def count(self, field: str, value, largest: int | None, what: str):
+        """Refuse a list ``value`` of more than ``largest`` items (None: no cap), before its items are read: the
+        work that follows grows with their number."""
+        if largest is not None and is_sequence(value) and len(value) > largest:
+            self.fail(field, f"{len(value)} {what}", f"at most {largest} {what} (the cap on this list's size)")
+
+    def numbers(self, table, key: str, where: str, minimum_count: int = 1, largest: int | None = None) -> np.ndarray:
         field = f"{where}.{key}"
         value = table.get(key)
+        self.count(field, value, largest, "numbers")
         if not is_sequence(value) or len(value) < minimum_count or not all(_within(v, field) for v in value):
             self.fail(field, value, f"a list of at least {minimum_count} finite numbers within ±{_limit(field):.0e}")
         return np.array(value, float)

@@ -24,7 +24,9 @@ def _cubic_and_gradient(result):
     """h(x, y) of eq (2) in world mm and its gradient, from the derived coefficients (sympy, not the package)."""
     frame = Frame.of(result.problem.poses)
     h = center_cubic(frame.local_poses(result.problem.poses))
-    local = ((X - frame.origin[0]) / frame.scale, (Y - frame.origin[1]) / frame.scale)
+    x, y = (X - frame.origin[0]) / frame.scale, (Y - frame.origin[1]) / frame.scale      # frame.to_local, symbolic
+    c, s = np.cos(frame.angle), np.sin(frame.angle)
+    local = (c * x + s * y, -s * x + c * y)
     expr = circular_cubic([sp.Float(c) for c in h], *local)
     value = sp.lambdify((X, Y), expr, "numpy")
     gradient = sp.lambdify((X, Y), [sp.diff(expr, X), sp.diff(expr, Y)], "numpy")

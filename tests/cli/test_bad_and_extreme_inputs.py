@@ -34,7 +34,7 @@ RICE_POINT_2 = r"\[22.307237065475743, -85.18514875915126\]"
 
 # name: (command, example, replacements, extra arguments, fragments of the one error line)
 BAD = {
-    "file is a folder": ("burmester", None, (), (), ["cannot be read", "Is a directory"]),
+    "file is a folder": ("burmester", None, (), (), ["a folder; expected a TOML problem file"]),
     "out unwritable": ("burmester", "burmester_4poses.toml", (), ("--out", "/proc/x"),
                        ["--out = /proc/x", "cannot write"]),
     "plot unknown format": ("burmester", "burmester_4poses.toml", (), ("--plot", "{tmp}/x.xyz"), ["--plot", ".png"]),
@@ -46,7 +46,7 @@ BAD = {
                                 ["poses[0].angle_deg = 1e+300", "within ±1e+06"]),
     "reverse point overflows": ("reverse", "rice_hoe_reverse.toml", ((RICE_POINT_2, "[1e308, 1e308]"),), (),
                                 ["trajectory.points[2] = [1e+308, 1e+308]", "within ±1e+09"]),
-    "design is a folder": ("fivebar", "vegetable_planting.toml", (), ("--design", "{tmp}"), ["cannot be read"]),
+    "design is a folder": ("fivebar", "vegetable_planting.toml", (), ("--design", "{tmp}"), ["a folder; expected"]),
     "key poses coincide": ("fivebar", "vegetable_planting.toml", (("x = -51.1\ny = -314.6\nangle_deg = 100.0",
                                                                   "x = -23.1\ny = -309.7\nangle_deg = 113.8"),), (),
                            ["key_poses[1] = ", "different from key_poses[0]"]),

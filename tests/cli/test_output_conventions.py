@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 from matplotlib.figure import Figure
 
-from transplanter import burmester
+from transplanter import burmester, folder_swap
 from transplanter.cli import main
 from transplanter.errors import ProblemError
 from transplanter.output_folder import files_by_kind
@@ -107,9 +107,11 @@ def test_an_interrupt_a_solver_swallows_still_ends_the_run(tmp_path, monkeypatch
     assert {n: signal.getsignal(n) for n in before} == before
 
 
-def test_an_out_that_cannot_be_replaced_names_it_and_leaves_nothing_beside_it(tmp_path, monkeypatch, capsys):
+@pytest.mark.parametrize("exchange", [True, False], ids=["exchange", "two renames"])
+def test_an_out_that_cannot_be_replaced_names_it_and_leaves_nothing_beside_it(tmp_path, monkeypatch, capsys, exchange):
     """The finished folder cannot be moved into place (an immutable folder, as chattr +i makes, refused even to
-    root): one line naming --out, and the hidden partial copy removed (it was left beside the target)."""
+    root), by an atomic exchange or, where the system has none, by two renames: one line naming --out, and the
+    hidden partial copy removed (it was left beside the target)."""
     out = tmp_path / "out"
     out.mkdir()
     original = Path.replace
@@ -118,7 +120,13 @@ def test_an_out_that_cannot_be_replaced_names_it_and_leaves_nothing_beside_it(tm
         if out in (self, Path(target)):        # neither moved away nor replaced
             raise PermissionError(1, "Operation not permitted")
         return original(self, target)
+
+    def refuse_the_exchange(first, second):
+        if not exchange:
+            return False
+        raise PermissionError(1, "Operation not permitted")
     monkeypatch.setattr(Path, "replace", refuse_the_target)
+    monkeypatch.setattr(folder_swap, "exchange", refuse_the_exchange)
     assert main(["burmester", PROBLEM, "--out", str(out), "--quiet"]) == 2
     err = capsys.readouterr().err.strip()
     assert err == (f"transplanter: error: --out = {out}: cannot put the results there (Operation not permitted): "
@@ -245,3 +253,12 @@ def test_library_progress_is_silent_unless_a_caller_shows_it(capsys):
             progress.report("refinement", 3, 17)
     assert shown.getvalue() == "transplanter: refinement 2/17\n"
     assert capsys.readouterr().err == ""
+
+
+@pytest.mark.parametrize("name, reason", [("a" * 300, "File name too long"), ("report.md/inside", "Not a directory")])
+def test_an_out_the_system_cannot_take_is_named_as_out(tmp_path, capsys, name, reason):
+    (tmp_path / "report.md").write_text("a file, not a folder\n")
+    out = tmp_path / name
+    assert main(["burmester", PROBLEM, "--out", str(out), "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"transplanter: error: --out = {out}: {reason}; expected a folder") and err.count("\n") == 1

@@ -46,14 +46,18 @@ def pure_rotation_center(poses: np.ndarray) -> np.ndarray | None:
     """The point the body turns about when every pose is pose 1 turned about that one point, else None.
 
     Such poses leave the circle point free: every dyad centred there guides the body. The
-    poles of pose 1 with each other pose then coincide (to 1e-9 of the poses' own size).
+    poles of pose 1 with each other pose then coincide, to 1e-9 of the poses' own size (1 mm when they all sit
+    on one point), seen in the frame attached to the poses (``Frame``), where rounding does not grow with the
+    distance from the origin.
     """
     turned = np.abs(np.sin((poses[1:, 2] - poses[0, 2]) / 2)) >= np.sin(MIN_ROTATION / 2)
     if not turned.all():
         return None
-    poles = np.array([pole(poses[0], other) for other in poses[1:]])
-    size = max(np.abs(poses[:, :2] - poses[0, :2]).max(), np.abs(poles - poses[0, :2]).max())
-    return poles[0] if np.abs(poles - poles[0]).max() <= 1e-9 * size else None
+    frame = Frame.of(poses)
+    local = frame.local_poses(poses)
+    poles = np.array([pole(local[0], other) for other in local[1:]])
+    size = max(np.abs(local[:, :2] - local[0, :2]).max(), np.abs(poles - local[0, :2]).max(), 1.0)
+    return frame.to_world(poles[0]) if np.abs(poles - poles[0]).max() <= 1e-9 * size else None
 
 
 def _pure_rotation(problem: DyadProblem, poses: np.ndarray, center: np.ndarray) -> Synthesis:

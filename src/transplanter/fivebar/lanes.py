@@ -13,6 +13,7 @@ lanes in threads contended for the interpreter lock (7 % gained, measured).
 from __future__ import annotations
 
 import multiprocessing
+import signal
 import sys
 import time
 from collections.abc import Callable
@@ -70,13 +71,20 @@ def _fork_lane(other: range) -> tuple[ProcessPoolExecutor | None, dict[Future, i
         return None, {}
     pool = None
     try:
-        pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork"))
+        pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork"), initializer=_lane_signals)
         # the fork happens at the first submit, before lane 0 touches the solver
         return pool, {pool.submit(_forked_lane, index): index for index in other}
     except OSError:
         if pool is not None:
             pool.shutdown(wait=False, cancel_futures=True)
         return None, {}
+
+
+def _lane_signals() -> None:
+    """In the forked lane: Ctrl-C (sent to the whole process group) is left to this process's parent, which
+    stops the lane; the parent's SIGTERM ends it at once, as by default."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
 def _stop(pool: ProcessPoolExecutor) -> None:

@@ -77,6 +77,8 @@ from transplanter.trains.toothed_train import (
 )
 
 RANGE_FIELDS = {"ep": "|EP| (mm)", "fp": "|FP| (mm)", "x_e": "x of E in pose 1 (mm)", "x_f": "x of F in pose 1 (mm)"}
+#: Most control points of the relative angle's periodic spline (a design NLP variable each).
+MOST_CONTROL_POINTS = 72
 _TOP_KEYS = {"title", "description", "key_poses", "return_points", "ranges", "conditions", "requirements", "spline",
              "region", "gears",
              "support", "load", "tolerances"}
@@ -347,6 +349,9 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
     points, return_labels = _table_rows(read, data, "return_points", ("x", "y"))
     if len(points) == 0:
         read.fail("return_points", [], "at least one point of the return stroke (Wang et al. 2025 Table 3 has five)")
+    if len(points) > MOST_CONTROL_POINTS - 4:
+        read.fail("return_points", f"{len(points)} points", f"at most {MOST_CONTROL_POINTS - 4} (the relative angle's "
+                  f"spline, at most {MOST_CONTROL_POINTS} control points, takes four more than the return points)")
     labels = [label or f"P{k + 1}" for k, label in enumerate(labels)]
     return_labels = [label or f"P{k + 5}" for k, label in enumerate(return_labels)]
 
@@ -383,7 +388,8 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
 
     spline = data.get("spline", {})
     read.keys(spline, {"control_points"}, "spline")
-    count = read.integer(spline, "control_points", "spline", len(points) + 4, 72, default=max(12, len(points) + 4))
+    count = read.integer(spline, "control_points", "spline", len(points) + 4, MOST_CONTROL_POINTS,
+                         default=max(12, len(points) + 4))
 
     region = data.get("region", {})
     read.keys(region, {"samples", "radius_mm", "band_samples"}, "region")

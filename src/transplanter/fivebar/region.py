@@ -54,6 +54,7 @@ class ChainFamily:
     kept: np.ndarray         # bool (N,): within ranges and free of the chain's own defects
     reasons: dict            # why dyads were dropped: condition -> count
     shortfalls: dict         # range name -> how far each dyad is outside it (0 inside), (N,)
+    measures: dict           # range name -> each dyad's value of it (mm), (N,)
 
 
 @dataclass(frozen=True)
@@ -106,7 +107,7 @@ def chain_families(problem: FiveBarProblem) -> tuple[ChainFamily, ChainFamily]:
             kept = _count(reasons, "order (relative angle not increasing through the key poses)",
                           _increasing_relative_angle(problem, fixed, moving), kept)
         shortfalls = {name: _shortfall(values, problem.ranges.get(name)) for name, values in measures.items()}
-        families.append(ChainFamily(synthesis, fixed, moving, kept, reasons, shortfalls))
+        families.append(ChainFamily(synthesis, fixed, moving, kept, reasons, shortfalls, measures))
     return families[0], families[1]
 
 

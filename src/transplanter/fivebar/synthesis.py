@@ -12,10 +12,10 @@ from __future__ import annotations
 
 import dataclasses
 import time
-from numbers import Integral
 
 import numpy as np
 
+from transplanter.api_arguments import require_pick, require_progress
 from transplanter.errors import InfeasibleError, ProblemError, SolverError
 from transplanter.fivebar.alternatives import Alternative, Progress, refine_all, with_gear_sizes
 from transplanter.fivebar.band_search import band_starts
@@ -53,7 +53,22 @@ def _empty_family(problem: FiveBarProblem, name: str, family: ChainFamily):
     raise InfeasibleError(
         f"{problem.source}: no {name} survives: {stage} removes the last {family.reasons[stage]} of "
         f"{len(family.fixed)} traced dyads ({', '.join(f'{k}: {v}' for k, v in family.reasons.items())}); "
-        f"closest: {listed}")
+        f"closest: {listed}; {_what_would_keep(problem, family, closest[0], other)}")
+
+
+def _what_would_keep(problem: FiveBarProblem, family: ChainFamily, k: int, other: list[str]) -> str:
+    """The ranges, widened just enough (to 0.1 mm outward), that keep dyad ``k`` of an emptied family; or, when it
+    lies within them, the other conditions that drop it."""
+    widened = []
+    for key, values in family.measures.items():
+        low, high = problem.ranges.get(key, (-np.inf, np.inf))
+        if family.shortfalls[key][k] > 0:
+            value = values[k]
+            widened.append(f"ranges.{key} = [{min(low, np.floor(value * 10) / 10):g}, "
+                           f"{max(high, np.ceil(value * 10) / 10):g}]")
+    if widened:
+        return "what would work: " + " and ".join(widened) + " keeps the closest"
+    return f"what would work: the closest lie within the ranges; {' / '.join(other)} drops them: move the key poses"
 
 
 def _no_feasible_pair(problem: FiveBarProblem, region: Region):
@@ -64,15 +79,6 @@ def _no_feasible_pair(problem: FiveBarProblem, region: Region):
     raise InfeasibleError(f"{problem.source}: none of the {len(region.candidates)} five-bars of the region is "
                           f"feasible (first failing condition per pair: {counts}); closest: {lines}; "
                           f"{relaxation_hint(problem, region)}")
-
-
-def _checked_pick(pick) -> int:
-    """``pick`` as a whole number of at least 1 (None: 1), before any work starts."""
-    if pick is None:
-        return 1
-    if isinstance(pick, bool) or not isinstance(pick, Integral) or pick < 1:
-        raise ProblemError(f"--pick = {pick!r}: expected a whole number of at least 1 (1: the best-ranked alternative)")
-    return int(pick)
 
 
 def pick_alternative(alternatives: list[Alternative], pick: int, source: str) -> Alternative:
@@ -126,7 +132,8 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
     SolverError
         No refinement succeeded (the reason for each candidate is given).
     """
-    pick = _checked_pick(pick)
+    pick = require_pick(pick)
+    require_progress(progress)
     timings: dict[str, object] = {}
     start = _step(progress, "region")
     starts = band_starts(problem)

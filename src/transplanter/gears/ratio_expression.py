@@ -39,7 +39,7 @@ def parse_ratio(text: str, phi: ca.SX) -> ca.SX:
 
 def _build(node, phi):
     if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) and not isinstance(node.value, bool):
-        return float(node.value)
+        return _finite(node, lambda: float(node.value))
     if isinstance(node, ast.Name) and node.id in ("phi", "pi"):
         return phi if node.id == "phi" else math.pi
     if isinstance(node, ast.BinOp) and type(node.op) in _OPERATORS:
@@ -55,14 +55,24 @@ def _build(node, phi):
 
 
 def _finite(node, evaluate):
-    """``evaluate()``, refused when constants alone give no finite number (casadi folds them
-    into an SX constant; Python raises for float division by zero and overflow)."""
+    """``evaluate()``, refused when constants alone give no finite real number (casadi folds them into an SX
+    constant; Python raises for float division by zero and overflow, and an integer beyond float range, and
+    gives a complex number for a negative base to a fractional power)."""
     try:
         value = evaluate()
     except (ZeroDivisionError, OverflowError):
         value = math.nan
+    if isinstance(value, complex):
+        raise ExpressionError(f"'{_cut(ast.unparse(node))}' is not a real number (a negative base to a fractional "
+                              "power)")
     if isinstance(value, ca.SX) and value.is_constant():
         value = float(value)
     if isinstance(value, float) and not math.isfinite(value):
-        raise ExpressionError(f"'{ast.unparse(node)}' is not a finite number")
+        raise ExpressionError(f"'{_cut(ast.unparse(node))}' is not a finite number (beyond float range, or a "
+                              "division by zero)")
     return value
+
+
+def _cut(text: str, longest: int = 60) -> str:
+    """A piece of a formula as a message quotes it: whole, or its start and its length."""
+    return text if len(text) <= longest else f"{text[:longest - 20]}... ({len(text)} characters)"

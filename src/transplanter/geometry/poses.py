@@ -53,25 +53,29 @@ def relative_to_link(poses: np.ndarray, pivot, phases) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Frame:
-    """Similarity that brings poses to unit size about their centroid, for conditioning."""
+    """A similarity attached to the poses: origin at their centroid, unit length their size (``pose_scale``), x
+    axis along the body's direction in the first pose. Seen in it, poses moved, turned or scaled together are the
+    same poses, so every search, bound and start made there moves with them (and the numbers are conditioned)."""
 
     origin: np.ndarray
     scale: float
+    angle: float = 0.0
 
     @classmethod
     def of(cls, poses: np.ndarray) -> Frame:
         origin = poses[:, :2].mean(axis=0)
-        return cls(origin, pose_scale(poses))
+        return cls(origin, pose_scale(poses), float(poses[0, 2]))
 
     def to_local(self, points) -> np.ndarray:
-        return (np.asarray(points, float) - self.origin) / self.scale
+        return rotate(-self.angle, (np.asarray(points, float) - self.origin) / self.scale)
 
     def to_world(self, points) -> np.ndarray:
-        return np.asarray(points, float) * self.scale + self.origin
+        return rotate(self.angle, points) * self.scale + self.origin
 
     def local_poses(self, poses: np.ndarray) -> np.ndarray:
         out = poses.copy()
         out[:, :2] = self.to_local(poses[:, :2])
+        out[:, 2] = poses[:, 2] - self.angle
         return out
 
 

@@ -6,7 +6,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from transplanter.api_arguments import require_problem
+from transplanter.api_arguments import require_pick, require_problem, require_progress
 from transplanter.errors import ProblemError, SolverError, TransplanterError
 from transplanter.gears.result import GearResult
 from transplanter.gears.synthesis import tooth_counts
@@ -104,6 +104,8 @@ def synthesize(problem: ParallelogramProblem, pick: int | None = None,
         When no design meets the depth band and the gear constraints (with the closest design).
     """
     require_problem(problem, ParallelogramProblem, "parallelogram")
+    rank = require_pick(pick)
+    require_progress(progress)
     if not problem.bounds:
         raise ProblemError(f"{problem.source}: search.bounds is missing: expected [low, high] for at least one of "
                            "m11, b, l, l1, alpha_deg")
@@ -111,8 +113,7 @@ def synthesize(problem: ParallelogramProblem, pick: int | None = None,
     start = time.perf_counter()
     search = nsga2(problem, progress)
     timings["nsga2"] = time.perf_counter() - start
-    rank = 1 if pick is None else pick
-    if not 1 <= rank <= len(search.designs):
+    if rank > len(search.designs):
         raise ProblemError(f"{problem.source}: --pick {pick}: expected a rank from 1 to {len(search.designs)} "
                            "(the Pareto designs, 1 = the knee)")
     chosen = {**problem.design, **search.variables(rank)}

@@ -25,6 +25,7 @@ import casadi as ca
 import numpy as np
 
 from transplanter._generated.planetary import pickup_tip
+from transplanter.api_arguments import require_problem
 from transplanter.errors import InfeasibleError
 from transplanter.gears.pair import GearPairDesign, design_pair, driven_angle
 from transplanter.gears.pitch_curves import PitchCurve
@@ -74,6 +75,7 @@ def _tip_and_rates():
 
 def synthesize(problem: PickupProblem) -> PickupResult:
     """Tip path, picking and pushing angles and tip speed over one carrier turn (module docstring)."""
+    require_problem(problem, PickupProblem, "pickup")
     start = time.perf_counter()
     first = stage_at(problem.stages[0], problem.first_length, problem.source, "stage1")
     second = stage_at(mirrored(problem.stages[1]), problem.second_length, problem.source, "stage2")

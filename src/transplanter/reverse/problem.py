@@ -42,6 +42,10 @@ TOPOLOGIES = {"sun-intermediate-planet": ("sqrt", "peak_to_valley"),
               "pick-up": ("sqrt", "peak_to_valley"),
               "sun-idler-planet": ("identical_sun_planet",)}
 _TOP_KEYS = {"title", "description", "trajectory", "arm", "train"}
+#: Most points of a path: time and memory grow with their number (measured on the rice example's loop sampled
+#: evenly: 5000 points 29 s and 0.1 GB, 100,000 points 185 s and 0.53 GB), and a loop sampled more finely than this
+#: gives the same train.
+LARGEST_POINT_COUNT = 20000
 #: The closing gap (last point back to the first) may be at most this many times the longest other gap.
 OPEN_GAP_FACTOR = 3.0
 
@@ -140,7 +144,7 @@ def _choice(read: FieldReader, table: dict, key: str, where: str, options, defau
 def _trajectory_points(read: FieldReader, table: dict) -> tuple[np.ndarray, str]:
     read.keys(table, {"kind", "points"}, "trajectory")
     kind = _choice(read, table, "kind", "trajectory", ("control_points", "samples"))
-    points = read.points(table, "points", "trajectory")
+    points = read.points(table, "points", "trajectory", largest=LARGEST_POINT_COUNT)
     size = np.ptp(points, axis=0).max() if len(points) else 0.0      # the path's own size: tolerances follow it
     if len(points) > 4 and np.linalg.norm(points[0] - points[-1]) <= 1e-9 * size:
         points = points[:-1]                 # closed explicitly: the last point repeats the first

@@ -1,0 +1,45 @@
+"""Every public synthesis checks what it is given before any work: a problem of the wrong class, a dict, a path
+or None, and options of the wrong type give one ProblemError naming the argument, on one line, never an array's
+repr and never an AttributeError or TypeError from inside."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from transplanter import burmester, cam, fivebar, gears, parallelogram, pickup, reverse
+from transplanter.errors import ProblemError
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+PACKAGES = {"burmester": burmester, "cam": cam, "fivebar": fivebar, "gears": gears, "parallelogram": parallelogram,
+            "pickup": pickup, "reverse": reverse}
+
+
+@pytest.fixture(scope="module")
+def other_problem():
+    """A problem of a class no other command takes (its repr holds numpy arrays over several lines)."""
+    return burmester.load_problem(EXAMPLES / "burmester_3poses.toml")
+
+
+@pytest.mark.parametrize("name", sorted(PACKAGES))
+@pytest.mark.parametrize("given", ["none", "dict", "path", "other"])
+def test_a_problem_of_the_wrong_kind_is_named(name, given, other_problem):
+    problem = {"none": None, "dict": {"title": "x"}, "path": "problem.toml", "other": other_problem}[given]
+    if name == "burmester" and given == "other":
+        problem = fivebar.load_problem(EXAMPLES / "vegetable_planting.toml")
+    with pytest.raises(ProblemError) as refused:
+        PACKAGES[name].synthesize(problem)
+    message = str(refused.value)
+    assert message.startswith("problem = ") and "expected a " in message, message
+    assert "\n" not in message and "array(" not in message, message
+
+
+@pytest.mark.parametrize("name, problem_file", [("fivebar", "vegetable_planting.toml"),
+                                                ("parallelogram", "onion_transplanter.toml")])
+@pytest.mark.parametrize("option, value", [("pick", "1"), ("pick", 0), ("pick", True), ("pick", 1.5),
+                                           ("progress", "yes"), ("progress", 3)])
+def test_options_of_the_wrong_type_are_named(name, problem_file, option, value):
+    package = PACKAGES[name]
+    problem = package.load_problem(EXAMPLES / problem_file)
+    with pytest.raises(ProblemError, match=rf"^(--)?{option} = .*: expected "):
+        package.synthesize(problem, **{option: value})
