@@ -1,3 +1,5 @@
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -18,26 +20,47 @@ def derived():
             for module in MODULES for d in importlib.import_module(f"derivations.{module}").derive()}
 
 
-@pytest.fixture(scope="session")
-def example_result():
-    """The main job on examples/vegetable_planting.toml, synthesised once per test process (the region, every
-    candidate refined, the toothed train and the verification take tens of seconds) for the files that read it."""
-    from pathlib import Path
+EXAMPLE = Path(__file__).resolve().parents[1] / "examples/vegetable_planting.toml"
 
+
+@pytest.fixture(scope="session")
+def example_problem():
+    """The main job's example, examples/vegetable_planting.toml, read once per test process."""
     from transplanter import fivebar
 
-    path = Path(__file__).resolve().parents[1] / "examples/vegetable_planting.toml"
-    return fivebar.synthesize(fivebar.load_problem(path))
+    return fivebar.load_problem(EXAMPLE)
 
+
+@pytest.fixture(scope="session")
+def example_result(example_problem):
+    """The main job on the example, synthesised once per test process (the region, every candidate refined,
+    the toothed train and the verification take tens of seconds) for the files that read it."""
+    from transplanter import fivebar
+
+    return fivebar.synthesize(example_problem)
+
+
+@pytest.fixture
+def example_result_from_synthesize(monkeypatch, example_result):
+    """``fivebar.synthesize`` of the example file with no pick (as the ``fivebar`` command and the README call it)
+    returns ``example_result`` (deterministic, and tested on its own) instead of running the same tens of seconds
+    again; its progress calls are not made. Any other call runs as it is."""
+    from transplanter import fivebar
+
+    synthesize = fivebar.synthesize
+
+    def once(problem, pick=None, progress=None):
+        same = pick is None and Path(problem.source).resolve() == EXAMPLE
+        return example_result if same else synthesize(problem, pick=pick, progress=progress)
+    monkeypatch.setattr(fivebar, "synthesize", once)
 
 
 def pytest_xdist_make_scheduler(config, log):
-    """``--dist loadfile``, with every file that reads ``example_result`` in one unit: one worker
-    synthesises the example for all of them (about 17 s of CPU), and the other takes the rest file by file."""
+    """``--dist loadfile``, with every file that reads ``example_result`` (or a fixture named after it) in one
+    unit: one worker synthesises the example for all of them (about 17 s of CPU), and the other takes the rest
+    file by file."""
     if config.getvalue("dist") != "loadfile":
         return None
-    from pathlib import Path
-
     from xdist.scheduler import LoadFileScheduling
 
     readers = {path.relative_to(config.rootpath).as_posix() for path in Path(__file__).parent.rglob("test_*.py")

@@ -35,20 +35,11 @@ def test_every_job_has_an_example():
 
 
 @pytest.fixture
-def synthesis_once(request, monkeypatch, example_result):
-    """``fivebar.synthesize`` of the bundled main-job example, as the block calls it, is the test process's
-    one synthesis of that file (``example_result``: deterministic, and tested on its own elsewhere) instead
-    of a second one of the same tens of seconds; any other call runs as it is."""
-    from transplanter import fivebar
-
-    if "fivebar.synthesize(" not in request.node.callspec.params["block"]:
-        return
-    synthesize, example = fivebar.synthesize, (ROOT / "examples/vegetable_planting.toml").resolve()
-
-    def once(problem, **options):
-        same = not options and Path(problem.source).resolve() == example
-        return example_result if same else synthesize(problem, **options)
-    monkeypatch.setattr(fivebar, "synthesize", once)
+def synthesis_once(request):
+    """A block that calls ``fivebar.synthesize`` gets the test process's one synthesis of the bundled example
+    (``example_result_from_synthesize``); the other blocks run without it."""
+    if "fivebar.synthesize(" in request.node.callspec.params["block"]:
+        request.getfixturevalue("example_result_from_synthesize")
 
 
 @pytest.mark.parametrize("block", API_BLOCKS, ids=[f"block{k}" for k in range(len(API_BLOCKS))])

@@ -236,7 +236,7 @@ def test_the_design_is_a_command_result(result, tmp_path):
 
 
 @pytest.fixture
-def quick_command(result, monkeypatch):
+def quick_command(example_result_from_synthesize, monkeypatch):
     """The fivebar command on the module's result with one small figure and a stand-in animation (both are
     tested above or elsewhere; here only what the command writes and lists)."""
     from transplanter.fivebar import output_files
@@ -244,7 +244,6 @@ def quick_command(result, monkeypatch):
     def stand_in(result, folder, teeth=None):
         (folder / "animation.gif").write_bytes(b"GIF89a")
         return [folder / "animation.gif"]
-    monkeypatch.setattr(fivebar, "synthesize", lambda problem, **options: result)
     monkeypatch.setattr(fivebar.FiveBarResult, "draw_figures", lambda result: {"trajectory": Figure(figsize=(1, 1))})
     monkeypatch.setattr(output_files, "write_animation", stand_in)
 

@@ -1,4 +1,5 @@
-"""``[gears] max_pressure_angle_deg``: read with the other gear fields, refused in one line outside (nominal, 90)."""
+"""``[gears] max_pressure_angle_deg``: read with the other gear fields, refused in one line outside (nominal, 90),
+and what it does to the main job's design on the fixed key poses."""
 import subprocess
 import sys
 from pathlib import Path
@@ -7,9 +8,13 @@ import numpy as np
 import pytest
 
 from transplanter.errors import ProblemError
+from transplanter.fivebar import synthesize
+from transplanter.fivebar.alternatives import transmission_angles
 from transplanter.fivebar.problem import parse_problem
+from transplanter.toml_fields import read_toml
 
 ROOT = Path(__file__).resolve().parents[2]
+FIXED = ROOT / "examples/vegetable_planting.toml"
 
 
 def _with_gears(**gears):
@@ -51,3 +56,29 @@ def test_the_command_refuses_it_before_any_work_with_exit_2(tmp_path):
                                        "an angle above gears.pressure_angle_deg (20) and below 90 deg (the mesh's push "
                                        "along the motion falls as its cosine)"]
     assert not out.exists()
+
+
+def _smallest_angle_at_e_deg(design) -> float:
+    turns = np.linspace(0, 2 * np.pi, 3600, endpoint=False)
+    at_e, _ = transmission_angles(design.mech, design.mech.forward(turns, design.relative_angle.evaluate(turns)))
+    return float(np.degrees(at_e.min()))
+
+
+def test_on_the_fixed_poses_the_pressure_limit_is_what_holds_the_transmission_angle_below_the_former_design(
+        example_result):
+    """The former design, which maximised the angle EBF, had 26.78 deg at E but a gear pressure angle of 47.35 deg,
+    above the default 45 deg. With that limit the smallest angle at E is lower, and the report names the limit
+    among the bounds the design sits on."""
+    angle = _smallest_angle_at_e_deg(example_result.design)
+    names = [bound.name for bound in example_result.chosen.active_bounds]
+    assert angle >= 26.78 or "gears.max_pressure_angle_deg" in names
+    assert np.degrees(example_result.pressure.largest.max()) <= 45.0 * (1 + 1e-3)
+
+
+def test_with_the_pressure_limit_the_former_design_met_the_transmission_angle_is_at_least_its(tmp_path):
+    """With gears.max_pressure_angle_deg = 48 the former design (47.35 deg) is a feasible point of the NLP, so the
+    design that maximises the angle at E has at least its 26.78 deg (measured on the hinges)."""
+    data = read_toml(FIXED)
+    data["gears"]["max_pressure_angle_deg"] = 48.0
+    result = synthesize(parse_problem(data, "fixed.toml"))
+    assert _smallest_angle_at_e_deg(result.design) >= 26.78

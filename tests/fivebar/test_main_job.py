@@ -16,7 +16,7 @@ from transplanter.fivebar.design_solver import DesignSolver
 from transplanter.fivebar.evaluation import evaluate_design, load_design
 from transplanter.fivebar.linkage import FiveBar
 from transplanter.fivebar.nlp import CONCAVITY_LIMIT, GRID_BLOCKS, build_nlp
-from transplanter.fivebar.problem import load_problem, parse_problem
+from transplanter.fivebar.problem import parse_problem
 from transplanter.fivebar.region import ChainFamily
 from transplanter.fivebar.relative_angle import RelativeAngle, fit_relative_angle, negative_intervals
 from transplanter.fivebar.return_stroke import solve_return_stroke
@@ -31,8 +31,8 @@ EXAMPLE = ROOT / "examples/vegetable_planting.toml"
 
 
 @pytest.fixture(scope="module")
-def problem():
-    return load_problem(EXAMPLE)
+def problem(example_problem):
+    return example_problem
 
 
 @pytest.fixture(scope="module")
@@ -227,7 +227,7 @@ def test_published_table4_design(problem):
     assert 0.74 < low < 0.79 and 1.38 < high < 1.44       # regression pin (0.77 to 1.41 when written)
 
 
-def test_cli_json_fields(tmp_path, capsys):
+def test_cli_json_fields(example_result_from_synthesize, tmp_path, capsys):
     code = main(["fivebar", str(EXAMPLE), "--json", "--out", str(tmp_path)])
     report = json.loads(capsys.readouterr().out)
     assert code == 0

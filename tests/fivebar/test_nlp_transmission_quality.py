@@ -9,7 +9,7 @@ import pytest
 from transplanter.errors import ProblemError, SolverError
 from transplanter.fivebar.design_solver import CURVATURE_GAP, DesignSolver
 from transplanter.fivebar.nlp import CONCAVITY_LIMIT, CURVATURE_BLOCKS, RETURN_TOLERANCE, build_nlp
-from transplanter.fivebar.problem import FiveBarProblem, load_problem, parse_problem
+from transplanter.fivebar.problem import FiveBarProblem, parse_problem
 from transplanter.fivebar.region import solution_region
 from transplanter.fivebar.whole_turn import CHECK_POINTS, CURVES
 from transplanter.gears.rack_teeth import ADDENDUM
@@ -22,8 +22,8 @@ FINE = np.linspace(0, 2 * np.pi, CHECK_POINTS, endpoint=False)
 
 
 @pytest.fixture(scope="module")
-def problem():
-    return load_problem(EXAMPLE)
+def problem(example_problem):
+    return example_problem
 
 
 @pytest.fixture(scope="module")

@@ -16,7 +16,7 @@ from transplanter.fivebar.alternatives import Failure, assess
 from transplanter.fivebar.candidate import GRID, evaluate_candidate
 from transplanter.fivebar.design_solver import DesignSolver
 from transplanter.fivebar.held_relative_angle import hold_relative_angle
-from transplanter.fivebar.problem import FiveBarProblem, load_problem
+from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import solution_region
 from transplanter.fivebar.relative_angle import fit_relative_angle
 
@@ -25,8 +25,8 @@ EXAMPLE = ROOT / "examples/vegetable_planting.toml"
 
 
 @pytest.fixture(scope="module")
-def problem():
-    return load_problem(EXAMPLE)
+def problem(example_problem):
+    return example_problem
 
 
 @pytest.fixture(scope="module")

@@ -10,7 +10,7 @@ from transplanter.errors import ProblemError
 from transplanter.fivebar import return_stroke
 from transplanter.fivebar.candidate import evaluate_candidate, judge_candidates
 from transplanter.fivebar.linkage import FiveBar, from_hinges
-from transplanter.fivebar.problem import load_problem, parse_problem
+from transplanter.fivebar.problem import parse_problem
 from transplanter.fivebar.reference_region import exhaustive_return_strokes, reference_candidate, reference_region
 from transplanter.fivebar.region import PAIR_LIMIT, chain_families, solution_region
 from transplanter.fivebar.relative_angle import RelativeAngle
@@ -22,8 +22,8 @@ EXAMPLE = ROOT / "examples/vegetable_planting.toml"
 
 
 @pytest.fixture(scope="module")
-def problem():
-    return load_problem(EXAMPLE)
+def problem(example_problem):
+    return example_problem
 
 
 def _same_candidate(old, new):
