@@ -133,6 +133,14 @@ def _derive(args) -> int:
     return run_build(["--check"] if args.check else [])
 
 
+def _examples(args) -> int:
+    from transplanter.bundled_examples import copy_examples
+
+    written = copy_examples(args.dir)
+    print(f"copied {len(written)} example files to {args.dir}")
+    return 0
+
+
 @dataclass(frozen=True)
 class Flag:
     """An option of one command beyond those every design command takes: its names and argparse keywords;
@@ -251,6 +259,10 @@ def _parser() -> argparse.ArgumentParser:
     derive = commands.add_parser("derive", help="regenerate src/transplanter/_generated from derivations/")
     derive.add_argument("--check", action="store_true", help="exit 1 if the generated code is out of step")
     derive.set_defaults(run=_derive)
+    examples = commands.add_parser("examples", help="copy the bundled example problem files into DIR")
+    examples.add_argument("dir", metavar="DIR", help="the folder to copy them into (made if missing; a file of the "
+                          "same name there is never overwritten)")
+    examples.set_defaults(run=_examples)
     return parser
 
 
