@@ -127,6 +127,14 @@ def _parallelogram(command: Command, problem, args) -> CommandResult:
         return parallelogram.synthesize(problem, pick=args.pick, progress=_report)
 
 
+def _reverse(command: Command, problem, args) -> CommandResult:
+    """The train for the problem's path, with the arm and train of a given design (``--design``) or the file's."""
+    with progress.step(command.step):
+        if args.design:
+            return reverse.evaluate_design(problem, reverse.load_design(args.design))
+        return reverse.synthesize(problem)
+
+
 def _derive(args) -> int:
     from transplanter.derive import run_build
 
@@ -207,7 +215,10 @@ COMMANDS = (
                                       "alternatives (default 1, the best; report.md lists them)"}, exclusive=True))),
     Command("reverse", "planetary non-circular gear train that makes the arm tip follow a closed path (the "
             "rice-transplanter, reverse-gear-design and cusp-pitch-curve papers): inverse kinematics, monotonicity, "
-            "gears, round trip", "reverse-design problem file (TOML, mm and degrees)", "the figures", reverse),
+            "gears, round trip", "reverse-design problem file (TOML, mm and degrees)", "the figures and design.toml",
+            reverse, run=_reverse,
+            flags=(Flag(("--design",), {"metavar": "DESIGN.toml", "help": "make the train with this design's arm and "
+                                        "train (a run's design.toml) instead of the file's"}),)),
     Command("cam", "a disc cam with a roller follower (translating or oscillating): motion laws, profile, pressure "
             "angle, curvature, undercut, the smallest base circle", "cam problem file (TOML, mm and degrees)",
             "cam_profile.csv, cam.dxf, cam.svg and the figures", cam),
