@@ -127,12 +127,14 @@ def _parallelogram(command: Command, problem, args) -> CommandResult:
         return parallelogram.synthesize(problem, pick=args.pick, progress=_report)
 
 
-def _reverse(command: Command, problem, args) -> CommandResult:
-    """The train for the problem's path, with the arm and train of a given design (``--design``) or the file's."""
+def _given_or_made(command: Command, problem, args) -> CommandResult:
+    """The job of a command whose ``--design`` sets what the problem file leaves to the design (the reverse
+    train's arm and train, the cam's base circle): its subpackage's ``evaluate_design`` of that design, or
+    ``synthesize(problem)``."""
     with progress.step(command.step):
         if args.design:
-            return reverse.evaluate_design(problem, reverse.load_design(args.design))
-        return reverse.synthesize(problem)
+            return command.package.evaluate_design(problem, command.package.load_design(args.design))
+        return command.package.synthesize(problem)
 
 
 def _derive(args) -> int:
@@ -216,12 +218,14 @@ COMMANDS = (
     Command("reverse", "planetary non-circular gear train that makes the arm tip follow a closed path (the "
             "rice-transplanter, reverse-gear-design and cusp-pitch-curve papers): inverse kinematics, monotonicity, "
             "gears, round trip", "reverse-design problem file (TOML, mm and degrees)", "the figures and design.toml",
-            reverse, run=_reverse,
+            reverse, run=_given_or_made,
             flags=(Flag(("--design",), {"metavar": "DESIGN.toml", "help": "make the train with this design's arm and "
                                         "train (a run's design.toml) instead of the file's"}),)),
     Command("cam", "a disc cam with a roller follower (translating or oscillating): motion laws, profile, pressure "
             "angle, curvature, undercut, the smallest base circle", "cam problem file (TOML, mm and degrees)",
-            "cam_profile.csv, cam.dxf, cam.svg and the figures", cam),
+            "cam_profile.csv, cam.dxf, cam.svg, design.toml and the figures", cam, run=_given_or_made,
+            flags=(Flag(("--design",), {"metavar": "DESIGN.toml", "help": "make the cam on this design's base circle "
+                                        "(a run's design.toml) instead of the file's or the smallest"}),)),
     Command("parallelogram", "onion transplanter: parallelogram planting mechanism driven by denatured Pascal limacon "
             "gears, NSGA-II and NLP polish", "parallelogram problem file (TOML, mm and degrees)",
             "figures, pareto.csv, trajectory.csv, gear drawings and animation.gif", parallelogram, run=_parallelogram,
