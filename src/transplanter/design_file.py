@@ -15,7 +15,7 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from transplanter.errors import TransplanterWarning
-from transplanter.toml_fields import FieldReader
+from transplanter.toml_fields import FieldReader, read_toml
 
 DESIGN_FILE = "design.toml"
 
@@ -66,3 +66,16 @@ def renamed_fields(read: FieldReader, table: dict, where: str, renamed: Mapping[
                       "will be refused in a later version", TransplanterWarning, stacklevel=2)
         table[new] = table.pop(old)
     return table
+
+
+def read_design_file(path: str | Path, tables: set[str], main: str, fields: set[str]) -> tuple[dict, dict, FieldReader]:
+    """A design file's content, its table ``main`` and a reader of its fields, after refusing (ProblemError naming
+    the file, the field, the value and what was expected) a top-level key other than title, description and
+    ``tables``, and a field of ``main`` outside ``fields``."""
+    data = read_toml(path)
+    read = FieldReader(str(path))
+    read.keys(data, {"title", "description", *tables}, "")
+    table = data.get(main)
+    read.keys(table, fields, main)
+    assert isinstance(table, dict)      # read.keys refuses anything else
+    return data, table, read

@@ -11,9 +11,9 @@ from transplanter.api_arguments import require_problem
 from transplanter.cam.problem import CamProblem
 from transplanter.cam.result import CamResult
 from transplanter.cam.synthesis import synthesize
-from transplanter.design_file import write_design_file
+from transplanter.design_file import read_design_file, write_design_file
 from transplanter.errors import ProblemError
-from transplanter.toml_fields import FieldReader, read_toml, shown
+from transplanter.toml_fields import shown
 
 
 @dataclass(frozen=True)
@@ -36,19 +36,9 @@ def write_design(result: CamResult, folder: str | Path) -> Path:
 
 
 def load_design(path: str | Path) -> CamDesign:
-    """Read a design file (TOML, mm): [cam] with base_radius_mm and optionally bore_radius_mm.
-
-    Raises
-    ------
-    ProblemError
-        Naming the file, the field, the value and what was expected.
-    """
-    data = read_toml(path)
-    read = FieldReader(str(path))
-    read.keys(data, {"title", "description", "cam"}, "")
-    table = data.get("cam")
-    read.keys(table, {"base_radius_mm", "bore_radius_mm"}, "cam")
-    assert isinstance(table, dict)      # read.keys refuses anything else
+    """Read a design file (TOML, mm): [cam] with base_radius_mm and optionally bore_radius_mm. A bad field raises
+    ProblemError (``read_design_file``)."""
+    _, table, read = read_design_file(path, {"cam"}, "cam", {"base_radius_mm", "bore_radius_mm"})
     bore = read.length(table, "bore_radius_mm", "cam") if "bore_radius_mm" in table else None
     return CamDesign(read.length(table, "base_radius_mm", "cam"), bore, str(path))
 

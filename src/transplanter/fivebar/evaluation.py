@@ -31,7 +31,7 @@ import numpy as np
 from transplanter import progress
 from transplanter.api_arguments import require_problem
 from transplanter.command_result import CommandResult
-from transplanter.design_file import renamed_fields
+from transplanter.design_file import read_design_file, renamed_fields
 from transplanter.errors import ProblemError
 from transplanter.fivebar.candidate import Candidate, evaluate_candidate
 from transplanter.fivebar.given_motion import judge_motion, pose_errors
@@ -40,7 +40,7 @@ from transplanter.fivebar.nlp import reach
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.relative_angle import RelativeAngle
 from transplanter.fivebar.support import SupportDesign, design_support
-from transplanter.toml_fields import ClassFields, FieldReader, read_toml, shown
+from transplanter.toml_fields import ClassFields, FieldReader, shown
 
 #: The fields of [design], as design.toml of a run writes them from the report's design table: lengths (mm),
 #: angles (deg) and the hinges B and E in pose 1 (mm).
@@ -183,19 +183,11 @@ def load_design(path: str | Path) -> GivenDesign:
     carrier_angle_deg, rod_length_AF, rod_angle_deg, push_plate_EP, receiving_plate_length_BE,
     hinge_B = [x, y] and optionally hinge_E = [x, y] (the report's names; the older names of ``RENAMED``
     are read with a one-line note); optionally the motion, a table [relative_angle] with rho1_deg,
-    control_values_deg and return_point_turns_deg as the report gives them (design.toml of a run).
-
-    Raises
-    ------
-    ProblemError
-        Naming the file, the field, the value and what was expected.
+    control_values_deg and return_point_turns_deg as the report gives them (design.toml of a run). A bad field
+    raises ProblemError (``read_design_file``).
     """
-    data = read_toml(path)
-    read = FieldReader(str(path))
-    read.keys(data, {"design", "relative_angle", "title", "description"}, "")
-    table = data.get("design")
-    read.keys(table, {*_FIELDS, "hinge_B", "hinge_E", *RENAMED}, "design")
-    assert isinstance(table, dict)      # read.keys refuses anything else
+    data, table, read = read_design_file(path, {"design", "relative_angle"}, "design",
+                                         {*DESIGN_FIELDS, *RENAMED})
     table = renamed_fields(read, table, "design", RENAMED)
     values = {key: read.number(table, key, "design") for key in _FIELDS}
     for key in _LENGTHS:

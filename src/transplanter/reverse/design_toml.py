@@ -11,13 +11,13 @@ from pathlib import Path
 import numpy as np
 
 from transplanter.api_arguments import require_problem
-from transplanter.design_file import write_design_file
+from transplanter.design_file import read_design_file, write_design_file
 from transplanter.errors import ProblemError
 from transplanter.reverse.arm_inverse import DIRECTION_NAMES
 from transplanter.reverse.problem import ReverseProblem, read_arm, read_train
 from transplanter.reverse.result import ReverseResult
 from transplanter.reverse.synthesis import synthesize
-from transplanter.toml_fields import FieldReader, read_toml, shown
+from transplanter.toml_fields import shown
 
 
 @dataclass(frozen=True)
@@ -82,19 +82,10 @@ def write_design(result: ReverseResult, folder: str | Path) -> Path:
 
 
 def load_design(path: str | Path) -> ReverseDesign:
-    """Read a design file (TOML, mm): [arm] with both lengths, and [train], as in a problem file.
-
-    Raises
-    ------
-    ProblemError
-        Naming the file, the field, the value and what was expected.
-    """
-    data = read_toml(path)
-    read = FieldReader(str(path))
-    read.keys(data, {"title", "description", "arm", "train"}, "")
-    arm = data.get("arm")
-    read.keys(arm, {"pivot", "carrier_length", "arm_length", "direction", "branch"}, "arm")
-    assert isinstance(arm, dict)        # read.keys refuses anything else
+    """Read a design file (TOML, mm): [arm] with both lengths, and [train], as in a problem file. A bad field
+    raises ProblemError (``read_design_file``)."""
+    data, arm, read = read_design_file(path, {"arm", "train"}, "arm",
+                                       {"pivot", "carrier_length", "arm_length", "direction", "branch"})
     if "carrier_length" not in arm and "arm_length" not in arm:
         read.fail("arm.carrier_length", None, "the carrier and arm lengths of the design (mm)")
     pivot, lengths, direction, branch = read_arm(read, arm)
