@@ -98,3 +98,33 @@ def test_a_design_rounded_onto_a_range_end_meets_the_range(example_result, tmp_p
         defects = [d for d in evaluation.candidate.defects if d.startswith("ranges.ep")]
         assert bool(defects) == fails, (ep, defects)
     assert RANGE_TOLERANCE * reach(problem) < 1e-6 * reach(problem)
+
+
+def _with_key_poses(path: Path, chosen: np.ndarray) -> Path:
+    """The published design with [key_poses] (rows x, y, direction, turn; mm, rad)."""
+    columns = (chosen[:, 0], chosen[:, 1], np.degrees(chosen[:, 2]), np.degrees(chosen[:, 3]))
+    rows = [f"{name} = {[float(v) for v in column]}"
+            for name, column in zip(("x", "y", "angle_deg", "carrier_turn_deg"), columns, strict=True)]
+    path.write_text(TABLE4.read_text() + "\n[key_poses]\n" + "\n".join(rows) + "\n")
+    return path
+
+
+def test_chosen_key_poses_are_judged_at_and_against_the_bands(tmp_path):
+    """Key poses inside a banded problem's bands are the ones the design is judged at; one beyond its band by
+    1 mm is named; a problem without bands takes its own poses only."""
+    banded = load_problem(ROOT / "examples/vegetable_planting_bands.toml")
+    low, high = banded.pose_bands.low, banded.pose_bands.high
+    inside = low + 0.3 * (high - low)
+    evaluation = evaluate_design(banded, load_design(_with_key_poses(tmp_path / "inside.toml", inside)))
+    assert np.abs(evaluation.problem.poses - inside[:, :3]).max() < 1e-12
+    assert not [d for d in evaluation.candidate.defects if d.startswith("key_poses")]
+    beyond = inside.copy()
+    beyond[1, 0] = high[1, 0] + 1.0
+    evaluation = evaluate_design(banded, load_design(_with_key_poses(tmp_path / "beyond.toml", beyond)))
+    assert [d for d in evaluation.candidate.defects if d.startswith("key_poses")] == [
+        f"key_poses.{banded.labels[1]}.x: the design's key pose is outside the problem's band"]
+    exact = load_problem(EXAMPLE)
+    own = np.c_[exact.poses, exact.carrier_turns]
+    for poses, named in ((own, False), (inside, True)):
+        evaluation = evaluate_design(exact, load_design(_with_key_poses(tmp_path / "exact.toml", poses)))
+        assert bool([d for d in evaluation.candidate.defects if d.startswith("key_poses")]) == named

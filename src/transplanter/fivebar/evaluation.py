@@ -21,6 +21,7 @@ sits on a range's end is not failed by the last bits of its arithmetic.
 """
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -35,6 +36,7 @@ from transplanter.design_file import read_design_file, renamed_fields
 from transplanter.errors import ProblemError
 from transplanter.fivebar.candidate import Candidate, evaluate_candidate
 from transplanter.fivebar.given_motion import judge_motion, pose_errors
+from transplanter.fivebar.key_pose_bands import QUANTITIES, PoseBands
 from transplanter.fivebar.linkage import FiveBar, circle_intersection, from_hinges
 from transplanter.fivebar.nlp import reach
 from transplanter.fivebar.problem import FiveBarProblem
@@ -78,6 +80,9 @@ class GivenDesign:
         The motion rho(c) the gears make (rad), or None: the motion is fitted (module docstring).
     return_point_turns : ndarray or None
         Carrier turns (rad) at the return points, given with ``relative_angle``.
+    key_poses : ndarray, shape (4, 4), or None
+        The key poses the design meets, rows x, y (mm), plate direction, carrier turn (rad): the ones a design
+        chose inside a problem's bands; None: the problem's.
     """
 
     carrier_length_OA: float
@@ -91,6 +96,7 @@ class GivenDesign:
     source: str
     relative_angle: RelativeAngle | None = None
     return_point_turns: np.ndarray | None = None
+    key_poses: np.ndarray | None = None
 
     def __post_init__(self):
         check = ClassFields(self)
@@ -101,6 +107,8 @@ class GivenDesign:
         check.array("hinge_B", (2,))
         if self.hinge_E is not None:
             check.array("hinge_E", (2,))
+        if self.key_poses is not None:
+            check.array("key_poses", (4, 4))
         if (self.relative_angle is None) != (self.return_point_turns is None):
             check.fail("return_point_turns", self.return_point_turns, "given together with relative_angle")
         check.text("source")
@@ -183,10 +191,11 @@ def load_design(path: str | Path) -> GivenDesign:
     carrier_angle_deg, rod_length_AF, rod_angle_deg, push_plate_EP, receiving_plate_length_BE,
     hinge_B = [x, y] and optionally hinge_E = [x, y] (the report's names; the older names of ``RENAMED``
     are read with a one-line note); optionally the motion, a table [relative_angle] with rho1_deg,
-    control_values_deg and return_point_turns_deg as the report gives them (design.toml of a run). A bad field
-    raises ProblemError (``read_design_file``).
+    control_values_deg and return_point_turns_deg as the report gives them (design.toml of a run); and, for a
+    problem with key-pose bands, the poses the design chose, a table [key_poses] with four each of x, y (mm),
+    angle_deg and carrier_turn_deg. A bad field raises ProblemError (``read_design_file``).
     """
-    data, table, read = read_design_file(path, {"design", "relative_angle"}, "design",
+    data, table, read = read_design_file(path, {"design", "relative_angle", "key_poses"}, "design",
                                          {*DESIGN_FIELDS, *RENAMED})
     table = renamed_fields(read, table, "design", RENAMED)
     values = {key: read.number(table, key, "design") for key in _FIELDS}
@@ -197,10 +206,23 @@ def load_design(path: str | Path) -> GivenDesign:
         read.fail("design.hinge_B", None, "the fixed hinge B = [x, y] (mm)")
     hinge_e = read.point(table["hinge_E"], "design.hinge_E") if "hinge_E" in table else None
     relative, return_turns = _read_motion(read, data["relative_angle"]) if "relative_angle" in data else (None, None)
+    poses = _read_key_poses(read, data["key_poses"]) if "key_poses" in data else None
     return GivenDesign(values["carrier_length_OA"], np.radians(values["carrier_angle_deg"]), values["rod_length_AF"],
                        np.radians(values["rod_angle_deg"]), values["push_plate_EP"],
                        values["receiving_plate_length_BE"], read.point(table["hinge_B"], "design.hinge_B"), hinge_e,
-                       str(path), relative, return_turns)
+                       str(path), relative, return_turns, poses)
+
+
+def _read_key_poses(read: FieldReader, table) -> np.ndarray:
+    """[key_poses]: four each of x, y (mm), angle_deg and carrier_turn_deg -> rows x, y, direction, turn (mm, rad)."""
+    read.keys(table, set(QUANTITIES), "key_poses")
+    columns = []
+    for quantity in QUANTITIES:
+        values = read.numbers(table, quantity, "key_poses", minimum_count=4)
+        if len(values) != 4:
+            read.fail(f"key_poses.{quantity}", table[quantity], "four values, one per key pose")
+        columns.append(np.radians(values) if quantity.endswith("_deg") else values)
+    return np.column_stack(columns)
 
 
 def _read_motion(read: FieldReader, table) -> tuple[RelativeAngle, np.ndarray]:
@@ -211,6 +233,16 @@ def _read_motion(read: FieldReader, table) -> tuple[RelativeAngle, np.ndarray]:
     control = read.numbers(table, "control_values_deg", "relative_angle", minimum_count=4)
     turns = read.numbers(table, "return_point_turns_deg", "relative_angle")
     return RelativeAngle(float(np.radians(rho1)), np.radians(control)), np.radians(turns)
+
+
+def _poses_outside(problem: FiveBarProblem, chosen: np.ndarray, slack: float) -> list[str]:
+    """Where chosen key poses (4, 4) leave the problem's bands (its exact poses where it has none) by more than
+    ``slack`` (mm) in x and y, ``RANGE_TOLERANCE`` (rad) in angle and carrier turn."""
+    exact = np.c_[problem.poses, problem.carrier_turns]
+    bands = problem.pose_bands or PoseBands(exact, exact)
+    per_column = np.array([slack, slack, RANGE_TOLERANCE, RANGE_TOLERANCE])
+    return [f"{bands.field(problem.labels, i, q)}: the design's key pose is outside the problem's band"
+            for i, q in bands.outside(chosen, per_column)]
 
 
 def _closest_pose(mech: FiveBar, pose: np.ndarray, turn: float) -> tuple[float, float]:
@@ -249,6 +281,10 @@ def evaluate_design(problem: FiveBarProblem, design: GivenDesign) -> DesignEvalu
     if not isinstance(design, GivenDesign):
         raise ProblemError(f"design = {shown(design)!r}: expected a GivenDesign (from "
                            "transplanter.fivebar.load_design(path))")
+    slack = RANGE_TOLERANCE * reach(problem)
+    outside = _poses_outside(problem, design.key_poses, slack) if design.key_poses is not None else []
+    if design.key_poses is not None:
+        problem = problem.with_poses(design.key_poses[:, :3], design.key_poses[:, 3])
     a1 = design.carrier_length_OA * np.array([np.cos(design.carrier_angle), np.sin(design.carrier_angle)])
     f1 = a1 + design.rod_length_AF * np.array([np.cos(design.rod_angle), np.sin(design.rod_angle)])
     relative = design.relative_angle
@@ -275,7 +311,6 @@ def evaluate_design(problem: FiveBarProblem, design: GivenDesign) -> DesignEvalu
     else:
         pick = int(np.argmin(worst))
     _, mech, errors = options[pick]
-    slack = RANGE_TOLERANCE * reach(problem)
     if relative is not None and design.return_point_turns is not None:
         if len(design.return_point_turns) != len(problem.return_points):
             FieldReader(design.source).fail(
@@ -284,6 +319,8 @@ def evaluate_design(problem: FiveBarProblem, design: GivenDesign) -> DesignEvalu
         candidate = judge_motion(problem, mech, relative, design.return_point_turns, slack)
     else:
         candidate = evaluate_candidate(problem, mech, range_slack=slack)
+    if outside:
+        candidate = dataclasses.replace(candidate, defects=[*outside, *candidate.defects])
     support = None
     if problem.support is not None:
         if candidate.relative_angle is None:
