@@ -147,10 +147,28 @@ def _study(args) -> int:
     return run_study(args, shown=sys.stderr.isatty() and not args.quiet)
 
 
+def _given_or_made(command: Command, problem, args) -> CommandResult:
+    """The job of a command whose ``--design`` sets what the problem file leaves to the design (the reverse
+    train's arm and train, the cam's base circle): its subpackage's ``evaluate_design`` of that design, or
+    ``synthesize(problem)``."""
+    with progress.step(command.step):
+        if args.design:
+            return command.package.evaluate_design(problem, command.package.load_design(args.design))
+        return command.package.synthesize(problem)
+
+
 def _derive(args) -> int:
     from transplanter.derive import run_build
 
     return run_build(["--check"] if args.check else [])
+
+
+def _examples(args) -> int:
+    from transplanter.bundled_examples import copy_examples
+
+    written = copy_examples(args.dir)
+    print(f"copied {len(written)} example files to {args.dir}")
+    return 0
 
 
 @dataclass(frozen=True)
@@ -221,10 +239,15 @@ COMMANDS = (
                                               "built mechanism (report section and figures)"}))),
     Command("reverse", "planetary non-circular gear train that makes the arm tip follow a closed path (the "
             "rice-transplanter, reverse-gear-design and cusp-pitch-curve papers): inverse kinematics, monotonicity, "
-            "gears, round trip", "reverse-design problem file (TOML, mm and degrees)", "the figures", reverse),
+            "gears, round trip", "reverse-design problem file (TOML, mm and degrees)", "the figures and design.toml",
+            reverse, run=_given_or_made,
+            flags=(Flag(("--design",), {"metavar": "DESIGN.toml", "help": "make the train with this design's arm and "
+                                        "train (a run's design.toml) instead of the file's"}),)),
     Command("cam", "a disc cam with a roller follower (translating or oscillating): motion laws, profile, pressure "
             "angle, curvature, undercut, the smallest base circle", "cam problem file (TOML, mm and degrees)",
-            "cam_profile.csv, cam.dxf, cam.svg and the figures", cam),
+            "cam_profile.csv, cam.dxf, cam.svg, design.toml and the figures", cam, run=_given_or_made,
+            flags=(Flag(("--design",), {"metavar": "DESIGN.toml", "help": "make the cam on this design's base circle "
+                                        "(a run's design.toml) instead of the file's or the smallest"}),)),
     Command("parallelogram", "onion transplanter: parallelogram planting mechanism driven by denatured Pascal limacon "
             "gears, NSGA-II and NLP polish", "parallelogram problem file (TOML, mm and degrees)",
             "figures, pareto.csv, trajectory.csv, gear drawings and animation.gif", parallelogram, run=_parallelogram,
@@ -283,6 +306,10 @@ def _parser() -> argparse.ArgumentParser:
     derive = commands.add_parser("derive", help="regenerate src/transplanter/_generated from derivations/")
     derive.add_argument("--check", action="store_true", help="exit 1 if the generated code is out of step")
     derive.set_defaults(run=_derive)
+    examples = commands.add_parser("examples", help="copy the bundled example problem files into DIR")
+    examples.add_argument("dir", metavar="DIR", help="the folder to copy them into (made if missing; a file of the "
+                          "same name there is never overwritten)")
+    examples.set_defaults(run=_examples)
     return parser
 
 

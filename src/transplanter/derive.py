@@ -12,8 +12,9 @@ CHECKOUT = Path(__file__).resolve().parents[2]
 
 def run_build(argv: list[str]) -> int:
     if not (CHECKOUT / "derivations" / "build.py").exists():
-        raise TransplanterError(f"derive: no derivations/ beside {CHECKOUT / 'src'}: it needs a source checkout "
-                                "installed with `pip install -e .[dev]`")
+        raise TransplanterError("derive needs a source checkout of transplanter (its derivations/ folder), installed "
+                                "with `pip install -e .[dev]`; the package at "
+                                f"{Path(__file__).resolve().parent} is an install without one")
     sys.path.insert(0, str(CHECKOUT))
     try:
         build = importlib.import_module("derivations.build")

@@ -22,7 +22,7 @@ from transplanter.toml_fields import shown_name
 
 #: Kind of file by suffix, as report.json lists them under "files".
 KINDS = {".json": "report", ".md": "report", ".png": "figure", ".dxf": "drawing", ".svg": "drawing",
-         ".csv": "table", ".gif": "animation", ".mp4": "animation"}
+         ".csv": "table", ".gif": "animation", ".mp4": "animation", ".toml": "design"}
 #: Prefix of every file name of a run whose result failed a check.
 FAILED_PREFIX = "FAILED-"
 

@@ -48,7 +48,7 @@ CASES = {
     "five-bar design angle in degrees": (lambda: fivebar.load_design(EXAMPLES / "vegetable_planting_table4.toml"),
                                          "carrier_angle", -28.59, "GivenDesign.carrier_angle = -28.59"),
     "five-bar design without a rod": (lambda: fivebar.load_design(EXAMPLES / "vegetable_planting_table4.toml"),
-                                      "rod_length", 0.0, "GivenDesign.rod_length = 0.0"),
+                                      "rod_length_AF", 0.0, "GivenDesign.rod_length_AF = 0.0"),
     "pick-up bend in degrees": (lambda: pickup.load_problem(EXAMPLES / "pickup_forward.toml"), "bend", 150.0,
                                 "PickupProblem.bend = 150.0"),
     "pick-up picking misspelt": (lambda: pickup.load_problem(EXAMPLES / "pickup_forward.toml"), "picking", "farthes",

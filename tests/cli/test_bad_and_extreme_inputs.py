@@ -58,7 +58,7 @@ BAD = {
     "module underflows": ("gear", "gear_ellipse.toml", (("module = 2.0", "module = 1e-300"),), (),
                           ["pair.module = 1e-300", "from 1e-09 to 1e+09 mm"]),
     "design length overflows": ("fivebar", "vegetable_planting.toml", (), ("--design", "{design}"),
-                                ["design.carrier_length = 1e+308"]),
+                                ["design.carrier_length_OA = 1e+308"]),
     "ratio formula not finite": ("gear", "gear_ratio_formula.toml",
                                  (('expression = ".*"', 'expression = "1e308*(2+cos(phi))"'),), (),
                                  ["driver.expression = '1e308*(2+cos(phi))' reaches inf", "finite ratio"]),
@@ -89,7 +89,8 @@ BAD = {
 def test_bad_input_gives_one_line_and_exit_2_before_the_work(tmp_path, capsys, monkeypatch, name):
     command, example, replacements, extra, fragments = BAD[name]
     (tmp_path / "figure.png").mkdir()
-    design = _variant(tmp_path, "vegetable_planting_table4.toml", (r"carrier_length = .*", "carrier_length = 1e308"))
+    design = _variant(tmp_path, "vegetable_planting_table4.toml",
+                      (r"carrier_length_OA = .*", "carrier_length_OA = 1e308"))
     path = _variant(tmp_path, example, *replacements) if example else str(tmp_path)
     extra = [arg.format(tmp=tmp_path, design=design) for arg in extra]
     for job in (burmester, gears, fivebar, reverse):         # checked before the work: no synthesis starts

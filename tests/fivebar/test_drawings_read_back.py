@@ -256,7 +256,7 @@ def test_fivebar_out_holds_and_lists_the_drawings_tables_and_animation(quick_com
     assert report == json.loads((out / "report.json").read_text())
     gears = [f"{gear}.{kind}" for gear in ("first_intermediate", "planet", "second_intermediate", "sun")
              for kind in ("dxf", "svg")]
-    expected = {"drawing": sorted(["linkage.dxf", *gears]), "figure": ["trajectory.png"],
+    expected = {"design": ["design.toml"], "drawing": sorted(["linkage.dxf", *gears]), "figure": ["trajectory.png"],
                 "report": ["report.json", "report.md"],
                 "table": ["pitch_curve_first_intermediate.csv", "pitch_curve_planet.csv",
                           "pitch_curve_second_intermediate.csv", "pitch_curve_sun.csv", "relative_angle.csv",

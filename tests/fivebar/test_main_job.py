@@ -283,9 +283,9 @@ def test_ranges_that_empty_the_region_are_named():
 def test_cli_exit_2_on_bad_design(tmp_path, capsys):
     bad = tmp_path / "design.toml"
     text = (ROOT / "examples/vegetable_planting_table4.toml").read_text()
-    bad.write_text(text.replace("carrier_length = 47.47", "carrier_length = -1"))
+    bad.write_text(text.replace("carrier_length_OA = 47.47", "carrier_length_OA = -1"))
     assert main(["fivebar", str(EXAMPLE), "--design", str(bad)]) == 2
-    assert "design.carrier_length" in capsys.readouterr().err
+    assert "design.carrier_length_OA" in capsys.readouterr().err
 
 
 def test_region_without_a_feasible_five_bar_lists_counts_and_closest():
@@ -299,10 +299,10 @@ def test_region_without_a_feasible_five_bar_lists_counts_and_closest():
 def test_design_whose_plates_cannot_reach_p1_is_refused(tmp_path, capsys):
     text = (ROOT / "examples/vegetable_planting_table4.toml").read_text()
     bad = tmp_path / "design.toml"
-    bad.write_text(text.replace("push_plate_length = 55.01", "push_plate_length = 5.0"))
+    bad.write_text(text.replace("push_plate_EP = 55.01", "push_plate_EP = 5.0"))
     assert main(["fivebar", str(EXAMPLE), "--design", str(bad)]) == 2
     err = capsys.readouterr().err
-    assert "design.push_plate_length = 5.0" in err and "cannot be spanned" in err and "Traceback" not in err
+    assert "design.push_plate_EP = 5.0" in err and "cannot be spanned" in err and "Traceback" not in err
 
 
 def test_an_emptied_family_says_why_dyads_inside_every_range_were_dropped(problem):

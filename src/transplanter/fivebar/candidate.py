@@ -91,6 +91,14 @@ def range_values(problem: FiveBarProblem, mech: FiveBar) -> dict:
     return {"ep": mech.ep, "fp": mech.fp, "x_e": e[..., 0], "x_f": f[..., 0]}
 
 
+def ranges_outside(problem: FiveBarProblem, mech: FiveBar, slack: float = 0.0) -> tuple[dict, dict]:
+    """The quantities ``[ranges]`` limit (``range_values``) and, per range, which mechanisms of a batch lie
+    outside it by more than ``slack`` (mm)."""
+    values = range_values(problem, mech)
+    return values, {key: ~((low - slack <= values[key]) & (values[key] <= high + slack))[:, 0]
+                    for key, (low, high) in problem.ranges.items()}
+
+
 def whole_turn(mech: FiveBar, relative: RelativeAngle, grid: np.ndarray = GRID) -> tuple:
     """Smallest closure margin over the grid, and rho' on it (one row per mechanism of a batch)."""
     state = mech.forward(grid, relative.evaluate(grid))
@@ -195,20 +203,21 @@ def _held_fit(problem: FiveBarProblem, mech: FiveBar, key_rho: np.ndarray, strok
 
 
 def judge_candidates(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool = True,
-                     hold: bool = False) -> list[Candidate]:
+                     hold: bool = False, range_slack: float = 0.0) -> list[Candidate]:
     """Every mechanism of a batch (``mech`` fields (K, 1)) judged at once: one ``Candidate`` each, in order.
 
     Each mechanism's consistent return strokes (``stroke_sequences``) are tried cheapest first with the
     least-bending relative angle through the key poses and the stroke; the first that meets the conditions is
     kept, or, when none does, the cheapest with what it breaks. With ``hold``, a mechanism none of whose
-    strokes meets them so tries them again with the held relative angle (``held_relative_angle``)."""
+    strokes meets them so tries them again with the held relative angle (``held_relative_angle``). A range
+    is met within ``range_slack`` (mm)."""
     turns = problem.carrier_turns
     rho = mech.relative_angle_at(problem.poses, turns)
     rho = rho[..., :1] + np.mod(rho - rho[..., :1], TWO_PI)
     count = len(rho)
-    values = range_values(problem, mech)
+    values, outside = ranges_outside(problem, mech, range_slack)
     ranges = problem.ranges if check_ranges else {}
-    outside = {key: ~((low <= values[key]) & (values[key] <= high))[:, 0] for key, (low, high) in ranges.items()}
+    outside = outside if check_ranges else {}
     disorder = np.any(np.diff(rho, axis=-1) <= 0, axis=-1)
     e, f = mech.plate_points(problem.poses)
     branch_changes = np.any(assembly_branch(mech.hinge_b, e, f) != mech.branch, axis=-1)
@@ -243,6 +252,6 @@ def judge_candidates(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool 
 
 
 def evaluate_candidate(problem: FiveBarProblem, mech: FiveBar, check_ranges: bool = True,
-                       hold: bool = False) -> Candidate:
+                       hold: bool = False, range_slack: float = 0.0) -> Candidate:
     """``judge_candidates`` for one mechanism."""
-    return judge_candidates(problem, mech.as_batch(), check_ranges, hold)[0]
+    return judge_candidates(problem, mech.as_batch(), check_ranges, hold, range_slack)[0]

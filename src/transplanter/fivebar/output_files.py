@@ -7,18 +7,20 @@ from pathlib import Path
 from transplanter import progress
 from transplanter.api_arguments import require_result
 from transplanter.fivebar.animation import write_animation
+from transplanter.fivebar.design_toml import write_design
 from transplanter.fivebar.drawings import write_drawings
 from transplanter.fivebar.gears_on_carrier import teeth_on_carrier
 from transplanter.fivebar.result import FiveBarResult
 
 
 def write_files(result: FiveBarResult, folder: str | Path, animation: bool = True) -> list[Path]:
-    """linkage.dxf, the CSV tables, each gear's DXF and SVG, the support cam's files and, unless ``animation`` is
-    False, animation.gif (and .mp4 where ffmpeg exists) with the teeth turning on the carrier, in ``folder``
-    (made if missing); the files written."""
+    """linkage.dxf, the CSV tables, each gear's DXF and SVG, the support cam's files, design.toml (``design_toml``)
+    and, unless ``animation`` is False, animation.gif (and .mp4 where ffmpeg exists) with the teeth turning on the
+    carrier, in ``folder`` (made if missing); the files written."""
     require_result(result, FiveBarResult, "fivebar")
     with progress.step("drawings"):
         written = write_drawings(result, folder)
+    written.append(write_design(result, folder))
     if animation:
         with progress.step("animation"):
             teeth = teeth_on_carrier(result.toothed, float(result.design.mech.carrier_length))

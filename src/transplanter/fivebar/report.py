@@ -22,6 +22,7 @@ if TYPE_CHECKING:
     from transplanter.fivebar.alternatives import ActiveBound, Alternative
     from transplanter.fivebar.evaluation import DesignEvaluation
     from transplanter.fivebar.linkage import FiveBar
+    from transplanter.fivebar.relative_angle import RelativeAngle
     from transplanter.fivebar.result import FiveBarResult
     from transplanter.fivebar.support import SupportDesign
 
@@ -38,6 +39,14 @@ def design_json(mech: FiveBar, pose1: np.ndarray) -> dict:
         "hinge_F": f.tolist(), "carrier_angle_deg": float(np.degrees(mech.carrier_angle)),
         "rod_angle_deg": float(np.degrees(np.arctan2(*(f - a)[::-1]))), "assembly_branch": mech.branch,
     }
+
+
+def relative_angle_json(relative: RelativeAngle, return_turns: np.ndarray) -> dict:
+    """The motion rho(c): rho1, the spline's control values and the carrier turns at the return points (deg), as
+    report.json and design.toml give it."""
+    return {"rho1_deg": float(np.degrees(relative.rho1)),
+            "control_values_deg": np.degrees(relative.coefficients).tolist(),
+            "return_point_turns_deg": np.degrees(return_turns).tolist()}
 
 
 def _stage_json(stage, name: str) -> dict:
@@ -135,9 +144,7 @@ def fivebar_result_json(result: FiveBarResult) -> dict:
         "alternatives": [alternative_json(a, k + 1, problem.poses[0]) for k, a in enumerate(result.alternatives)],
         "failed": [{"candidate": f.start + 1, "reason": f.reason} for f in result.failed],
         "design": design_json(design.mech, problem.poses[0]),
-        "relative_angle": {"rho1_deg": float(np.degrees(relative.rho1)),
-                           "control_values_deg": np.degrees(relative.coefficients).tolist(),
-                           "return_point_turns_deg": np.degrees(design.stroke.carrier_turns).tolist()},
+        "relative_angle": relative_angle_json(relative, design.stroke.carrier_turns),
         "gear_closure_errors": [train.stage_one.closure_error, train.stage_two.closure_error],
         "gears": toothed["gears"], "mesh_check": toothed["mesh_check"],
         "gear_train": {"correction_k": train.correction, "printed_eq12_k": k_printed,

@@ -8,16 +8,18 @@ from transplanter import progress
 from transplanter.api_arguments import require_result
 from transplanter.gears.drawings import write_drawings
 from transplanter.parallelogram.animation import write_animation
+from transplanter.parallelogram.design_toml import write_design
 from transplanter.parallelogram.result import ParallelogramResult
 from transplanter.parallelogram.tables import write_tables
 
 
 def write_files(result: ParallelogramResult, folder: str | Path, animation: bool = True) -> list[Path]:
-    """pareto.csv and trajectory.csv, the gears' CSV, SVG and DXF (with teeth) and, unless ``animation`` is False,
-    animation.gif, in ``folder`` (made if missing); the files written."""
+    """pareto.csv and trajectory.csv, the gears' CSV, SVG and DXF (with teeth), design.toml (``design_toml``) and,
+    unless ``animation`` is False, animation.gif, in ``folder`` (made if missing); the files written."""
     require_result(result, ParallelogramResult, "parallelogram")
     with progress.step("tables"):
         written = write_tables(result, folder)
+    written.append(write_design(result, folder))
     if result.gear.teeth is not None:
         with progress.step("drawings"):
             written += write_drawings(result.gear, folder)

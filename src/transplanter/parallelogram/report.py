@@ -147,6 +147,7 @@ def parallelogram_result_json(result: ParallelogramResult) -> dict:
             "start": evaluation_json(result.start),
             "published": published_json(problem_design(problem), result.published),
             "gear": gear_json(result.gear), "trajectory": trajectory_json(result.final_evaluation),
+            "design": variables_json(result.final),
             "polished": None if result.polished is None else polished_json(result.polished, problem),
             "timings_s": result.timings_s}
 

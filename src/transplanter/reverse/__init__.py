@@ -4,12 +4,17 @@ the monotonicity criterion, gears, round trip.
 
 Public API: ``load_problem`` / ``parse_problem`` (TOML file or dict, mm and degrees) ->
 ``ReverseProblem`` (mm); ``synthesize(problem)`` -> ``ReverseResult`` (``to_json()``);
-``draw_figures(result)`` -> matplotlib Figures by file stem.
+``draw_figures(result)`` -> matplotlib Figures by file stem; ``load_design`` + ``evaluate_design`` -> the
+train of a given design (the arm and train of a run's design.toml).
 """
 from transplanter.lazy_exports import lazy_exports
 
-__all__ = ["ReverseProblem", "ReverseResult", "draw_figures", "load_problem", "parse_problem", "synthesize"]
+__all__ = ["ReverseDesign", "ReverseProblem", "ReverseResult", "draw_figures", "evaluate_design", "load_design",
+           "load_problem", "parse_problem", "synthesize"]
 __getattr__, __dir__ = lazy_exports(__name__, {
+    "ReverseDesign": "design_toml",
+    "evaluate_design": "design_toml",
+    "load_design": "design_toml",
     "draw_figures": "figures",
     "ReverseProblem": "problem",
     "load_problem": "problem",

@@ -174,7 +174,8 @@ def check_closed_curve(points: np.ndarray, fail, field: str):
              "open; add the points of the return stroke)")
 
 
-def _arm(read: FieldReader, table: dict):
+def read_arm(read: FieldReader, table: dict):
+    """[arm]: pivot (mm), the lengths (mm, or None), direction (+1 counterclockwise) and branch."""
     read.keys(table, {"pivot", "carrier_length", "arm_length", "direction", "branch"}, "arm")
     pivot = read.point(table.get("pivot", [0.0, 0.0]), "arm.pivot")
     given = [key for key in ("carrier_length", "arm_length") if key in table]
@@ -189,7 +190,8 @@ def _arm(read: FieldReader, table: dict):
     return pivot, lengths, 1 if direction == "counterclockwise" else -1, branch
 
 
-def _train(read: FieldReader, table: dict):
+def read_train(read: FieldReader, table: dict):
+    """[train]: topology, split, peak_to_valley, center distances (mm, or None) and module (mm)."""
     read.keys(table, {"topology", "split", "peak_to_valley", "center_distances", "module"}, "train")
     topology = _choice(read, table, "topology", "train", tuple(TOPOLOGIES), "sun-intermediate-planet")
     split = _choice(read, table, "split", "train", TOPOLOGIES[topology], TOPOLOGIES[topology][0])
@@ -234,8 +236,8 @@ def parse_problem(data: dict, source: str = "<dict>") -> ReverseProblem:
     if "trajectory" not in data:
         read.fail("trajectory", None, "a [trajectory] table with kind and points")
     points, kind = _trajectory_points(read, data["trajectory"])
-    pivot, lengths, direction, branch = _arm(read, data.get("arm", {}))
-    topology, split, coefficient, centers, module = _train(read, data.get("train", {}))
+    pivot, lengths, direction, branch = read_arm(read, data.get("arm", {}))
+    topology, split, coefficient, centers, module = read_train(read, data.get("train", {}))
     return ReverseProblem(points=points - pivot, kind=kind, pivot=pivot, lengths=lengths, direction=direction,
                           branch=branch, topology=topology, split=split, peak_to_valley=coefficient,
                           center_distances=centers, module=module, source=source,

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from transplanter.command_result import CommandResult
@@ -101,6 +102,12 @@ class ReverseResult(CommandResult):
         from transplanter.reverse.report import to_markdown
 
         return to_markdown(self, files)
+
+    def write_files(self, folder: Path, animation: bool = True) -> list[Path]:
+        """design.toml (``design_toml``)."""
+        from transplanter.reverse.design_toml import write_design
+
+        return [write_design(self, folder)]
 
     def draw_figures(self) -> dict[str, Figure]:
         from transplanter.reverse.figures import draw_figures
