@@ -289,10 +289,10 @@ def test_cli_exit_2_on_bad_design(tmp_path, capsys):
 
 
 def test_region_without_a_feasible_five_bar_lists_counts_and_closest():
-    # 1664 is a regression pin; tests/fivebar/test_solution_region.py checks the same pairs against the one-at-a-time
+    # 1560 is a regression pin; tests/fivebar/test_solution_region.py checks the same pairs against the one-at-a-time
     # reference (fivebar.reference_region)
     problem = parse_problem(_edited(conditions__ratio=[0.95, 1.05]), "f.toml")
-    with pytest.raises(InfeasibleError, match=r"none of the 1664 five-bars .*ratio: \d+.*closest: \[B"):
+    with pytest.raises(InfeasibleError, match=r"none of the 1560 five-bars .*ratio: \d+.*closest: \[B"):
         synthesize(problem)
 
 
