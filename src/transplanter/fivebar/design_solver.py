@@ -6,7 +6,7 @@ Between grid points the quality, rho' and the curvatures may dip: each solve is 
 ``whole_turn``'s fine grid by independent forward kinematics and the library's quadrature of k, and
 solved again from the last design with the worst carrier turns added to the grid (``solve.exchange``)
 until the fine grid holds (the quality to ``QUALITY_GAP`` of t), each round from the last one's
-multipliers too (``Solver.solve``'s ``continues``: 6-13 iterations a round instead of 21-29). The added
+multipliers too (``Solver.solve``'s ``continues``: 6-22 iterations a round instead of 21-29). The added
 turns, the start's assembly branch and the start itself are inputs of a solve, not of the NLP's
 expressions, so one solver serves every start and round. The turns an exchange added are offered to
 every later start from its first solve: each row holds a condition the whole turn must meet anyway, so
