@@ -98,6 +98,9 @@ class SlsqpBaseline:
 
 
 def main():
+    print("baseline: the design NLP handed to scipy SLSQP with casadi's exact gradient and constraint Jacobian, "
+          "values and derivatives each one fused casadi Function evaluated once per point (per candidate); "
+          "the main job has a target, not a baseline (bench_main_job.py compares it with a bare start-up)")
     problem = load_problem(EXAMPLE)
     start = time.perf_counter()
     region = solution_region(problem)

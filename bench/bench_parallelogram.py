@@ -29,6 +29,8 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def main():
+    print("baseline: the same objectives and constraints scored one design per call, as a per-individual loop "
+          "would (NSGA-II and the polish have targets, not baselines)")
     problem = dataclasses.replace(load_problem(ROOT / "examples/onion_transplanter.toml"), population=100,
                                   generations=100)
     import pymoo.algorithms.moo.nsga2  # noqa: F401  (pymoo's first import takes seconds: not the search's time)

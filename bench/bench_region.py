@@ -89,6 +89,7 @@ def without_ranges(problem: FiveBarProblem):
 
 
 def main():
+    print("baseline: the former loop that judged one five-bar at a time (fivebar.reference_region), same samples")
     problem = load_problem(EXAMPLE)
     default = parse_problem({**read_toml(EXAMPLE), "region": {}}, "default").samples
     scaling(problem)

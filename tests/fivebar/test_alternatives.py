@@ -13,6 +13,7 @@ import pytest
 from tests.api.test_python_api import EXAMPLES, check_figures
 from transplanter.cli import main
 from transplanter.errors import ProblemError, SolverError
+from transplanter.fivebar import alternatives, lanes
 from transplanter.fivebar.alternatives import (
     ANGLE_TIE,
     MERGE_TOLERANCE,
@@ -238,27 +239,49 @@ def test_figures_name_hinges_gears_and_show_the_trade_off(run):
                            f"planet (driven, stage 2), {two} teeth"]
 
 
-def test_a_start_whose_curves_cannot_be_held_to_shaper_hollows_fails_with_the_unheld_numbers(run):
+def test_a_start_whose_curves_cannot_be_held_to_shaper_hollows_fails_with_the_unheld_numbers(run, monkeypatch):
     """When IPOPT fails with the curves held to a kappa >= -CONCAVITY_LIMIT, ``refine`` does not hand on a
-    design with hollows no cutter makes: it raises, naming the status and the least a kappa of each curve of
-    the design made without the hold (here computed again, by its own solve), and ``refine_all`` lists the
-    start as failed with that reason."""
+    design with hollows no cutter makes: it raises, naming the status and the hold. Where every start failed,
+    ``refine_all`` lists each such start with the least a kappa of each curve of the design made without the
+    hold (here computed again, by its own solve); where a start gave a design, that re-solve is not made."""
     result, _ = run
     problem, start = result.problem, result.region.feasible[0]
+    monkeypatch.setattr(lanes, "FORKS", False)       # every solve in this process, where it is counted
 
     class HeldFails(DesignSolver):
+        unheld_solves = 0
+
         def solve(self, start, added_turns=(), warm=None, curvature_floor=None, iteration_limit=None,
-                  closure_in_quality=False):
+                  closure_in_quality=False, continues=False):
             if curvature_floor is not None:
                 raise SolverError("held", "Infeasible_Problem_Detected")
-            return super().solve(start, added_turns, warm, curvature_floor, iteration_limit, closure_in_quality)
+            HeldFails.unheld_solves += 1
+            return super().solve(start, added_turns, warm, curvature_floor, iteration_limit, closure_in_quality,
+                                 continues)
 
     unheld = DesignSolver(problem)._exchange(start, None)
     with pytest.raises(HollowError) as caught:
         HeldFails(problem).refine(start)
     reason = caught.value.reason
     assert "Infeasible_Problem_Detected" in reason and f"{-CONCAVITY_LIMIT:g}" in reason
-    for curve, value in zip(CURVES, unheld.min_curvature, strict=True):
-        assert f"{curve} {value:.3f}" in reason
+    assert HeldFails.unheld_solves == 0
     found, failed, _ = refine_all(problem, HeldFails(problem), [start])
-    assert found == [] and failed == [Failure(0, reason)]
+    assert found == [] and [(f.start, f.held) for f in failed] == [(0, True)]
+    assert failed[0].reason.startswith(f"{reason}; without that hold: ")
+    for curve, value in zip(CURVES, unheld.min_curvature, strict=True):
+        assert f"{curve} {value:.3f}" in failed[0].reason
+    assert HeldFails.unheld_solves > 0
+
+    class SecondHeldFails(HeldFails):
+        """The first start is refined as the module's design; the second fails with the hold."""
+
+        def refine(self, candidate):
+            if candidate is start:
+                return result.alternatives[0].design
+            return super().refine(candidate)
+
+    HeldFails.unheld_solves = 0
+    monkeypatch.setattr(alternatives, "DesignSolver", SecondHeldFails)     # lane 1's solver too
+    found, failed, _ = refine_all(problem, SecondHeldFails(problem), result.region.feasible[:2])
+    assert len(found) == 1 and [(f.start, f.held, f.reason) for f in failed] == [(1, True, reason)]
+    assert HeldFails.unheld_solves == 0

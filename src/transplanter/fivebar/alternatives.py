@@ -141,10 +141,12 @@ class Alternative:
 
 @dataclass(frozen=True)
 class Failure:
-    """A feasible region candidate (index into ``region.feasible``) whose refinement failed, and why."""
+    """A feasible region candidate (index into ``region.feasible``) whose refinement failed, and why;
+    ``held``: IPOPT failed with the pitch curves held to shaper hollows (``DesignSolver.without_hold``)."""
 
     start: int
     reason: str
+    held: bool = False
 
 
 def _folded_angle(u: np.ndarray, v: np.ndarray) -> np.ndarray:
@@ -342,8 +344,8 @@ def rank(alternatives: list[Alternative], size: float) -> list[Alternative]:
 def refine_all(problem: FiveBarProblem, solver: DesignSolver, candidates: list[Candidate],
                progress: Progress | None = None) -> tuple[list[Alternative], list[Failure], list[float]]:
     """Refine every candidate in the fixed lanes of ``fivebar.lanes``, lane 0 on ``solver`` (built for
-    ``problem``); the ranked, merged alternatives, the failures (by start), and the wall time of each
-    refinement (s)."""
+    ``problem``); the ranked, merged alternatives, the failures (by start; where every start failed, each
+    held one with ``DesignSolver.without_hold``'s numbers), and the wall time of each refinement (s)."""
     outcomes: list[Alternative | Failure | None] = [None] * len(candidates)
     seconds = [0.0] * len(candidates)
 
@@ -351,7 +353,7 @@ def refine_all(problem: FiveBarProblem, solver: DesignSolver, candidates: list[C
         try:
             return assess(problem, lane_solver.refine(candidates[index]), index)
         except HollowError as error:
-            return Failure(index, error.reason)
+            return Failure(index, error.reason, held=True)
         except SolverError as error:
             return Failure(index, f"the design NLP did not converge: {error.status}")
 
@@ -366,6 +368,9 @@ def refine_all(problem: FiveBarProblem, solver: DesignSolver, candidates: list[C
     refine_in_lanes(len(candidates), refine, solver, lambda: DesignSolver(problem), finished)
     found = [outcome for outcome in outcomes if isinstance(outcome, Alternative)]
     failed = [outcome for outcome in outcomes if isinstance(outcome, Failure)]
+    if not found:       # the failures are the whole answer: each held one says what its curves are unheld
+        failed = [replace(f, reason=f"{f.reason}; {solver.without_hold(candidates[f.start])}") if f.held else f
+                  for f in failed]
     size = reach(problem)
     merged = merge([_other_strokes(problem, solver, candidates, alternative) for alternative in merge(found, size)],
                    size)

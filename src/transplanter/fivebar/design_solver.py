@@ -5,11 +5,12 @@ another pass of P.
 Between grid points the quality, rho' and the curvatures may dip: each solve is checked on
 ``whole_turn``'s fine grid by independent forward kinematics and the library's quadrature of k, and
 solved again from the last design with the worst carrier turns added to the grid (``solve.exchange``)
-until the fine grid holds (the quality to ``QUALITY_GAP`` of t). The added turns, the start's assembly
-branch and the start itself are inputs of a solve, not of the NLP's expressions, so one solver serves
-every start and round. The turns an exchange added are offered to every later start from its first
-solve: each row holds a condition the whole turn must meet anyway, so they change no solution, and
-starts that end in the same mechanism need one round, not three.
+until the fine grid holds (the quality to ``QUALITY_GAP`` of t), each round from the last one's
+multipliers too (``Solver.solve``'s ``continues``: 6-22 iterations a round instead of 21-29). The added
+turns, the start's assembly branch and the start itself are inputs of a solve, not of the NLP's
+expressions, so one solver serves every start and round. The turns an exchange added are offered to
+every later start from its first solve: each row holds a condition the whole turn must meet anyway, so
+they change no solution, and starts that end in the same mechanism need one round, not three.
 """
 from __future__ import annotations
 
@@ -49,7 +50,8 @@ STALL = StallRule(violation=1e-3, iterations=100)
 
 
 class HollowError(SolverError):
-    """A start whose pitch curves cannot be held to hollows a shaper cuts; ``reason`` says with what numbers."""
+    """A start from which IPOPT finds no design with the pitch curves held to hollows a shaper cuts;
+    ``reason`` says how it ended (``DesignSolver.without_hold`` adds what the curves are without the hold)."""
 
     def __init__(self, reason: str, status: str):
         super().__init__(reason, status)
@@ -73,10 +75,11 @@ class DesignSolver:
 
     def solve(self, start: Candidate, added_turns=(), warm: DesignSolution | None = None,
               curvature_floor: float | None = None, iteration_limit: int | None = None,
-              closure_in_quality: bool = False) -> DesignSolution:
+              closure_in_quality: bool = False, continues: bool = False) -> DesignSolution:
         """Solve with the start's assembly branch and the exchange points ``added_turns`` (rad), from the
-        start's own dimensions or from the design ``warm`` (a previous round's), with the four curves held to
-        a kappa >= ``curvature_floor`` (None: the rows off); ``iteration_limit`` stops IPOPT early."""
+        start's own dimensions or from the design ``warm`` (a previous round's, and its multipliers too when
+        the solve ``continues`` it: the same NLP with rows added), with the four curves held to a kappa >=
+        ``curvature_floor`` (None: the rows off); ``iteration_limit`` stops IPOPT early."""
         added_turns = np.asarray(added_turns, float)
         while len(added_turns) > self.nlp.capacity:
             self._build(2 * self.nlp.capacity)
@@ -91,22 +94,29 @@ class DesignSolver:
         solution = self.solver.solve(
             values, nlp.bounds(len(added_turns), curvature_floor, float(values["least_curvature"]), closure_in_quality),
             nlp.parameters(branch, added_turns), iteration_limit,
-            failure=f"{self.problem.source}: the design NLP did not converge from the region candidate")
+            failure=f"{self.problem.source}: the design NLP did not converge from the region candidate",
+            continues=warm.solved if continues and warm is not None and warm.solved is not None
+            and warm.solved.layout is nlp.layout else None)
         return nlp.design(solution, branch, curvature_floor)
 
     def refine(self, start: Candidate) -> DesignSolution:
         """The largest smallest transmission angle from ``start`` with every pitch curve a shaper can cut:
-        a kappa >= -``CONCAVITY_LIMIT``. If IPOPT fails there, a ``HollowError`` gives the least a kappa of
-        the design made without the hold (a hollow that only gears many times the mechanism's size could
-        carry)."""
+        a kappa >= -``CONCAVITY_LIMIT``; a ``HollowError`` naming IPOPT's end when it fails there."""
         try:
             both = self._exchange(start, -CONCAVITY_LIMIT, closure_in_quality=True)
             return self._exchange(start, -CONCAVITY_LIMIT, warm=both)
         except SolverError as error:
-            unheld = curvature_text(self._exchange(start, None))
             raise HollowError(f"IPOPT ended with {error.status} with the pitch curves held to a kappa >= "
-                              f"{-CONCAVITY_LIMIT:g} (hollows a shaper cuts); without that hold: {unheld}",
-                              error.status) from None
+                              f"{-CONCAVITY_LIMIT:g} (hollows a shaper cuts)", error.status) from None
+
+    def without_hold(self, start: Candidate) -> str:
+        """What ``start``'s design is without the curvature hold that ``refine`` failed with: the least a kappa
+        of each curve (a hollow that only gears many times the mechanism's size could carry), or how IPOPT
+        ended. A re-solve that only words a message: asked for where no start gave a design."""
+        try:
+            return f"without that hold: {curvature_text(self._exchange(start, None))}"
+        except SolverError as error:
+            return f"without that hold IPOPT ended with {error.status}"
 
     def make_convex(self, start: Candidate, design: DesignSolution) -> DesignSolution:
         """``design`` (``refine``'s from ``start``) with convex pitch curves (rack-cut), when IPOPT gets
@@ -142,7 +152,8 @@ class DesignSolver:
         floor = self.problem.min_closure_margin
 
         def solve(turns: np.ndarray, previous: DesignSolution | None) -> DesignSolution:
-            return self.solve(start, turns, previous, curvature_floor, iteration_limit, closure_in_quality)
+            return self.solve(start, turns, previous, curvature_floor, iteration_limit, closure_in_quality,
+                              continues=previous is not warm)
 
         def worst_turns(solution: DesignSolution) -> np.ndarray:
             check = whole_turn(solution.mech, solution.relative_angle)
@@ -158,7 +169,8 @@ class DesignSolver:
 
         solution, added = exchange(solve, worst_turns, self.exchange_turns, EXCHANGE_ROUNDS, warm)
         self.exchange_turns = added[-(self.nlp.capacity // 2):]     # room left for a new start's own rounds
-        return solution
+        # the multipliers serve this exchange's rounds only; a lane's result leaves them (and the NLP) behind
+        return dataclasses.replace(solution, solved=None)
 
 
 def curvature_text(design: DesignSolution) -> str:

@@ -44,7 +44,7 @@ times the pure max-min design's bending.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import casadi as ca
 import numpy as np
@@ -123,6 +123,8 @@ class DesignSolution:
     poses, carrier_turns : ndarray, shapes (4, 3) and (4,)
         The key poses (mm, rad) and carrier turns (rad) the design meets: the problem's, or those it chose
         inside their bands.
+    solved : Solution or None
+        The solve layer's solution it was read from, while an exchange continues it from its multipliers.
     """
 
     mech: FiveBar
@@ -146,6 +148,7 @@ class DesignSolution:
     carrier_turns: np.ndarray
     curvature_floor: float | None = None
     convexity_note: str = ""
+    solved: Solution | None = field(default=None, repr=False, compare=False)
 
 
 def reach(problem: FiveBarProblem) -> float:
@@ -259,7 +262,7 @@ class DesignNLP:
             min_curvature=tuple(float(v) for v in np.fmin(check["curvature"].min(axis=1), knot_sides.min(axis=1))),
             active_bounds=solution.active_bounds(), poses=poses, carrier_turns=key_turns,
             curvature_floor=curvature_floor,
-            convexity_note="" if curvature_floor is not None else "curvature rows off")
+            convexity_note="" if curvature_floor is not None else "curvature rows off", solved=solution)
 
 
 def key_pose_entries(nlp: NLPBuilder, problem: FiveBarProblem, unit: float) -> np.ndarray:
