@@ -313,6 +313,12 @@ def _parser() -> argparse.ArgumentParser:
     return parser
 
 
+def command_defaults(name: str, file: str) -> argparse.Namespace:
+    """The arguments ``transplanter <name> FILE`` runs with when no option is given (each case of a study runs
+    with them, so a command's new option reaches the study with its default)."""
+    return _parser().parse_args([name, file])
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run a command; its warnings (a pose in radians, a figure that cannot be laid out) are printed one line each
     after a run that exits 0, and folded into the one line of a run that does not. Ctrl-C and SIGTERM end it

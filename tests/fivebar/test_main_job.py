@@ -308,10 +308,13 @@ def test_design_whose_plates_cannot_reach_p1_is_refused(tmp_path, capsys):
 def test_an_emptied_family_says_why_dyads_inside_every_range_were_dropped(problem):
     order = "order (relative angle not increasing through the key poses)"
     family = ChainFamily(synthesis=None, fixed=np.zeros((2, 2)), moving=np.ones((2, 2)), kept=np.zeros(2, bool),
-                         reasons={"ranges.fp": 0, order: 2}, shortfalls={"fp": np.zeros(2)})
+                         reasons={"ranges.fp": 0, order: 2}, shortfalls={"fp": np.zeros(2)},
+                         measures={"fp": np.full(2, 60.0)})
     with pytest.raises(InfeasibleError, match=r"F \(1\.0, 1\.0\) within the ranges, dropped by order") as error:
         _empty_family(problem, "3R chain O-A-F", family)
     assert "outside by" not in str(error.value)
+    assert str(error.value).endswith(f"what would work: the closest lie within the ranges; {order} drops them: move "
+                                     "the key poses")
 
 
 def test_a_region_radius_that_traces_no_dyad_is_named():

@@ -48,7 +48,7 @@ def test_region_equals_the_one_at_a_time_reference_for_every_candidate(problem):
     reference.sort(key=lambda c: (not c.feasible, -np.nan_to_num(c.min_margin, nan=-np.inf)))
     region = solution_region(problem)
     assert len(region.candidates) == len(reference) == 1560
-    assert sum(c.stroke is not None for c in reference) > 100 and len(region.feasible) == 17
+    assert sum(c.stroke is not None for c in reference) > 100 and len(region.feasible) == 18
     for old, new in zip(reference, region.candidates, strict=True):
         _same_candidate(old, new)
 

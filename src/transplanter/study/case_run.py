@@ -6,7 +6,6 @@ and kept there by the mechanisms' own caches, so the worker's next case reuses t
 """
 from __future__ import annotations
 
-import argparse
 import time
 import warnings
 from typing import Any
@@ -29,7 +28,7 @@ def run_case(command_name: str, problem: dict, source: str) -> dict[str, Any]:
     None for an error the command does not expect, a bug), its one-line error, the requirement that binds,
     the seconds it took and its report (report.json's content). Errors are recorded without the ``source``
     they start with."""
-    from transplanter.cli import COMMANDS
+    from transplanter.cli import COMMANDS, command_defaults
 
     command = next(c for c in COMMANDS if c.name == command_name)
     start = time.perf_counter()
@@ -38,7 +37,7 @@ def run_case(command_name: str, problem: dict, source: str) -> dict[str, Any]:
         warnings.simplefilter("always")
         try:
             result = command.run(command, command.package.parse_problem(problem, source),
-                                 argparse.Namespace(design=None, pick=None))
+                                 command_defaults(command_name, source))
         except TransplanterError as error:
             status, exit_class, message = NO_RESULT, 2, one_line(str(error).removeprefix(f"{source}: "))
         except Exception as error:      # a bug of the job: recorded, and the study goes on
