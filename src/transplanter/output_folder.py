@@ -20,7 +20,7 @@ from transplanter.errors import ProblemError
 
 #: Kind of file by suffix, as report.json lists them under "files".
 KINDS = {".json": "report", ".md": "report", ".png": "figure", ".dxf": "drawing", ".svg": "drawing",
-         ".csv": "table", ".gif": "animation", ".mp4": "animation"}
+         ".csv": "table", ".gif": "animation", ".mp4": "animation", ".pdf": "drawing", ".step": "solid"}
 #: Prefix of every file name of a run whose result failed a check.
 FAILED_PREFIX = "FAILED-"
 

@@ -13,6 +13,7 @@ from transplanter.fivebar.alternatives import RANKING_RULE
 from transplanter.fivebar.key_pose_bands import QUANTITIES
 from transplanter.fivebar.load_report import load_json, load_markdown
 from transplanter.fivebar.nlp import BENDING_WEIGHT
+from transplanter.fivebar.shaft_report import shafts_json, shafts_markdown
 from transplanter.trains.planetary import printed_correction
 from transplanter.trains.report import toothed_train_json, train_size_json, worst_mesh
 from transplanter.trains.toothed_train import TrainSize
@@ -164,6 +165,7 @@ def fivebar_result_json(result: FiveBarResult) -> dict:
                           for trial in result.band_trials],
         **result.pressure.to_json(),
         "load": load_json(result.loads),
+        "shafts": shafts_json(result.shafts),
         **support,
         "timings_s": result.timings_s,
     }
@@ -273,6 +275,7 @@ def to_markdown(result: FiveBarResult, files: Sequence[str] = ()) -> str:
     lines += ["## Loads (quasi-static, frictionless hinges, a lossless train)", "", *load_markdown(result.loads), "",
               result.pressure.summary(), ""]
     lines += support_markdown(result.support)
+    lines += ["## Shafts and bores", "", *shafts_markdown(result.shafts), ""]
     lines += [f"![{name}]({name})" for name in files if name.endswith(".png")]
     return "\n".join(lines) + "\n"
 

@@ -15,6 +15,7 @@ from transplanter.fivebar.kinetostatics import Kinetostatics
 from transplanter.fivebar.nlp import DesignSolution
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import Region
+from transplanter.fivebar.shafts import ShaftDesign, design_shafts
 from transplanter.fivebar.support import SupportDesign
 from transplanter.fivebar.verification import Verification
 from transplanter.trains.planetary import PlanetaryTrain
@@ -92,11 +93,16 @@ class FiveBarResult(CommandResult):
         return self.toothed.train
 
     @property
+    def shafts(self) -> ShaftDesign:
+        """Shaft and hinge-pin diameters and each gear's keyed bore (``fivebar.shafts``)."""
+        return design_shafts(self.problem.shafts, self.toothed, self.loads)
+
+    @property
     def failures(self) -> list[str]:
-        """Every check of the built mechanism it fails: verification, the gears' mesh and pressure angle, then the
-        support."""
+        """Every check of the built mechanism it fails: verification, the gears' mesh and pressure angle, the
+        support, then the gears' bores."""
         return [*self.verification.failures, *self.toothed.failures, *self.pressure.failures(),
-                *(self.support.failures if self.support else [])]
+                *(self.support.failures if self.support else []), *self.shafts.failures]
 
     @property
     def chosen(self) -> Alternative:
