@@ -14,6 +14,7 @@ from transplanter.fivebar.key_pose_bands import QUANTITIES
 from transplanter.fivebar.load_report import load_json, load_markdown
 from transplanter.fivebar.nlp import BENDING_WEIGHT
 from transplanter.fivebar.shaft_report import shafts_json, shafts_markdown
+from transplanter.fivebar.solid_files import solids_note
 from transplanter.trains.planetary import printed_correction
 from transplanter.trains.report import toothed_train_json, train_size_json, worst_mesh
 from transplanter.trains.toothed_train import TrainSize
@@ -166,6 +167,7 @@ def fivebar_result_json(result: FiveBarResult) -> dict:
         **result.pressure.to_json(),
         "load": load_json(result.loads),
         "shafts": shafts_json(result.shafts),
+        "solids": solids_note(result),
         **support,
         "timings_s": result.timings_s,
     }
@@ -275,7 +277,7 @@ def to_markdown(result: FiveBarResult, files: Sequence[str] = ()) -> str:
     lines += ["## Loads (quasi-static, frictionless hinges, a lossless train)", "", *load_markdown(result.loads), "",
               result.pressure.summary(), ""]
     lines += support_markdown(result.support)
-    lines += ["## Shafts and bores", "", *shafts_markdown(result.shafts), ""]
+    lines += ["## Shafts and bores", "", *shafts_markdown(result.shafts), f"- {solids_note(result)}", ""]
     lines += [f"![{name}]({name})" for name in files if name.endswith(".png")]
     return "\n".join(lines) + "\n"
 
