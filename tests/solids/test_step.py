@@ -24,8 +24,14 @@ def _read_back(solid, path: Path):
     return bd.import_step(str(path))
 
 
-def _top_face_holes(solid) -> int:
-    return len(solid.faces().sort_by(bd.Axis.Z)[-1].inner_wires())
+def _check_solid(solid, outline: np.ndarray, area: float, height: float, holes: int):
+    """Volume = area x height within 0.1 %, the outline's bounding box and ``height``, ``holes`` through the top."""
+    assert solid.volume == pytest.approx(area * height, rel=1e-3)
+    box = solid.bounding_box()
+    assert np.allclose([box.min.X, box.min.Y, box.max.X, box.max.Y], [*outline.min(axis=0), *outline.max(axis=0)],
+                       atol=1e-6)
+    assert abs(box.size.Z - height) < 1e-9
+    assert len(solid.faces().sort_by(bd.Axis.Z)[-1].inner_wires()) == holes
 
 
 def _keyed_hole_area(bore: KeyedBore) -> float:
@@ -43,12 +49,7 @@ def test_plate_solid_has_the_outline_less_its_holes_times_its_thickness(tmp_path
     solid = _read_back(plate_solid(part, thickness), tmp_path / "carrier.step")
     outline = part.outline()
     area = shapely.Polygon(outline).area - sum(np.pi * (hole.diameter / 2) ** 2 for hole in holes)
-    assert solid.volume == pytest.approx(area * thickness, rel=1e-3)
-    box = solid.bounding_box()
-    assert np.allclose([box.min.X, box.min.Y, box.max.X, box.max.Y], [*outline.min(axis=0), *outline.max(axis=0)],
-                       atol=1e-6)
-    assert abs(box.size.Z - thickness) < 1e-9
-    assert _top_face_holes(solid) == 3
+    _check_solid(solid, outline, area, thickness, 3)
 
 
 def test_gear_solid_has_the_tooth_outline_less_its_keyed_bore_times_its_face_width(tmp_path):
@@ -59,10 +60,4 @@ def test_gear_solid_has_the_tooth_outline_less_its_keyed_bore_times_its_face_wid
     gear = GearDrawing("driver", outline, outline, bore, TitleBlock("driver", 1, "t"))
     width = 10 * module
     solid = _read_back(gear_solid(gear, width), tmp_path / "driver.step")
-    area = shapely.Polygon(outline).area - _keyed_hole_area(bore)
-    assert solid.volume == pytest.approx(area * width, rel=1e-3)
-    box = solid.bounding_box()
-    assert np.allclose([box.min.X, box.min.Y, box.max.X, box.max.Y], [*outline.min(axis=0), *outline.max(axis=0)],
-                       atol=1e-6)
-    assert abs(box.size.Z - width) < 1e-9
-    assert _top_face_holes(solid) == 1
+    _check_solid(solid, outline, shapely.Polygon(outline).area - _keyed_hole_area(bore), width, 1)
