@@ -3,6 +3,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -92,9 +93,9 @@ class FiveBarResult(CommandResult):
         """The pitch curves of the two gear stages and the correction factor k."""
         return self.toothed.train
 
-    @property
+    @cached_property
     def shafts(self) -> ShaftDesign:
-        """Shaft and hinge-pin diameters and each gear's keyed bore (``fivebar.shafts``)."""
+        """Shaft and hinge-pin diameters and each gear's keyed bore (``fivebar.shafts``), worked out once."""
         return design_shafts(self.problem.shafts, self.toothed, self.loads)
 
     @property

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from transplanter.fivebar.gears_on_carrier import gears_on_carrier, tooth_outlines
+from transplanter.fivebar.gears_on_carrier import gears_on_carrier
 from transplanter.fivebar.kinetostatics import Kinetostatics
 from transplanter.fivebar.shaft_spec import ShaftSpec
 from transplanter.shafts.keyed_bore import KeyedBore
@@ -73,10 +73,9 @@ def design_shafts(spec: ShaftSpec, toothed: ToothedTrain, loads: Kinetostatics) 
     pin = spec.diameters_mm.get("hinge")
     shafts["hinge"] = Shaft("hinge", float(STANDARD_DIAMETERS[0]) if pin is None else pin, None,
                             "smallest standard" if pin is None else "given")
-    outlines = tooth_outlines(toothed)
-    bores, roots = {}, {}
+    roots = {gear.name.replace(" ", "_"): float(np.linalg.norm(gear.outline, axis=1).min()) for gear in toothed.gears}
+    bores = {}
     for gear in gears_on_carrier(toothed.train, toothed.carrier_length):
         shaft = SHAFT_OF_GEAR[gear.name]
         bores[gear.name] = KeyedBore.for_shaft(shafts[shaft].diameter, gear.contact_direction, f"shafts.{shaft}_mm")
-        roots[gear.name] = float(np.linalg.norm(outlines[gear.name], axis=1).min())
     return ShaftDesign(shafts, bores, roots, toothed.module)
