@@ -22,8 +22,8 @@ def shafts_json(design: ShaftDesign) -> dict:
 
 def shafts_markdown(design: ShaftDesign) -> list[str]:
     """Lines of report.md: the shafts, then each gear's bore and the rim left under its teeth."""
-    lines = [f"- {name} shaft: {shaft.diameter:g} mm ({shaft.rule}"
-             + (f", peak torque {shaft.peak_torque_nm:.3f} N m)" if shaft.peak_torque_nm is not None else ")")
+    lines = [f"- {'hinge pins' if name == 'hinge' else name + ' shaft'}: {shaft.diameter:g} mm ({shaft.rule}"
+             + (f", {shaft.peak_torque_nm:.3f} N m at peak)" if shaft.peak_torque_nm is not None else ")")
              for name, shaft in design.shafts.items()]
     lines += [f"- {name.replace('_', ' ')}: bore {bore.diameter:g} mm, key {bore.key.width:g} x {bore.key.height:g} "
               f"(DIN 6885-1), keyway to {bore.reach:.3f} mm, root {design.roots[name]:.3f} mm, rim "

@@ -69,10 +69,10 @@ def design_shafts(spec: ShaftSpec, toothed: ToothedTrain, loads: Kinetostatics) 
         peak = float(np.abs(torque).max())
         given = spec.diameters_mm.get(name)
         shafts[name] = Shaft(name, given if given is not None else diameter_for_torque(peak), peak,
-                             "given" if given is not None else "peak torque")
+                             "given" if given is not None else "by peak torque")
     pin = spec.diameters_mm.get("hinge")
     shafts["hinge"] = Shaft("hinge", float(STANDARD_DIAMETERS[0]) if pin is None else pin, None,
-                            "smallest standard" if pin is None else "given")
+                            "the smallest standard diameter" if pin is None else "given")
     roots = {gear.name.replace(" ", "_"): float(np.linalg.norm(gear.outline, axis=1).min()) for gear in toothed.gears}
     bores = {}
     for gear in gears_on_carrier(toothed.train, toothed.carrier_length):
