@@ -12,7 +12,7 @@ from transplanter.drawing.plate_sheet import Hole, PlatePart
 from transplanter.drawing.sheet import TitleBlock
 from transplanter.geometry.outline_thinning import thinned
 from transplanter.shafts.keyed_bore import KeyedBore
-from transplanter.solids.step import gear_solid, plate_solid, write_step
+from transplanter.solids.step import FIXED_TIME, gear_solid, plate_solid, write_step
 
 bd = pytest.importorskip("build123d")
 
@@ -61,3 +61,12 @@ def test_gear_solid_has_the_tooth_outline_less_its_keyed_bore_times_its_face_wid
     width = 10 * module
     solid = _read_back(gear_solid(gear, width), tmp_path / "driver.step")
     _check_solid(solid, outline, shapely.Polygon(outline).area - _keyed_hole_area(bore), width, 1)
+
+
+def test_the_same_part_gives_the_same_step_bytes(tmp_path):
+    part = PlatePart("rod", (Hole("A", np.zeros(2), 10.0), Hole("F", np.array([80.0, 0.0]), 8.0)), (("A", "F"),),
+                     TitleBlock("rod", 1, "t"))
+    first = write_step(plate_solid(part, 5.0), tmp_path / "first.step")
+    second = write_step(plate_solid(part, 5.0), tmp_path / "second.step")
+    assert first.read_bytes() == second.read_bytes()
+    assert f"'{FIXED_TIME}'" in first.read_text().split("ENDSEC;")[0]

@@ -8,6 +8,7 @@ pin's diameter thick.
 from __future__ import annotations
 
 import importlib.util
+import re
 from pathlib import Path
 
 import numpy as np
@@ -18,6 +19,9 @@ from transplanter.shafts.keyed_bore import KeyedBore
 
 FACE_WIDTH_MODULES = 10.0
 PLATE_THICKNESS_PIN_DIAMETERS = 0.75
+#: The time stamp every STEP header gets, the one ezdxf's fixed metadata gives DXF files.
+FIXED_TIME = "2000-01-01T00:00:00"
+_STAMP = re.compile(r"(FILE_NAME\('[^']*',)'[^']*'")
 MISSING_NOTE = "STEP solids not written: they need the optional extra transplanter[cad] (build123d)"
 
 
@@ -60,7 +64,11 @@ def plate_solid(part: PlatePart, thickness: float):
 
 
 def write_step(solid, path: Path) -> Path:
+    """The solid as STEP, its header's time stamp fixed (``FIXED_TIME``): the same part gives the same bytes."""
     import build123d as bd
 
     bd.export_step(solid, str(path))
+    text = path.read_text()
+    header_end = text.index("ENDSEC;")
+    path.write_text(_STAMP.sub(rf"\g<1>'{FIXED_TIME}'", text[:header_end], count=1) + text[header_end:])
     return path
