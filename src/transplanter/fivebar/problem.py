@@ -185,6 +185,8 @@ class FiveBarProblem:
             check.fail("support", self.support, "None or a fivebar.support_problem.SupportSpec")
         if not isinstance(self.load, LoadSpec):
             check.fail("load", self.load, "a fivebar.load_spec.LoadSpec")
+        if not isinstance(self.shafts, ShaftSpec):
+            check.fail("shafts", self.shafts, "a fivebar.shaft_spec.ShaftSpec")
         if self.pose_bands is not None and not isinstance(self.pose_bands, PoseBands):
             check.fail("pose_bands", self.pose_bands, "None or a fivebar.key_pose_bands.PoseBands")
         if not isinstance(self.requirements, Requirements):
