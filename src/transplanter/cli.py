@@ -230,7 +230,8 @@ COMMANDS = (
             "gear problem file (TOML, mm and degrees)", "CSV/SVG/DXF drawings and figures", gears),
     Command("fivebar", "five-bar seedling pushing mechanism with its planetary gear train (Wang et al. 2025): region, "
             "precise design, gears, verification", "five-bar problem file (TOML, mm and degrees)",
-            "the figures, linkage.dxf, CSV tables and animation.gif", fivebar, run=_fivebar, animation="animation.gif",
+            "the figures, part and assembly drawings (DXF, PDF, parts.csv), CSV tables and animation.gif", fivebar,
+            run=_fivebar, animation="animation.gif",
             flags=(Flag(("--design",), {"metavar": "DESIGN.toml",
                                         "help": "evaluate this given design instead of designing one"}, exclusive=True),
                    Flag(("--pick",), {"metavar": "N", "type": int, "help": "build alternative N of the ranked "

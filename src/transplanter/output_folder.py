@@ -22,7 +22,8 @@ from transplanter.toml_fields import shown_name
 
 #: Kind of file by suffix, as report.json lists them under "files".
 KINDS = {".json": "report", ".md": "report", ".png": "figure", ".dxf": "drawing", ".svg": "drawing",
-         ".csv": "table", ".gif": "animation", ".mp4": "animation", ".toml": "design"}
+         ".csv": "table", ".gif": "animation", ".mp4": "animation", ".toml": "design", ".pdf": "drawing",
+         ".step": "solid"}
 #: Prefix of every file name of a run whose result failed a check.
 FAILED_PREFIX = "FAILED-"
 

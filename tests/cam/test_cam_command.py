@@ -45,9 +45,10 @@ def test_json_fields_and_drawings(tmp_path, run):
     assert _strict_json((out / "report.json").read_text()) == report
     document = ezdxf.readfile(out / "cam.dxf")
     assert document.units == ezdxf.units.MM
-    layers = {entity.dxf.layer: entity for entity in document.modelspace()}
-    assert set(layers) == {"PROFILE", "PITCH", "BASE_CIRCLE", "BORE"}
-    assert layers["BASE_CIRCLE"].dxf.radius == 30.0
+    space = document.modelspace()
+    assert {entity.dxf.layer for entity in space} == {"OUTLINE", "PITCH", "CENTERLINES", "BORE", "DIMENSIONS",
+                                                       "TEXT"}
+    assert [circle.dxf.radius for circle in space.query('CIRCLE[layer=="CENTERLINES"]')] == [30.0]  # base circle
     table = np.loadtxt(out / "cam_profile.csv", delimiter=",", skiprows=1)
     header = (out / "cam_profile.csv").read_text().splitlines()[0].split(",")
     profile = table[:, [header.index("profile_x_mm"), header.index("profile_y_mm")]]

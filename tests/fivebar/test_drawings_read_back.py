@@ -14,8 +14,10 @@ from PIL import Image, ImageChops
 from tests.cli.command_result_checks import check_protocol
 from transplanter import fivebar, gears
 from transplanter.cli import main
+from transplanter.drawing.gear_sheet import GearDrawing, write_gear_sheets
+from transplanter.drawing.sheet import LAYERS, TitleBlock
 from transplanter.fivebar.animation import FRAMES, render_frames, write_animation
-from transplanter.fivebar.drawings import gear_drawings, write_drawings
+from transplanter.fivebar.drawings import LABEL_FRACTION, gear_drawings, write_drawings
 from transplanter.fivebar.gears_on_carrier import (
     DRAWN_WITHIN_MODULES,
     carrier_to_world,
@@ -23,9 +25,9 @@ from transplanter.fivebar.gears_on_carrier import (
     tooth_outlines,
 )
 from transplanter.fivebar.loop_closure import close_loop
-from transplanter.gears.drawings import GearDrawing, default_bore_radius, write_gear_drawings
 from transplanter.gears.teeth import driven_table, driver_table
 from transplanter.geometry.outline_thinning import thinned
+from transplanter.shafts.keyed_bore import KeyedBore
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "examples/vegetable_planting.toml"
@@ -49,11 +51,10 @@ def _table(path: Path):
     return dict(zip(header, np.loadtxt(path, delimiter=",", skiprows=1).T, strict=True))
 
 
-def test_linkage_dxf_reads_back_in_millimetres_with_named_layers(result, folder):
+def test_linkage_dxf_is_the_assembly_at_pose_1_in_millimetres(result, folder):
     document = ezdxf.readfile(folder / "linkage.dxf")
     assert document.header["$INSUNITS"] == DXF_MM
-    assert {"LINKS", "FRAME", "HINGES", "LABELS", "PLATE", "TRAJECTORY", "KEY_POSES"} <= {
-        layer.dxf.name for layer in document.layers}
+    assert set(LAYERS) <= {layer.dxf.name for layer in document.layers}
     space = document.modelspace()
     mech, rho1 = result.design.mech, result.design.relative_angle.rho1
     # pose 1 by the verification's own loop closure, not by the drawing's plate_points
@@ -61,25 +62,32 @@ def test_linkage_dxf_reads_back_in_millimetres_with_named_layers(result, folder)
     expected = {"O": [0, 0], "A": closed["a"][0], "B": mech.hinge_b, "E": closed["e"][0], "F": closed["f"][0],
                 "P": closed["p"][0]}
     size = np.abs(np.array(list(expected.values()), float)).max()
-    centres = np.array([np.array(circle.dxf.center)[:2] for circle in space.query("CIRCLE[layer=='HINGES']")])
-    assert len(centres) == 5
+    holes = {(round(circle.dxf.radius, 9), tuple(np.round(np.array(circle.dxf.center)[:2], 6)))
+             for circle in space.query("CIRCLE[layer=='BORE']")}
+    centres = np.array([centre for _, centre in holes])
     for name in "OABEF":
-        assert np.linalg.norm(centres - expected[name], axis=1).min() < 1e-9 * size
-    labels = {text.dxf.text: np.array(text.dxf.insert)[:2] for text in space.query("TEXT[layer=='LABELS']")}
-    assert set(labels) == set("OABEFP")
-    height = next(iter(space.query("TEXT[layer=='LABELS']"))).dxf.height
+        assert np.linalg.norm(centres - expected[name], axis=1).min() < 1e-6
+    shafts = result.shafts.shafts
+    pin_holes = [radius for radius, centre in holes
+                 if min(np.linalg.norm(np.subtract(centre, expected[name])) for name in "BEF") < 1e-6]
+    assert set(pin_holes) == {round(shafts["hinge"].diameter / 2, 9)}
+    height = LABEL_FRACTION * float(np.linalg.norm(np.subtract(expected["B"], expected["P"])))
+    labels = {text.dxf.text: np.array(text.dxf.insert)[:2] for text in space.query("TEXT[layer=='TEXT']")}
+    assert set("OABEFP") | set(result.problem.labels) <= set(labels)
     for name, point in expected.items():
-        assert np.linalg.norm(labels[name] - point) < 2 * height
-    lengths = sorted(np.linalg.norm(np.subtract(line.dxf.end, line.dxf.start)[:2])
-                     for line in space.query("LINE[layer=='LINKS']"))
-    assert np.allclose(lengths, sorted([mech.carrier_length, mech.rod_length, mech.receiving_length]), rtol=1e-12)
-    plate = next(iter(space.query("LWPOLYLINE[layer=='PLATE']")))
-    corners = np.array(plate.get_points("xy"))
-    assert plate.closed and len(corners) == 3
+        assert np.linalg.norm(labels[name] - point) < 4 * height
+    lengths = [np.linalg.norm(np.subtract(line.dxf.end, line.dxf.start)[:2])
+               for line in space.query("LINE[layer=='CENTERLINES']")]
+    for length in (mech.carrier_length, mech.rod_length, mech.receiving_length, np.hypot(*mech.hinge_b)):
+        assert np.abs(np.array(lengths) - length).min() < 1e-12 * size
+    triangles = [np.array(line.get_points("xy")) for line in space.query("LWPOLYLINE[layer=='CENTERLINES']")
+                 if line.closed and len(line) == 3]
+    (corners,) = triangles
     sides = sorted(np.linalg.norm(corners - np.roll(corners, 1, axis=0), axis=1))
     assert np.allclose(sides, sorted([mech.link_length, mech.ep, mech.fp]), rtol=1e-12)
-    key_labels = {text.dxf.text for text in space.query("TEXT[layer=='KEY_POSES']")}
-    assert key_labels == set(result.problem.labels)
+    # the link plates and the four gears, in place
+    assert len(space.query("LWPOLYLINE[layer=='OUTLINE']")) == 4 + 4
+    assert len(space.query("ARC[layer=='BORE']")) == 4 and len(space.query("LWPOLYLINE[layer=='KEYWAY']")) == 4
 
 
 def test_trajectory_csv_passes_the_key_poses_in_mm_and_degrees(result, folder):
@@ -139,35 +147,43 @@ def test_gears_mesh_on_the_carrier_sun_stays_fixed_and_planet_turns_with_rod_one
     assert np.ptp(planet_minus_rod) < 1e-9
 
 
-def test_gear_drawings_read_back_with_teeth_pitch_bore_and_mark(tmp_path):
+def test_gear_drawings_read_back_with_teeth_pitch_keyed_bore_and_mark(tmp_path):
     pair = gears.synthesize(gears.load_problem(ROOT / "examples/gear_ellipse.toml"))
     pitch = (driver_table(pair.design).points, driven_table(pair.design).points)
-    drawings = [GearDrawing(name, outline, curve, default_bore_radius(outline), direction)
+    drawings = [GearDrawing(name, outline, curve, KeyedBore.for_shaft(20.0, direction), TitleBlock(name, 1, "t"))
                 for name, outline, curve, direction in zip(("driver", "driven"), pair.teeth.outlines, pitch,
                                                            (0.0, np.pi), strict=True)]
-    written = write_gear_drawings(drawings, tmp_path)
+    written = write_gear_sheets(drawings, tmp_path)
     assert sorted(p.name for p in written) == ["driven.dxf", "driven.svg", "driver.dxf", "driver.svg"]
     for drawing in drawings:
         document = ezdxf.readfile(tmp_path / f"{drawing.name}.dxf")
         assert document.header["$INSUNITS"] == DXF_MM
         space = document.modelspace()
-        teeth = list(space.query("LWPOLYLINE[layer=='TEETH']"))
+        teeth = list(space.query("LWPOLYLINE[layer=='OUTLINE']"))
         assert len(teeth) == 1 and teeth[0].closed
         assert np.allclose(np.array(teeth[0].get_points("xy")), drawing.outline, atol=1e-9)
         pitch_line = next(iter(space.query("LWPOLYLINE[layer=='PITCH']")))
         assert np.allclose(np.array(pitch_line.get_points("xy")), drawing.pitch_curve, atol=1e-9)
-        bore = next(iter(space.query("CIRCLE[layer=='BORE']")))
-        root = np.linalg.norm(drawing.outline, axis=1).min()
-        assert bore.dxf.radius == pytest.approx(0.4 * root) and np.allclose(np.array(bore.dxf.center)[:2], 0)
+        (arc,) = space.query("ARC[layer=='BORE']")
+        assert arc.dxf.radius == pytest.approx(10.0) and np.allclose(np.array(arc.dxf.center)[:2], 0)
+        (keyway,) = space.query("LWPOLYLINE[layer=='KEYWAY']")
+        ends = np.array(keyway.get_points("xy"))[[0, -1]]
+        # the keyway starts and ends on the bore's arc, at its ends
+        assert np.allclose([np.array(arc.start_point)[:2], np.array(arc.end_point)[:2]], ends[::-1], atol=1e-9)
+        direction = drawing.bore.direction
+        unit = np.array([np.cos(direction), np.sin(direction)])
+        assert (np.array(keyway.get_points("xy")) @ unit).max() == pytest.approx(10.0 + 2.8)   # d/2 + t2, 20 mm
         mark = next(iter(space.query("LINE[layer=='MARK']")))
         start, end = np.array(mark.dxf.start)[:2], np.array(mark.dxf.end)[:2]
-        assert np.linalg.norm(start) == pytest.approx(bore.dxf.radius) and bore.dxf.radius < np.linalg.norm(end) < root
-        assert np.arctan2(*(end - start)[::-1]) == pytest.approx(np.angle(np.exp(1j * drawing.mark_direction)))
-        assert not list(space.query("*[layer=='CENTER']"))
+        root = np.linalg.norm(drawing.outline, axis=1).min()
+        assert np.linalg.norm(start) == pytest.approx(12.8) and 12.8 < np.linalg.norm(end) < root
+        assert np.arctan2(*(end - start)[::-1]) == pytest.approx(np.angle(np.exp(1j * direction)))
+        measured = sorted(dimension.get_measurement() for dimension in space.query("DIMENSION"))
+        assert np.allclose(measured, [20.0, 20.0 + 2.8], rtol=0, atol=1e-12)     # the bore, d + t2
         svg = ElementTree.parse(tmp_path / f"{drawing.name}.svg").getroot()
         assert svg.get("width").endswith("mm")
         tags = [child.tag.split("}")[-1] for child in svg]
-        assert tags == ["polygon", "circle", "polyline", "polyline"]
+        assert tags == ["polygon", "polyline", "polygon", "polyline"]
 
 
 def test_five_bar_gear_marks_point_at_the_contact_in_pose_1(result):
@@ -237,15 +253,16 @@ def test_the_design_is_a_command_result(result, tmp_path):
 
 @pytest.fixture
 def quick_command(example_result_from_synthesize, monkeypatch):
-    """The fivebar command on the module's result with one small figure and a stand-in animation (both are
+    """The fivebar command on the module's result with one small figure, a stand-in animation and no solids (all
     tested above or elsewhere; here only what the command writes and lists)."""
-    from transplanter.fivebar import output_files
+    from transplanter.fivebar import output_files, solid_files
 
     def stand_in(result, folder, teeth=None):
         (folder / "animation.gif").write_bytes(b"GIF89a")
         return [folder / "animation.gif"]
     monkeypatch.setattr(fivebar.FiveBarResult, "draw_figures", lambda result: {"trajectory": Figure(figsize=(1, 1))})
     monkeypatch.setattr(output_files, "write_animation", stand_in)
+    monkeypatch.setattr(solid_files, "cad_installed", lambda: False)
 
 
 @pytest.mark.parametrize("animation", [True, False])
@@ -256,9 +273,11 @@ def test_fivebar_out_holds_and_lists_the_drawings_tables_and_animation(quick_com
     assert report == json.loads((out / "report.json").read_text())
     gears = [f"{gear}.{kind}" for gear in ("first_intermediate", "planet", "second_intermediate", "sun")
              for kind in ("dxf", "svg")]
-    expected = {"design": ["design.toml"], "drawing": sorted(["linkage.dxf", *gears]), "figure": ["trajectory.png"],
+    parts = [f"{part}.dxf" for part in ("carrier", "push_plate_EFP", "receiving_plate_BE", "rod_AF")]
+    expected = {"design": ["design.toml"], "drawing": sorted(["linkage.dxf", "drawings.pdf", *gears, *parts]),
+                "figure": ["trajectory.png"],
                 "report": ["report.json", "report.md"],
-                "table": ["pitch_curve_first_intermediate.csv", "pitch_curve_planet.csv",
+                "table": ["parts.csv", "pitch_curve_first_intermediate.csv", "pitch_curve_planet.csv",
                           "pitch_curve_second_intermediate.csv", "pitch_curve_sun.csv", "relative_angle.csv",
                           "trajectory.csv"]}
     if animation:

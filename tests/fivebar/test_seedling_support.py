@@ -233,17 +233,17 @@ def test_cli_bad_support_exits_2(tmp_path, capsys):
     assert "support.speed" in err and "\n" not in err
 
 
-def test_support_layer_and_figure(support):
-    """On the DXF layer SUPPORT: the chain C-G-H-Z at pose 1, the labels, and the cam's profile and pitch curve about
-    D at their own distances from D; the figure draws the plate height the design computed."""
+def test_support_entities_and_figure(support):
+    """In the drawing convention's layers: the chain C-G-H-Z at pose 1, the labels, and the cam's profile and pitch
+    curve about D at their own distances from D; the figure draws the plate height the design computed."""
+    from transplanter.drawing.sheet import Sheet
     from transplanter.fivebar.drawings import _support_entities
     from transplanter.fivebar.figures import draw_support
 
-    document = ezdxf.new("R2010", setup=False)
-    document.layers.add("SUPPORT")
-    _support_entities(support, document.modelspace(), 2.0, 5.0)
-    entities = list(document.modelspace())
-    assert {e.dxf.layer for e in entities} == {"SUPPORT"}
+    sheet = Sheet()
+    _support_entities(support, sheet, 2.0, 5.0)
+    entities = list(sheet.space)
+    assert {e.dxf.layer for e in entities} == {"CENTERLINES", "BORE", "OUTLINE", "PITCH", "TEXT"}
     assert {e.dxf.text for e in entities if e.dxftype() == "TEXT"} == {"C", "G", "H", "Z", "D"}
     polylines = [np.array(e.get_points("xy")) for e in entities if e.dxftype() == "LWPOLYLINE"]
     joints = {name: points[0] for name, points in support.joints([0.0]).items()}
@@ -258,7 +258,7 @@ def test_support_layer_and_figure(support):
 
 
 def test_drawings_figures_and_animation_show_the_support(example_result, tmp_path):
-    """The synthesized example with its support: SUPPORT layer in linkage.dxf, the cam's files, the support figure,
+    """The synthesized example with its support: the support in linkage.dxf, the cam's files, the support figure,
     and animation frames that differ from those without it."""
     from dataclasses import replace
 
@@ -274,14 +274,14 @@ def test_drawings_figures_and_animation_show_the_support(example_result, tmp_pat
     names = {path.name for path in write_drawings(result, tmp_path)}
     assert {"linkage.dxf", "cam.dxf", "cam.svg", "cam_profile.csv"} <= names
     document = ezdxf.readfile(tmp_path / "linkage.dxf")
-    entities = document.modelspace().query('*[layer=="SUPPORT"]')
-    texts = {e.dxf.text for e in entities if e.dxftype() == "TEXT"}
-    assert texts == {"C", "G", "H", "Z", "D"}
-    polylines = [np.array(e.get_points("xy")) for e in entities if e.dxftype() == "LWPOLYLINE"]
+    space = document.modelspace()
+    texts = {e.dxf.text for e in space.query("TEXT")}
+    assert {"C", "G", "H", "Z", "D"} <= texts
     joints = {name: points[0] for name, points in support.joints([0.0]).items()}
-    assert np.allclose(polylines[0], [joints[n] for n in "CGHZ"])
-    assert any(np.allclose(np.linalg.norm(p - joints["D"], axis=1).min(), support.cam.base_radius, rtol=1e-3)
-               for p in polylines[1:])
+    chains = [np.array(e.get_points("xy")) for e in space.query('LWPOLYLINE[layer=="CENTERLINES"]') if len(e) == 4]
+    assert any(np.allclose(chain, [joints[n] for n in "CGHZ"]) for chain in chains)
+    assert any(np.allclose(np.linalg.norm(np.array(p.get_points("xy")) - joints["D"], axis=1).min(),
+                           support.cam.base_radius, rtol=1e-3) for p in space.query("LWPOLYLINE"))
     figures = fivebar.draw_figures(result)
     assert {"support", "cam_motion", "cam_profile"} <= set(figures)
     with_support = render_frames(result, frames=2)

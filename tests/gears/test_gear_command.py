@@ -44,7 +44,7 @@ def test_json_fields_and_drawings(tmp_path):
     assert report["orders"] == [1, 1] and report["tooth_counts"]["nearest"] == [30, 30]
     assert abs(report["closure_error"]) < 1e-10
     outline = np.loadtxt(tmp_path / "driver_teeth.csv", delimiter=",", skiprows=1)
-    polyline = next(iter(ezdxf.readfile(tmp_path / "driver.dxf").modelspace().query("LWPOLYLINE")))
+    polyline = next(iter(ezdxf.readfile(tmp_path / "driver.dxf").modelspace().query('LWPOLYLINE[layer=="OUTLINE"]')))
     assert polyline.closed and len(polyline) == len(outline)
     assert np.allclose(np.array(polyline.get_points("xy")), outline, atol=1e-6)
     pitch = np.loadtxt(tmp_path / "pitch_curves.csv", delimiter=",", skiprows=1)

@@ -1,6 +1,7 @@
 """Every third-party module the installed package imports is a runtime dependency in pyproject.toml, so the
 README's main-job command (``pip install -e .``, no dev extra) can run: a module only the dev extra brings
-(sympy, scipy before it was declared) fails there."""
+(sympy, scipy before it was declared) fails there. The optional extra [cad] is imported by solids/ alone, which
+checks it is installed before it imports it."""
 import ast
 import sys
 import tomllib
@@ -11,12 +12,14 @@ ROOT = Path(__file__).resolve().parents[2]
 #: extra)
 PROVIDED_BY = {"PIL": "matplotlib", "distributed": "dask"}
 #: Modules the package imports only where an optional extra is installed (and says so when it is not).
-OPTIONAL = {"distributed"}
+OPTIONAL = {"distributed", "build123d"}
 
 
-def _imported_top_level_modules() -> set[str]:
+def _imported_top_level_modules(folder: Path = ROOT / "src/transplanter", exclude: Path | None = None) -> set[str]:
     names = set()
-    for path in (ROOT / "src/transplanter").rglob("*.py"):
+    for path in folder.rglob("*.py"):
+        if exclude is not None and path.is_relative_to(exclude):
+            continue
         for node in ast.walk(ast.parse(path.read_text())):
             if isinstance(node, ast.Import):
                 names |= {alias.name.split(".")[0] for alias in node.names}
@@ -26,12 +29,14 @@ def _imported_top_level_modules() -> set[str]:
 
 
 def test_every_imported_third_party_module_is_a_runtime_dependency():
-    declared = {entry.split(">")[0].split("=")[0].split("<")[0].strip().lower()
-                for entry in tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["dependencies"]}
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    declared = {entry.split(">")[0].split("=")[0].split("<")[0].strip().lower() for entry in project["dependencies"]}
     third_party = _imported_top_level_modules() - set(sys.stdlib_module_names) - {"transplanter", "__future__"}
+    cad = {entry.split(">")[0].strip().lower() for entry in project["optional-dependencies"]["cad"]}
+    outside_solids = cad & _imported_top_level_modules(exclude=ROOT / "src/transplanter/solids")
+    assert not outside_solids, f"the optional extra [cad] imported outside solids/: {sorted(outside_solids)}"
     extras = {entry.split("[")[0].split(">")[0].strip().lower()
-              for name, entries in tomllib.loads((ROOT / "pyproject.toml").read_text())["project"][
-                  "optional-dependencies"].items() if name != "dev" for entry in entries}
+              for name, entries in project["optional-dependencies"].items() if name != "dev" for entry in entries}
     missing = {name for name in third_party
                if PROVIDED_BY.get(name, name).lower() not in (declared | extras if name in OPTIONAL else declared)}
     assert not missing, f"imported by src/transplanter but not in [project] dependencies: {sorted(missing)}"

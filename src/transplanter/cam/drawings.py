@@ -2,29 +2,33 @@
 
 - ``cam_profile.csv``: per cam angle, the follower's motion, the pitch curve and the profile, the
   pressure angle and both curvature radii.
-- ``cam.dxf`` (INSUNITS mm): the profile (PROFILE, closed), the pitch curve (PITCH, closed; none for a
-  flat-faced follower), the base circle (BASE_CIRCLE) and the bore (BORE).
+- ``cam.dxf`` in the convention of ``drawing.sheet``: the profile (OUTLINE, closed), the pitch curve (PITCH,
+  closed; none for a flat-faced follower), the base circle and centre lines (CENTERLINES), the bore (BORE) with
+  its diameter (DIMENSIONS) and the title block.
 - ``cam.svg``: the profile, the pitch curve dashed and the bore.
 """
 from __future__ import annotations
 
 from pathlib import Path
 
-import ezdxf
 import numpy as np
 
 from transplanter.api_arguments import require_result
 from transplanter.cam.result import CamResult
-from transplanter.gears.drawings import default_bore_radius, write_svg
+from transplanter.drawing.sheet import Sheet, TitleBlock
+from transplanter.drawing.svg import write_svg
 from transplanter.output_folder import writable_folder
 
-LAYERS = ("PROFILE", "PITCH", "BASE_CIRCLE", "BORE")
+#: The default bore radius as a fraction of the profile's smallest radius.
+BORE_FRACTION = 0.4
+#: Sides of the bore's polygon in the SVG.
+BORE_SEGMENTS = 360
 
 
 def bore_radius(result: CamResult) -> float:
-    """The problem's bore radius, else 0.4 of the profile's smallest radius (mm)."""
+    """The problem's bore radius, else ``BORE_FRACTION`` of the profile's smallest radius (mm)."""
     given = result.problem.bore_radius
-    return default_bore_radius(result.geometry.profile) if given is None else given
+    return BORE_FRACTION * float(np.linalg.norm(result.geometry.profile, axis=1).min()) if given is None else given
 
 
 def write_csv(result: CamResult, path: Path) -> Path:
@@ -47,18 +51,16 @@ def write_csv(result: CamResult, path: Path) -> Path:
 
 
 def write_dxf(result: CamResult, path: Path) -> Path:
-    document = ezdxf.new("R2010", setup=False)
-    document.units = ezdxf.units.MM
-    for layer in LAYERS:
-        document.layers.add(layer)
-    space = document.modelspace()
-    space.add_lwpolyline(result.geometry.profile.tolist(), close=True, dxfattribs={"layer": "PROFILE"})
+    sheet = Sheet()
+    sheet.polyline(result.geometry.profile, "OUTLINE", close=True)
     if result.problem.follower.kind != "flat_faced":
-        space.add_lwpolyline(result.geometry.pitch.tolist(), close=True, dxfattribs={"layer": "PITCH"})
-    space.add_circle((0.0, 0.0), result.base_radius, dxfattribs={"layer": "BASE_CIRCLE"})
-    space.add_circle((0.0, 0.0), bore_radius(result), dxfattribs={"layer": "BORE"})
-    document.saveas(path)
-    return path
+        sheet.polyline(result.geometry.pitch, "PITCH", close=True)
+    sheet.circle((0.0, 0.0), result.base_radius, "CENTERLINES")
+    sheet.center_cross((0.0, 0.0), 2 * result.base_radius)
+    sheet.circle((0.0, 0.0), bore_radius(result), "BORE")
+    sheet.diameter_dimension((0.0, 0.0), bore_radius(result), 45.0)
+    sheet.title_block(TitleBlock("cam", 1, result.problem.title))
+    return sheet.save(path)
 
 
 def write_drawings(result: CamResult, folder: str | Path) -> list[Path]:
@@ -68,5 +70,7 @@ def write_drawings(result: CamResult, folder: str | Path) -> list[Path]:
     svg = folder / "cam.svg"
     pitch = None if result.problem.follower.kind == "flat_faced" else np.vstack([result.geometry.pitch,
                                                                                  result.geometry.pitch[:1]])
-    write_svg(result.geometry.profile, svg, pitch_curve=pitch, bore_radius=bore_radius(result))
+    turn = np.linspace(0.0, 2 * np.pi, BORE_SEGMENTS, endpoint=False)
+    write_svg(result.geometry.profile, svg, pitch_curve=pitch, bore=bore_radius(result) * np.c_[np.cos(turn),
+                                                                                                   np.sin(turn)])
     return [write_csv(result, folder / "cam_profile.csv"), write_dxf(result, folder / "cam.dxf"), svg]

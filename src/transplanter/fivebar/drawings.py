@@ -1,18 +1,22 @@
-"""What a designer takes to CAD from a five-bar design: the linkage in pose 1 as a DXF, and CSV tables.
+"""What a workshop takes from a five-bar design: part drawings, the assembly at pose 1, a parts list, CSV tables.
 
-All in millimetres and degrees (DXF INSUNITS = mm). Files:
+All in millimetres and degrees, every DXF in the convention of ``drawing.sheet``. Files:
 
-- ``linkage.dxf``: links as centre lines (LINKS; the frame O-B on FRAME), hinge circles (HINGES,
-  radius ``HINGE_FRACTION`` of the largest hinge distance), labels O A B E F P (LABELS, TEXT), the
-  plate triangle E-F-P (PLATE), P over a turn (TRAJECTORY) and the key poses (KEY_POSES, labelled); with a
-  seedling support, on SUPPORT: C-G-H-Z and the arm C-K at pose 1, hinges C, G, H and D, labels, and the cam's
-  profile and pitch curve about D.
+- ``linkage.dxf``: the assembly at pose 1: each link plate's outline and the gears' tooth outlines in place
+  (OUTLINE), the shaft and hinge holes (BORE), the links' centre lines, the frame O-B and P over a turn
+  (CENTERLINES), the key poses (MARK), the labels O A B E F P and the key poses' (TEXT); with a seedling support,
+  C-G-H-Z and the arm C-K at pose 1 (CENTERLINES), its hinges (BORE), labels, and the cam's profile (OUTLINE) and
+  pitch curve (PITCH) about D.
+- ``<part>.dxf`` per link plate (``fivebar.parts``): carrier, rod_AF, push_plate_EFP, receiving_plate_BE, with
+  their holes' centre distances and diameters dimensioned.
+- ``<gear>.dxf`` and ``<gear>.svg`` per gear (``drawing.gear_sheet``): the cut tooth outline, the pitch curve, the
+  keyed bore of ``fivebar.shafts`` and the assembly mark towards the mate at pose 1.
+- ``drawings.pdf``: every sheet above, one a page.
+- ``parts.csv``: part, quantity, key dimensions, teeth, module, material (blank).
 - with a seedling support, the cam's own ``cam_profile.csv``, ``cam.dxf`` and ``cam.svg`` (``cam.drawings``).
 - ``trajectory.csv``: P over a turn from the verification (gears rolling, loop closed): carrier turn
   (clockwise from pose 1) and carrier angle (counterclockwise from +x), x, y, plate angle.
 - ``relative_angle.csv``: rho (rod I against the carrier), rho' = drho/dc and the total ratio i0 = 1 / rho'.
-- ``<gear>.dxf`` and ``<gear>.svg`` per gear (``gears.drawings.write_gear_drawings``): the cut tooth
-  outline, the pitch curve, the bore and the assembly mark towards the mate at pose 1.
 - ``pitch_curve_<gear>.csv`` per gear: polar angle, radius, x, y in the gear's own frame, as drawn on
   the carrier (``gears_on_carrier``).
 """
@@ -20,19 +24,22 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import ezdxf
 import numpy as np
 
 from transplanter.api_arguments import require_result
 from transplanter.cam.drawings import write_drawings as write_cam_drawings
-from transplanter.fivebar.gears_on_carrier import gears_on_carrier, tooth_outlines
+from transplanter.drawing.gear_sheet import GearDrawing, draw_keyed_bore, write_gear_sheets
+from transplanter.drawing.parts_list import write_parts_list
+from transplanter.drawing.pdf import write_pdf
+from transplanter.drawing.plate_sheet import PlatePart, plate_sheet
+from transplanter.drawing.sheet import Sheet, TitleBlock
+from transplanter.fivebar.gears_on_carrier import carrier_to_world, gears_on_carrier, tooth_outlines
+from transplanter.fivebar.parts import link_parts
 from transplanter.fivebar.result import FiveBarResult
 from transplanter.fivebar.support import SupportDesign
-from transplanter.gears.drawings import GearDrawing, default_bore_radius, write_gear_drawings
 from transplanter.output_folder import writable_folder
 
-#: Hinge circle radius and label height as fractions of the largest distance between two hinges in pose 1.
-HINGE_FRACTION = 0.01
+#: Label height as a fraction of the largest distance between two hinges in pose 1.
 LABEL_FRACTION = 0.02
 
 
@@ -44,49 +51,66 @@ def pose1_points(result: FiveBarResult) -> dict[str, np.ndarray]:
             "P": pose1[:2].copy()}
 
 
-def write_linkage_dxf(result: FiveBarResult, path: Path) -> Path:
-    """The linkage in pose 1 with P's path and the key poses (layers in the module docstring)."""
+def parts(result: FiveBarResult) -> list[PlatePart]:
+    """The four link plates (``fivebar.parts``)."""
+    return link_parts(result.design.mech, result.toothed, result.shafts, result.problem.title)
+
+
+#: Which hinges of pose 1 each part's first two holes sit on.
+PLACED_ON = {"carrier": ("O", "A"), "rod_AF": ("A", "F"), "push_plate_EFP": ("E", "F"),
+             "receiving_plate_BE": ("B", "E")}
+
+
+def assembly_sheet(result: FiveBarResult) -> Sheet:
+    """The assembly at pose 1 (layers in the module docstring)."""
     points = pose1_points(result)
     hinges = np.array([points[name] for name in "OABEF"])
     span = float(np.linalg.norm(hinges[:, None] - hinges[None], axis=-1).max())
-    document = ezdxf.new("R2010", setup=False)
-    document.units = ezdxf.units.MM
-    for layer in ("LINKS", "FRAME", "HINGES", "LABELS", "PLATE", "TRAJECTORY", "KEY_POSES") + (
-            ("SUPPORT",) if result.support else ()):
-        document.layers.add(layer)
-    space = document.modelspace()
-    for start, end in ("OA", "AF", "BE"):
-        space.add_line(points[start].tolist(), points[end].tolist(), dxfattribs={"layer": "LINKS"})
-    space.add_line(points["O"].tolist(), points["B"].tolist(), dxfattribs={"layer": "FRAME"})
-    space.add_lwpolyline([points[name].tolist() for name in "EFP"], close=True, dxfattribs={"layer": "PLATE"})
     height = LABEL_FRACTION * span
+    sheet = Sheet()
+    for part in parts(result):
+        first, second = PLACED_ON[part.name]
+        motion = part.placed(points[first], points[second])
+        sheet.polyline(motion(part.outline()), "OUTLINE", close=True)
+        for hole in part.holes:
+            if hole.diameter:
+                sheet.circle(motion(hole.center[None])[0], hole.diameter / 2, "BORE")
+    outlines, mech = tooth_outlines(result.toothed), result.design.mech
+    bores = result.shafts.bores
+    for gear in gears_on_carrier(result.train, float(mech.carrier_length)):
+        sheet.polyline(carrier_to_world(mech, gear.placed(outlines[gear.name], [0.0])[0], 0.0), "OUTLINE", close=True)
+        turn = float(gear.angle(np.zeros(1))[0]) + float(mech.carrier_angle)
+        draw_keyed_bore(sheet, bores[gear.name], carrier_to_world(mech, gear.center[None], 0.0)[0], turn)
+    for start, end in ("OA", "AF", "BE", "OB"):
+        sheet.line(points[start], points[end], "CENTERLINES")
+    sheet.polyline(np.array([points[name] for name in "EFP"]), "CENTERLINES", close=True)
     for name, point in points.items():
-        if name != "P":
-            space.add_circle(point.tolist(), HINGE_FRACTION * span, dxfattribs={"layer": "HINGES"})
-        space.add_text(name, height=height, dxfattribs={"layer": "LABELS", "insert": (point + height).tolist()})
-    space.add_lwpolyline(result.verification.trajectory.tolist(), close=True, dxfattribs={"layer": "TRAJECTORY"})
+        sheet.text(name, point + height, height)
+    sheet.polyline(result.verification.trajectory, "CENTERLINES", close=True)
     for label, pose in zip(result.problem.labels, result.problem.poses, strict=True):
-        space.add_point(pose[:2].tolist(), dxfattribs={"layer": "KEY_POSES"})
-        space.add_text(label, height=height, dxfattribs={"layer": "KEY_POSES", "insert": (pose[:2] - height).tolist()})
+        sheet.center_cross(pose[:2], height)
+        sheet.space.add_point(pose[:2].tolist(), dxfattribs={"layer": "MARK"})
+        sheet.text(label, pose[:2] - height, height)
     if result.support:
-        _support_entities(result.support, space, HINGE_FRACTION * span, height)
-    document.saveas(path)
-    return path
+        _support_entities(result.support, sheet, result.shafts.shafts["hinge"].diameter / 2, height)
+    sheet.title_block(TitleBlock("assembly at pose 1", 1, result.problem.title,
+                                 module=result.toothed.module,
+                                 pressure_angle_deg=float(np.degrees(result.toothed.pressure_angle))))
+    return sheet
 
 
-def _support_entities(support: SupportDesign, space, radius: float, height: float):
-    """The support at pose 1 on layer SUPPORT: C-G-H-Z, the arm C-K, hinges, labels, the cam's profile and pitch."""
+def _support_entities(support: SupportDesign, sheet: Sheet, radius: float, height: float):
+    """The support at pose 1: C-G-H-Z and the arm C-K, hinges, labels, the cam's profile and pitch curve."""
     joints = {name: points[0] for name, points in support.joints([0.0]).items()}
-    attributes = {"layer": "SUPPORT"}
-    space.add_lwpolyline([joints[name].tolist() for name in "CGHZ"], dxfattribs=attributes)
-    space.add_line(joints["C"].tolist(), joints["K"].tolist(), dxfattribs=attributes)
+    sheet.polyline(np.array([joints[name] for name in "CGHZ"]), "CENTERLINES")
+    sheet.line(joints["C"], joints["K"], "CENTERLINES")
     for name in "CGHDK":
-        space.add_circle(joints[name].tolist(), support.spec.follower.roller_radius if name == "K" else radius,
-                         dxfattribs=attributes)
+        sheet.circle(joints[name], support.spec.follower.roller_radius if name == "K" else radius,
+                     "OUTLINE" if name == "K" else "BORE")
     for name in "CGHZD":
-        space.add_text(name, height=height, dxfattribs={**attributes, "insert": (joints[name] + height).tolist()})
-    for curve in ("profile", "pitch"):
-        space.add_lwpolyline(support.cam_outline(0.0, curve).tolist(), close=True, dxfattribs=attributes)
+        sheet.text(name, joints[name] + height, height)
+    sheet.polyline(support.cam_outline(0.0, "profile"), "OUTLINE", close=True)
+    sheet.polyline(support.cam_outline(0.0, "pitch"), "PITCH", close=True)
 
 
 def _write_table(path: Path, columns: dict[str, np.ndarray]) -> Path:
@@ -117,20 +141,32 @@ def write_tables(result: FiveBarResult, folder: Path) -> list[Path]:
 
 
 def write_drawings(result: FiveBarResult, folder: str | Path) -> list[Path]:
-    """The linkage DXF, the CSV tables, each gear's DXF and SVG (teeth, pitch curve, bore, assembly mark) and the
-    support cam's files of a five-bar design in ``folder`` (made if missing); the files written."""
+    """The assembly, the part and gear sheets, their PDF, parts.csv, the CSV tables and the support cam's files of
+    a five-bar design in ``folder`` (made if missing); the files written."""
     require_result(result, FiveBarResult, "fivebar")
     folder = writable_folder(folder)
-    gears = write_gear_drawings(gear_drawings(result, tooth_outlines(result.toothed)), folder)
+    plates, gears = parts(result), gear_drawings(result, tooth_outlines(result.toothed))
+    sheets = [assembly_sheet(result).save(folder / "linkage.dxf")]
+    sheets += [plate_sheet(part).save(folder / f"{part.name}.dxf") for part in plates]
+    gear_files = write_gear_sheets(gears, folder)
     cam = write_cam_drawings(result.support.cam, folder) if result.support else []
-    return [write_linkage_dxf(result, folder / "linkage.dxf"), *write_tables(result, folder), *gears, *cam]
+    sheets += [path for path in gear_files + cam if path.suffix == ".dxf"]
+    others = [path for path in gear_files + cam if path.suffix != ".dxf"]
+    return [*sheets, *others, write_pdf(sheets, folder / "drawings.pdf"),
+            write_parts_list(plates, gears, folder / "parts.csv"), *write_tables(result, folder)]
 
 
 def gear_drawings(result: FiveBarResult, outlines: dict[str, np.ndarray]) -> list[GearDrawing]:
-    """The four gears to manufacture (for ``gears.drawings.write_gear_drawings``): ``outlines`` maps a gear
-    name (sun, first_intermediate, second_intermediate, planet) to its tooth outline (N, 2) mm in the
-    frame of ``gears_on_carrier`` (stage 1 mirrored from the gear library's); bore ``default_bore_radius``,
-    mark towards the contact point at pose 1."""
-    return [GearDrawing(gear.name, outlines[gear.name], gear.pitch_curve, default_bore_radius(outlines[gear.name]),
-                        gear.contact_direction)
-            for gear in gears_on_carrier(result.train, float(result.design.mech.carrier_length))]
+    """The four gears to make: ``outlines`` maps a gear name (sun, first_intermediate, second_intermediate,
+    planet) to its tooth outline (N, 2) mm in the frame of ``gears_on_carrier`` (stage 1 mirrored from the gear
+    library's); the keyed bore of ``fivebar.shafts``, its keyway on the mark towards the contact point at pose 1."""
+    toothed, bores = result.toothed, result.shafts.bores
+    a1, a2 = toothed.train.center_distances
+    teeth = {gear.name.replace(" ", "_"): gear.teeth for gear in toothed.gears}
+    drawings = []
+    for gear in gears_on_carrier(result.train, float(result.design.mech.carrier_length)):
+        title = TitleBlock(gear.name.replace("_", " "), 1, result.problem.title, module=toothed.module,
+                           teeth=teeth[gear.name], pressure_angle_deg=float(np.degrees(toothed.pressure_angle)),
+                           center_distance_mm=a1 if gear.name in ("sun", "first_intermediate") else a2)
+        drawings.append(GearDrawing(gear.name, outlines[gear.name], gear.pitch_curve, bores[gear.name], title))
+    return drawings

@@ -1,5 +1,6 @@
 """Every file a designed five-bar gives besides its report and figures: the drawings and tables for the
-workshop (``drawings.write_drawings``) and one turn animated with the cut teeth (``animation``)."""
+workshop (``drawings.write_drawings``), STEP solids with the extra transplanter[cad] (``solid_files``) and one
+turn animated with the cut teeth (``animation``)."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -11,16 +12,20 @@ from transplanter.fivebar.design_toml import write_design
 from transplanter.fivebar.drawings import write_drawings
 from transplanter.fivebar.gears_on_carrier import teeth_on_carrier
 from transplanter.fivebar.result import FiveBarResult
+from transplanter.fivebar.solid_files import write_solids
 
 
 def write_files(result: FiveBarResult, folder: str | Path, animation: bool = True) -> list[Path]:
-    """linkage.dxf, the CSV tables, each gear's DXF and SVG, the support cam's files, design.toml (``design_toml``)
-    and, unless ``animation`` is False, animation.gif (and .mp4 where ffmpeg exists) with the teeth turning on the
-    carrier, in ``folder`` (made if missing); the files written."""
+    """The assembly (linkage.dxf), part and gear sheets, drawings.pdf, parts.csv, the CSV tables, the support cam's
+    files, design.toml (``design_toml``), STEP solids with the extra transplanter[cad] and, unless ``animation`` is
+    False, animation.gif (and .mp4 where ffmpeg exists) with the teeth turning on the carrier, in ``folder`` (made
+    if missing); the files written."""
     require_result(result, FiveBarResult, "fivebar")
     with progress.step("drawings"):
         written = write_drawings(result, folder)
     written.append(write_design(result, folder))
+    with progress.step("solids"):
+        written += write_solids(result, Path(folder))
     if animation:
         with progress.step("animation"):
             teeth = teeth_on_carrier(result.toothed, float(result.design.mech.carrier_length))

@@ -43,6 +43,7 @@ Schema (docs/fivebar.md, "Problem files"); the carrier pivot O is the origin:
     second_center_distance = 122. # they must give whole teeth at the module
     [support]                     # optional: the seedling support timed to the design (fivebar/support_problem.py)
     [load]                        # optional: the planting load and link masses (fivebar/load_spec.py)
+    [shafts]                      # optional: shaft and hinge-pin diameters (fivebar/shaft_spec.py)
 """
 from __future__ import annotations
 
@@ -63,6 +64,7 @@ from transplanter.fivebar.key_pose_bands import (
     stroke_direction,
 )
 from transplanter.fivebar.load_spec import LoadSpec, parse_load
+from transplanter.fivebar.shaft_spec import ShaftSpec, parse_shafts
 from transplanter.fivebar.support_problem import SupportSpec, parse_support
 from transplanter.fivebar.tolerance_model import DIMENSION_NAMES
 from transplanter.tolerance.dimensions import ToleranceSettings, parse_tolerances
@@ -81,7 +83,7 @@ RANGE_FIELDS = {"ep": "|EP| (mm)", "fp": "|FP| (mm)", "x_e": "x of E in pose 1 (
 MOST_CONTROL_POINTS = 72
 _TOP_KEYS = {"title", "description", "key_poses", "return_points", "ranges", "conditions", "requirements", "spline",
              "region", "gears",
-             "support", "load", "tolerances"}
+             "support", "load", "tolerances", "shafts"}
 
 
 @dataclass(frozen=True)
@@ -129,6 +131,8 @@ class FiveBarProblem:
     load : LoadSpec
         The planting load at P and the links' masses for the kinetostatics (``[load]``; default 20 N against P's
         velocity over the pushing stroke, no masses).
+    shafts : ShaftSpec
+        Given shaft and hinge-pin diameters (``[shafts]``, mm); the rest are sized by ``shafts.sizing``.
     source, title : str
         Where the problem came from (file name or ``"<dict>"``) and its title.
     tolerances : ToleranceSettings
@@ -160,6 +164,7 @@ class FiveBarProblem:
     band_samples: int = 16
     min_transmission_angle: float | None = None
     load: LoadSpec = field(default_factory=LoadSpec)
+    shafts: ShaftSpec = field(default_factory=lambda: ShaftSpec({}))
     source: str = "<dict>"
     title: str = ""
     tolerances: ToleranceSettings = field(default_factory=ToleranceSettings)
@@ -188,6 +193,8 @@ class FiveBarProblem:
             check.fail("support", self.support, "None or a fivebar.support_problem.SupportSpec")
         if not isinstance(self.load, LoadSpec):
             check.fail("load", self.load, "a fivebar.load_spec.LoadSpec")
+        if not isinstance(self.shafts, ShaftSpec):
+            check.fail("shafts", self.shafts, "a fivebar.shaft_spec.ShaftSpec")
         if self.pose_bands is not None and not isinstance(self.pose_bands, PoseBands):
             check.fail("pose_bands", self.pose_bands, "None or a fivebar.key_pose_bands.PoseBands")
         if not isinstance(self.requirements, Requirements):
@@ -403,6 +410,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
     _check_return_points(read, rows[:, :2], points, radius)
     support = parse_support(read, data["support"], ranges.get("x_e")) if "support" in data else None
     load = parse_load(read, data.get("load", {}))
+    shafts = parse_shafts(read, data.get("shafts", {}))
 
     poses = rows[:, :3].copy()
     poses[:, 2] = np.radians(poses[:, 2])
@@ -410,7 +418,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
     bands = PoseBands(low * to_internal, high * to_internal) if np.any(high > low) else None
     return FiveBarProblem(poses=poses, carrier_turns=np.radians(turns), return_points=points, labels=tuple(labels),
                           return_tolerance_mm=tolerance, pose_bands=bands, requirements=requirements,
-                          band_samples=band_samples, load=load,
+                          band_samples=band_samples, load=load, shafts=shafts,
                           min_transmission_angle=None if transmission is None else float(np.radians(transmission)),
                           return_labels=tuple(return_labels), ranges=ranges, min_closure_margin=margin,
                           ratio_bounds=ratio, spline_count=count, samples=samples, radius_mm=radius,

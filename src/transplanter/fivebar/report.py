@@ -13,6 +13,8 @@ from transplanter.fivebar.alternatives import RANKING_RULE
 from transplanter.fivebar.key_pose_bands import QUANTITIES
 from transplanter.fivebar.load_report import load_json, load_markdown
 from transplanter.fivebar.nlp import BENDING_WEIGHT
+from transplanter.fivebar.shaft_report import shafts_json, shafts_markdown
+from transplanter.fivebar.solid_files import solids_note
 from transplanter.trains.planetary import printed_correction
 from transplanter.trains.report import toothed_train_json, train_size_json, worst_mesh
 from transplanter.trains.toothed_train import TrainSize
@@ -171,6 +173,8 @@ def fivebar_result_json(result: FiveBarResult) -> dict:
                           for trial in result.band_trials],
         **result.pressure.to_json(),
         "load": load_json(result.loads),
+        "shafts": shafts_json(result.shafts),
+        "solids": solids_note(result),
         **support,
         **({"tolerance": result.tolerance.to_json()} if result.tolerance else {}),
         "timings_s": result.timings_s,
@@ -282,6 +286,7 @@ def to_markdown(result: FiveBarResult, files: Sequence[str] = ()) -> str:
               result.pressure.summary(), ""]
     lines += support_markdown(result.support)
     lines += result.tolerance.to_markdown() if result.tolerance else []
+    lines += ["## Shafts and bores", "", *shafts_markdown(result.shafts), f"- {solids_note(result)}", ""]
     lines += [f"![{name}]({name})" for name in files if name.endswith(".png")]
     return "\n".join(lines) + "\n"
 

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -15,6 +16,7 @@ from transplanter.fivebar.kinetostatics import Kinetostatics
 from transplanter.fivebar.nlp import DesignSolution
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import Region
+from transplanter.fivebar.shafts import ShaftDesign, design_shafts
 from transplanter.fivebar.support import SupportDesign
 from transplanter.fivebar.verification import Verification
 from transplanter.tolerance import ToleranceAnalysis, ToleranceModel
@@ -95,12 +97,17 @@ class FiveBarResult(CommandResult):
         """The pitch curves of the two gear stages and the correction factor k."""
         return self.toothed.train
 
+    @cached_property
+    def shafts(self) -> ShaftDesign:
+        """Shaft and hinge-pin diameters and each gear's keyed bore (``fivebar.shafts``), worked out once."""
+        return design_shafts(self.problem.shafts, self.toothed, self.loads)
+
     @property
     def failures(self) -> list[str]:
-        """Every check of the built mechanism it fails: verification, the gears' mesh and pressure angle, then the
-        support."""
+        """Every check of the built mechanism it fails: verification, the gears' mesh and pressure angle, the
+        support, then the gears' bores."""
         return [*self.verification.failures, *self.toothed.failures, *self.pressure.failures(),
-                *(self.support.failures if self.support else [])]
+                *(self.support.failures if self.support else []), *self.shafts.failures]
 
     def tolerance_model(self) -> ToleranceModel:
         """The built mechanism as a function of its manufactured dimensions (``fivebar.tolerance_model``)."""
