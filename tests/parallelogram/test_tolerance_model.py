@@ -2,7 +2,7 @@
 at its nominal dimensions it is the synthesis's own mechanism (trajectory and planting depth), its depth of a
 changed mechanism is the trajectory's measure of that mechanism, its exact Jacobian equals central differences
 of the forward simulation, a planted change moves the key poses by J delta to second order, first order meets
-the Monte Carlo, and the command reports the section (or skips it with --no-tolerance)."""
+the Monte Carlo, and the report holds the section."""
 import dataclasses
 import json
 from pathlib import Path
@@ -11,7 +11,6 @@ import numpy as np
 import pytest
 
 from transplanter import parallelogram
-from transplanter.cli import main
 from transplanter.parallelogram.evaluation import EVALUATION_SAMPLES, evaluate
 from transplanter.parallelogram.kinematics import mechanisms
 from transplanter.parallelogram.tolerance_model import DIMENSION_NAMES, KEY_LABELS, tolerance_model
@@ -152,30 +151,3 @@ def test_report_section(result):
     markdown = result.to_markdown()
     assert "## Tolerances (the built mechanism)" in markdown and "| depth band |" in markdown
     assert {"tolerance_band", "tolerance_contributions"} <= set(result.draw_figures())
-
-
-def test_no_tolerance_flag_skips_the_analysis(monkeypatch):
-    from transplanter.errors import InfeasibleError
-
-    seen = {}
-
-    def synthesize(problem, **options):
-        seen.update(options)
-        raise InfeasibleError("stopped here")
-
-    monkeypatch.setattr(parallelogram, "synthesize", synthesize)
-    assert main(["parallelogram", str(EXAMPLE), "--quiet", "--no-tolerance"]) == 2
-    assert seen["tolerance"] is False
-
-
-@pytest.mark.parametrize("entry, fragment", [("l1 = -0.1", "tolerances.l1 = -0.1"),
-                                             ("crank = 0.1", "tolerances.crank = 0.1"),
-                                             ("pose_angle_deg = 0.0", "tolerances.pose_angle_deg = 0.0"),
-                                             ("backlash = inf", "tolerances.backlash = inf")])
-def test_bad_tolerances_give_one_line_and_exit_2_before_the_work(tmp_path, capsys, monkeypatch, entry, fragment):
-    path = tmp_path / "problem.toml"
-    path.write_text(EXAMPLE.read_text() + f"\n[tolerances]\n{entry}\n")
-    monkeypatch.setattr(parallelogram, "synthesize", lambda *a, **k: pytest.fail("the work started"))
-    assert main(["parallelogram", str(path), "--quiet"]) == 2
-    lines = capsys.readouterr().err.strip().splitlines()
-    assert len(lines) == 1 and fragment in lines[0], lines
