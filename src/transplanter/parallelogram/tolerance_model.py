@@ -35,16 +35,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import casadi as ca
 import numpy as np
 
 from transplanter._generated.parallelogram import limacon_driven_angle
-from transplanter.generated import CASADI, NUMPY
+from transplanter.generated import NUMPY
 from transplanter.geometry.planar import TWO_PI
 from transplanter.parallelogram.evaluation import EVALUATION_SAMPLES
 from transplanter.parallelogram.kinematics import Mechanisms, mechanisms
 from transplanter.parallelogram.problem import ParallelogramProblem
 from transplanter.parallelogram.trajectory import measure
+from transplanter.tolerance.built_motion import SampledMotion, casadi_motion
 from transplanter.tolerance.dimensions import Dimension
 from transplanter.tolerance.iso2768 import linear_limit_mm
 from transplanter.tolerance.model import ToleranceModel
@@ -145,18 +145,6 @@ def _dimensions(built: BuiltDesign) -> tuple[Dimension, ...]:
     return (*links, *play, backlash, *phases)
 
 
-@dataclass(frozen=True)
-class SampledMotion:
-    """The motion (N, rows, T) of N built mechanisms (dimensions (N, n)) by the numpy backend."""
-
-    built: BuiltDesign
-    turn_data: np.ndarray
-
-    def __call__(self, dimensions: np.ndarray) -> np.ndarray:
-        v = {name: dimensions[:, i, None] for i, name in enumerate(DIMENSION_NAMES)}
-        return np.stack(np.broadcast_arrays(*built_motion(NUMPY, self.built, v, self.turn_data)), axis=1)
-
-
 def depth_on_grid(x: np.ndarray, y: np.ndarray, window: float) -> np.ndarray:
     """Planting depth H (mm) of N paths sampled on a grid of turns around their lowest point (x, y: (N, D),
     field frame): the lowest point refined by a parabola through its grid neighbours, the connected stretch
@@ -219,11 +207,9 @@ def tolerance_model(problem: ParallelogramProblem, design: dict, built_center_di
     built = BuiltDesign(mech, built_center_distance / float(mech.center_distance[0]), problem.pressure_angle,
                         problem.module)
     rows = _turn_rows(mech, turns)
-    d, t = ca.SX.sym("dimensions", len(DIMENSION_NAMES)), ca.SX.sym("turn", len(rows))
-    at_turn = ca.Function("parallelogram_built_motion", [d, t],
-                          [ca.vertcat(*built_motion(CASADI, built, dict(zip(DIMENSION_NAMES, ca.vertsplit(d),
-                                                                            strict=True)), ca.vertsplit(t)))])
+    at_turn = casadi_motion("parallelogram_built_motion", built_motion, built, DIMENSION_NAMES, len(rows))
     whole = slice(len(KEY_LABELS), len(KEY_LABELS) + TURN_SAMPLES)
     return ToleranceModel(problem.title or problem.source, _dimensions(built), at_turn, rows,
-                          SampledMotion(built, rows), np.degrees(turns), KEY_LABELS, whole,
+                          SampledMotion(built_motion, built, DIMENSION_NAMES, rows), np.degrees(turns), KEY_LABELS,
+                          whole,
                           HardConditions(problem, slice(whole.stop, None)))
