@@ -138,7 +138,7 @@ def _parallelogram(command: Command, problem, args) -> CommandResult:
         with progress.step("evaluation"):
             return parallelogram.evaluate_design(problem, given)
     with progress.step("search"):
-        return parallelogram.synthesize(problem, pick=args.pick, progress=_report)
+        return parallelogram.synthesize(problem, pick=args.pick, progress=_report, tolerance=not args.no_tolerance)
 
 
 def _study(args) -> int:
@@ -221,6 +221,10 @@ class Command:
     dpi: int = 120
 
 
+#: The design commands that analyse their built mechanism's tolerances take this flag.
+NO_TOLERANCE = Flag(("--no-tolerance",), {"action": "store_true", "help": "skip the tolerance analysis of the built "
+                                          "mechanism (report section and figures)"})
+
 #: The design commands, in the order ``--help`` lists them.
 COMMANDS = (
     Command("burmester", "RR dyads that guide a body through 3 or more poses", "problem file (TOML, mm and degrees)",
@@ -236,8 +240,7 @@ COMMANDS = (
                                         "help": "evaluate this given design instead of designing one"}, exclusive=True),
                    Flag(("--pick",), {"metavar": "N", "type": int, "help": "build alternative N of the ranked "
                                       "alternatives (default 1, the best; report.md lists them)"}, exclusive=True),
-                   Flag(("--no-tolerance",), {"action": "store_true", "help": "skip the tolerance analysis of the "
-                                              "built mechanism (report section and figures)"}))),
+                   NO_TOLERANCE)),
     Command("reverse", "planetary non-circular gear train that makes the arm tip follow a closed path (the "
             "rice-transplanter, reverse-gear-design and cusp-pitch-curve papers): inverse kinematics, monotonicity, "
             "gears, round trip", "reverse-design problem file (TOML, mm and degrees)", "the figures and design.toml",
@@ -256,7 +259,8 @@ COMMANDS = (
             flags=(Flag(("--design",), {"metavar": "DESIGN.toml", "help": "evaluate this given design (e.g. "
                                         "examples/onion_published.toml) instead of searching"}, exclusive=True),
                    Flag(("--pick",), {"metavar": "N", "type": int, "help": "build the N-th Pareto design, ranked by "
-                                      "distance to the ideal point (default 1, the knee)"}, exclusive=True))),
+                                      "distance to the ideal point (default 1, the knee)"}, exclusive=True),
+                   NO_TOLERANCE)),
     Command("pickup", "the seedling pick-up mechanism of the cusp-pitch-curve paper (eq 15), forward: tip path, "
             "picking and pushing angles, tip speed, animation", "pick-up problem file (TOML, mm and degrees)",
             "the figures and pickup.gif", pickup, step="kinematics", animation="pickup.gif"),

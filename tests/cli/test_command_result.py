@@ -10,6 +10,7 @@ from tests.cli.command_result_checks import check_protocol
 from transplanter import parallelogram
 from transplanter.cli import COMMANDS, Command
 from transplanter.command_result import CommandResult
+from transplanter.tolerance import ToleranceSettings
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 #: A quick run of each command through the registry: its problem file and its own flags.
@@ -38,8 +39,8 @@ def test_a_registered_command_returns_a_command_result(case, tmp_path):
 
 def test_the_onion_transplanter_design_is_a_command_result(tmp_path):
     small = dataclasses.replace(parallelogram.load_problem(EXAMPLES / "onion_transplanter.toml"), population=12,
-                                generations=4, depth_band=(10.0, 40.0))
-    check_protocol(_run("parallelogram", small), tmp_path)
+                                generations=4, depth_band=(10.0, 40.0), tolerances=ToleranceSettings(samples=200))
+    check_protocol(_run("parallelogram", small, no_tolerance=False), tmp_path)
 
 
 def test_every_command_is_checked():

@@ -5,18 +5,20 @@ a planted change moves the key poses by J delta to second order, and first order
 default tolerances and parts from it at ten times those."""
 import dataclasses
 import json
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-from transplanter.cli import main
+from tests.tolerance.model_checks import (
+    assert_first_order_meets_monte_carlo,
+    assert_jacobian_is_central_differences,
+    assert_planted_change_is_second_order,
+)
 from transplanter.fivebar.loop_closure import close_loop
 from transplanter.fivebar.tolerance_model import DIMENSION_NAMES, TURN_SAMPLES
 from transplanter.fivebar.verification import TURN_SAMPLES as VERIFIED_SAMPLES
 from transplanter.tolerance import analyse
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "examples/vegetable_planting.toml"
 pytestmark = pytest.mark.filterwarnings("error")      # a numpy warning is a failure
 
 
@@ -58,16 +60,8 @@ def test_numpy_and_casadi_motions_agree(model, rng):
         assert np.allclose(model.evaluate(row), motion, rtol=1e-12, atol=1e-10)
 
 
-def test_sensitivities_equal_central_differences_of_the_forward_simulation(analysis, model):
-    n = len(model.nominal)
-    step = 1e-2 * model.tolerances
-    moved = model.nominal + np.vstack([np.diag(step), -np.diag(step)])
-    motion = model.sampled(moved)
-    difference = (motion[:n] - motion[n:]) / (2 * step[:, None, None])             # (n, rows, T)
-    difference[:, 2] = np.angle(np.exp(1j * (motion[:n, 2] - motion[n:, 2]))) / (2 * step[:, None])
-    exact = np.moveaxis(analysis.jacobian, -1, 0)
-    scale = np.abs(exact).max(axis=2, keepdims=True)
-    assert np.all(np.abs(exact - difference) <= 1e-6 * scale + 1e-12), np.max(np.abs(exact - difference) / scale)
+def test_sensitivities_equal_central_differences_of_the_forward_simulation(analysis):
+    assert_jacobian_is_central_differences(analysis)
 
 
 @pytest.mark.parametrize("name", ["rod_length_AF", "receiving_plate_length_BE", "clearance_B_x", "clearance_E_y"])
@@ -109,27 +103,12 @@ def test_gear_phases_move_rho_as_the_designed_motion_says(example_result, model)
     assert 6 < sun[0] / sun[1] < 10                      # the miss is of third order in the phase
 
 
-def test_planted_change_moves_the_key_poses_by_j_delta_to_second_order(analysis, model):
-    k = len(model.key_labels)
-    nominal = model.sampled(model.nominal[None])[0][:2, :k]
-    j = model.names.index("carrier_length_OA")
-    misses = []
-    for delta in (0.05, 0.1):
-        dimensions = model.nominal.copy()
-        dimensions[j] += delta
-        moved = model.sampled(dimensions[None])[0][:2, :k]
-        predicted = nominal + analysis.jacobian[:2, :k, j] * delta
-        misses.append(np.abs(moved - predicted).max())
-        assert misses[-1] < 0.02 * np.abs(analysis.jacobian[:2, :k, j] * delta).max()
-    assert 3.5 < misses[1] / misses[0] < 4.5             # the miss is of second order in delta
+def test_planted_change_moves_the_key_poses_by_j_delta_to_second_order(analysis):
+    assert_planted_change_is_second_order(analysis, "carrier_length_OA", (0.05, 0.1))
 
 
 def test_first_order_meets_the_monte_carlo_at_the_default_tolerances(analysis):
-    position, angle = analysis.disagreement()
-    assert np.all(position <= 0.10) and np.all(angle <= 0.10), (position, angle)
-    section = analysis.to_json()
-    assert all(pose["first_order_holds"] for pose in section["key_poses"])
-    assert "agree within 10 % at every key pose" in "\n".join(analysis.to_markdown())
+    assert_first_order_meets_monte_carlo(analysis)
 
 
 def test_ten_times_the_tolerances_part_first_order_from_the_monte_carlo(model):
@@ -162,33 +141,3 @@ def test_report_section(example_result, analysis, model):
     markdown = example_result.to_markdown()
     assert "## Tolerances (the built mechanism)" in markdown and "Dimensions that matter most" in markdown
     assert {"tolerance_band", "tolerance_contributions"} <= set(example_result.draw_figures())
-
-
-def test_no_tolerance_flag_skips_the_analysis(monkeypatch, capsys):
-    from transplanter import fivebar
-    from transplanter.errors import InfeasibleError
-
-    seen = {}
-
-    def synthesize(problem, **options):
-        seen.update(options)
-        raise InfeasibleError("stopped here")
-
-    monkeypatch.setattr(fivebar, "synthesize", synthesize)
-    assert main(["fivebar", str(EXAMPLE), "--quiet", "--no-tolerance"]) == 2
-    assert seen["tolerance"] is False
-
-
-@pytest.mark.parametrize("entry, fragment", [("rod_length_AF = -0.1", "tolerances.rod_length_AF = -0.1"),
-                                             ("rod_length = 0.1", "tolerances.rod_length = 0.1"),
-                                             ("pose_position_mm = 0.0", "tolerances.pose_position_mm = 0.0"),
-                                             ("phase_sun = nan", "tolerances.phase_sun = nan")])
-def test_bad_tolerances_give_one_line_and_exit_2_before_the_work(tmp_path, capsys, monkeypatch, entry, fragment):
-    from transplanter import fivebar
-
-    path = tmp_path / "problem.toml"
-    path.write_text(EXAMPLE.read_text() + f"\n[tolerances]\n{entry}\n")
-    monkeypatch.setattr(fivebar, "synthesize", lambda *a, **k: pytest.fail("the work started"))
-    assert main(["fivebar", str(path), "--quiet"]) == 2
-    lines = capsys.readouterr().err.strip().splitlines()
-    assert len(lines) == 1 and fragment in lines[0], lines

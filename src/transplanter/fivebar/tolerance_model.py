@@ -31,7 +31,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-import casadi as ca
 import numpy as np
 
 from transplanter._generated.fivebar import (
@@ -40,8 +39,8 @@ from transplanter._generated.fivebar import (
     fivebar_transmission_margin,
 )
 from transplanter.fivebar.relative_angle import RelativeAngle
-from transplanter.generated import CASADI, NUMPY
 from transplanter.geometry.planar import TWO_PI, cross
+from transplanter.tolerance.built_motion import SampledMotion, casadi_motion
 from transplanter.tolerance.dimensions import Dimension
 from transplanter.tolerance.iso2768 import angular_limit_deg, linear_limit_mm
 from transplanter.tolerance.model import ToleranceModel
@@ -168,19 +167,6 @@ def _dimensions(result) -> tuple[Dimension, ...]:
 
 
 @dataclass(frozen=True)
-class SampledMotion:
-    """The motion (N, rows, T) of N built mechanisms (dimensions (N, n)) by the numpy backend."""
-
-    result: Any
-    turn_data: np.ndarray
-
-    def __call__(self, dimensions: np.ndarray) -> np.ndarray:
-        v = {name: dimensions[:, i, None] for i, name in enumerate(DIMENSION_NAMES)}
-        with np.errstate(invalid="ignore"):        # a chain that does not close: NaN, judged by the conditions
-            return np.stack(np.broadcast_arrays(*built_motion(NUMPY, self.result, v, self.turn_data)), axis=1)
-
-
-@dataclass(frozen=True)
 class HardConditions:
     """Which of N built mechanisms violate each hard condition of the five-bar problem."""
 
@@ -214,11 +200,9 @@ def tolerance_model(result) -> ToleranceModel:
     returns = result.design.stroke.carrier_turns
     turns = np.r_[problem.carrier_turns, returns, np.linspace(0, TWO_PI, TURN_SAMPLES, endpoint=False)]
     rows = _gear_rows(result.design.relative_angle, result.toothed.train, turns)
-    d, g = ca.SX.sym("dimensions", len(DIMENSION_NAMES)), ca.SX.sym("gear_row", len(rows))
-    at_turn = ca.Function("fivebar_built_motion", [d, g],
-                          [ca.vertcat(*built_motion(CASADI, result, dict(zip(DIMENSION_NAMES, ca.vertsplit(d),
-                                                                             strict=True)), ca.vertsplit(g)))])
+    at_turn = casadi_motion("fivebar_built_motion", built_motion, result, DIMENSION_NAMES, len(rows))
     return ToleranceModel(problem.title or problem.source, _dimensions(result), at_turn, rows,
-                          SampledMotion(result, rows), np.degrees(turns), problem.labels,
+                          SampledMotion(built_motion, result, DIMENSION_NAMES, rows), np.degrees(turns),
+                          problem.labels,
                           slice(len(turns) - TURN_SAMPLES, None),
                           HardConditions(result, len(problem.carrier_turns), len(returns)))

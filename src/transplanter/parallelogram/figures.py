@@ -103,6 +103,10 @@ def draw_pareto(result) -> Figure:
 
 
 def draw_figures(result: ParallelogramResult) -> dict[str, Figure]:
-    """Pareto front, and the final design's (polished, else chosen) trajectory, velocity and acceleration."""
+    """Pareto front, and the final design's (polished, else chosen) trajectory, velocity and acceleration;
+    with a tolerance analysis ``tolerance_band`` and ``tolerance_contributions``."""
     require_result(result, ParallelogramResult, "parallelogram")
-    return {"pareto": draw_pareto(result), **draw_design_figures(result.problem, result.final)}
+    figures = {"pareto": draw_pareto(result), **draw_design_figures(result.problem, result.final)}
+    if result.tolerance is not None:
+        figures.update(result.tolerance.draw_figures())
+    return figures

@@ -36,6 +36,7 @@ Schema (docs/parallelogram.md, "Problem files"); the driver gear's center O1 is 
     [search.bounds]               # [low, high] of the searched variables: m11, b, l, l1, alpha_deg
     [printed]                     # optional: m12, center_distance, teeth as a paper prints them for [design]
     [published]                   # optional: depth_mm, vx_release_mm_s, vertical_range_mm, spacing_mm reported
+    [tolerances]                  # optional: the built mechanism's tolerances (docs/tolerance.md)
 
 The crank angle (counterclockwise from +x) is theta(phi1) = reference + sense (phi2(phi1) - phi2(phi1_ref) - alpha):
 alpha is how far the crank lags, in its own sense, behind the reference direction at the reference instant.
@@ -50,6 +51,7 @@ from pathlib import Path
 import numpy as np
 
 from transplanter.errors import ProblemError
+from transplanter.tolerance.dimensions import ToleranceSettings, parse_tolerances
 from transplanter.toml_fields import (
     LONGEST_TITLE,
     MAGNITUDE_LIMIT,
@@ -72,7 +74,7 @@ SENSES = {"counterclockwise": 1.0, "clockwise": -1.0}
 DIRECTIONS = {"+x": 1.0, "-x": -1.0}
 PUBLISHED_FIELDS = ("depth_mm", "vx_release_mm_s", "vertical_range_mm", "spacing_mm")
 _TOP_KEYS = {"title", "description", "design", "gear", "machine", "conventions", "objectives", "search", "printed",
-             "published"}
+             "published", "tolerances"}
 
 #: Most NSGA-II evaluations (population x generations) one search may ask for.
 MAX_EVALUATIONS = 1_000_000
@@ -134,6 +136,9 @@ class ParallelogramProblem:
     printed, published : dict
         Optional: the gear values the paper printed for [design] (m12, center_distance, teeth) and the
         figures it reports (``PUBLISHED_FIELDS``), evaluated beside the search.
+    tolerances : ToleranceSettings
+        The ``[tolerances]`` table: tolerances of the built mechanism's dimensions
+        (``parallelogram.tolerance_model``) and the analysis settings (``tolerance.dimensions``).
     """
 
     design: dict
@@ -155,6 +160,7 @@ class ParallelogramProblem:
     title: str = ""
     printed: dict = field(default_factory=dict)
     published: dict = field(default_factory=dict)
+    tolerances: ToleranceSettings = field(default_factory=ToleranceSettings)
 
     def __post_init__(self):
         check = ClassFields(self)
@@ -336,6 +342,8 @@ def parse_problem(data: dict, source: str = "<dict>") -> ParallelogramProblem:
     ProblemError
         Naming the source, the field, the value and what was expected.
     """
+    from transplanter.parallelogram.tolerance_model import DIMENSION_NAMES  # it reads problems: imported here
+
     read = FieldReader(source)
     read.keys(data, _TOP_KEYS, "")
     if "design" not in data:
@@ -395,4 +403,5 @@ def parse_problem(data: dict, source: str = "<dict>") -> ParallelogramProblem:
         seed=read.integer(search, "seed", "search", 0, 2**31 - 1, default=1),
         source=source, title=read.text(data, "title", "", LONGEST_TITLE),
         printed=read_printed(read, data.get("printed", {}), design),
-        published=read_published(read, data.get("published", {})))
+        published=read_published(read, data.get("published", {})),
+        tolerances=parse_tolerances(data.get("tolerances", {}), DIMENSION_NAMES, source))

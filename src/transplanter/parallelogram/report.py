@@ -149,6 +149,7 @@ def parallelogram_result_json(result: ParallelogramResult) -> dict:
             "gear": gear_json(result.gear), "trajectory": trajectory_json(result.final_evaluation),
             "design": variables_json(result.final),
             "polished": None if result.polished is None else polished_json(result.polished, problem),
+            **({"tolerance": result.tolerance.to_json()} if result.tolerance else {}),
             "timings_s": result.timings_s}
 
 
@@ -241,6 +242,7 @@ def to_markdown(result: ParallelogramResult, files: Sequence[str] = ()) -> str:
                   "this design's.", ""]
     elif p is not None:
         lines += ["", f"NLP polish failed: IPOPT status {p.status}.", ""]
+    lines += ["", *result.tolerance.to_markdown()] if result.tolerance else []
     lines += ["", "Timings (s): " + ", ".join(f"{k} {v:.2f}" for k, v in result.timings_s.items()), ""]
     lines += _figures(files)
     return "\n".join(lines) + "\n"

@@ -13,6 +13,7 @@ from transplanter.gears.result import GearResult
 from transplanter.parallelogram.evaluation import DesignFile, Evaluation
 from transplanter.parallelogram.problem import ParallelogramProblem
 from transplanter.parallelogram.search import SearchResult
+from transplanter.tolerance import ToleranceAnalysis, ToleranceModel
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -110,6 +111,8 @@ class ParallelogramResult(CommandResult):
         The file's [design] under every reading of its gear and conventions (``evaluate_published``).
     failures : tuple of str
         Why the result fails its checks (empty when it passes).
+    tolerance : ToleranceAnalysis or None
+        How precise the built final design will be (``tolerance.analyse``), else None (``tolerance=False``).
     """
 
     problem: ParallelogramProblem
@@ -123,6 +126,7 @@ class ParallelogramResult(CommandResult):
     failures: tuple[str, ...] = ()
     polished: Polished | None = None
     published: list[Evaluation] = field(default_factory=list)
+    tolerance: ToleranceAnalysis | None = None
 
     @property
     def final(self) -> dict:
@@ -139,6 +143,13 @@ class ParallelogramResult(CommandResult):
     @property
     def source(self) -> str:
         return self.problem.source
+
+    def tolerance_model(self) -> ToleranceModel:
+        """The final design, its gears built to whole teeth, as a function of its manufactured dimensions
+        (``parallelogram.tolerance_model``)."""
+        from transplanter.parallelogram.tolerance_model import tolerance_model
+
+        return tolerance_model(self.problem, self.final, self.gear.design.center_distance)
 
     def to_json(self) -> dict[str, Any]:
         from transplanter.parallelogram.report import parallelogram_result_json

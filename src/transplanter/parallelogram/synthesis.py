@@ -1,6 +1,7 @@
 """The onion-transplanter jobs: design one (``synthesize``), evaluate a given design (``evaluate_design``)."""
 from __future__ import annotations
 
+import dataclasses
 import time
 from collections.abc import Callable
 
@@ -25,6 +26,7 @@ from transplanter.parallelogram.problem import ParallelogramProblem
 from transplanter.parallelogram.result import DesignReport, ParallelogramResult, Polished, objective_values
 from transplanter.parallelogram.search import SearchResult, nsga2
 from transplanter.parallelogram.trajectory import measure
+from transplanter.tolerance import analyse
 from transplanter.toml_fields import shown
 
 #: Agreement asked of the independent evaluation with the search's values, relative to the problem's size.
@@ -91,10 +93,12 @@ def _polish(problem: ParallelogramProblem, chosen: dict, evaluation: Evaluation)
 
 
 def synthesize(problem: ParallelogramProblem, pick: int | None = None,
-               progress: Callable[[str, int, int], None] | None = None, polish_nlp: bool = True) -> ParallelogramResult:
+               progress: Callable[[str, int, int], None] | None = None, polish_nlp: bool = True,
+               tolerance: bool = True) -> ParallelogramResult:
     """NSGA-II over the bounded variables, the design ranked ``pick`` (1, the knee, by default)
     evaluated again on a fine grid, polished by an NLP (Vx(t_E) = 0, H at its target, f3 minimised),
-    and the final design's gear pair from the gear library.
+    the final design's gear pair from the gear library and, unless ``tolerance`` is False, how precise
+    the built mechanism will be (``tolerance.analyse`` with the problem's ``[tolerances]``).
 
     Raises
     ------
@@ -134,8 +138,14 @@ def synthesize(problem: ParallelogramProblem, pick: int | None = None,
     failures = _checks(problem, search, rank, evaluation, gear) + gear_failures
     if polished is not None:
         failures += polished.failures(problem)
-    return ParallelogramResult(problem, search, rank, chosen, evaluation, gear, reference, timings, failures,
-                               polished, published)
+    result = ParallelogramResult(problem, search, rank, chosen, evaluation, gear, reference, timings, failures,
+                                 polished, published)
+    if not tolerance:
+        return result
+    start = time.perf_counter()
+    analysis = analyse(result, problem.tolerances)
+    timings["tolerance"] = time.perf_counter() - start
+    return dataclasses.replace(result, tolerance=analysis)
 
 
 def evaluate_design(problem: ParallelogramProblem, given: DesignFile) -> DesignReport:
