@@ -33,25 +33,27 @@ def _replaced(text: str, start: str, end: str, new: str) -> str:
     return text[:first] + new + text[text.index(end, first) + len(end):]
 
 
-def test_a_sampled_ratio_past_its_cap(tmp_path, capsys):
-    count = LARGEST_SAMPLE_COUNT + 1
-    angles = ", ".join(f"{v:.6f}" for v in np.arange(count) * 360 / count)
-    problem = tmp_path / "ratio.toml"
-    problem.write_text(_replaced((EXAMPLES / "gear_ratio.toml").read_text(), "phi_deg = [", "]\n",
-                                 f"phi_deg = [{angles}]\n"))
-    err = _one_line(capsys, ["gear", str(problem)])
-    assert f"driver.phi_deg = '{count} numbers': expected at most {LARGEST_SAMPLE_COUNT} numbers" in err
+def _ratio_angles(count: int) -> str:
+    return ", ".join(f"{v:.6f}" for v in np.arange(count) * 360 / count)
 
 
-def test_a_reverse_path_past_its_cap(tmp_path, capsys):
-    count = LARGEST_POINT_COUNT + 1
+def _path_points(count: int) -> str:
     angle = np.linspace(0, 2 * np.pi, count, endpoint=False)
-    points = ", ".join(f"[{44 * np.sin(t):.6f}, {-161.5 + 93 * np.cos(t):.6f}]" for t in angle)
-    problem = tmp_path / "path.toml"
-    problem.write_text(_replaced((EXAMPLES / "rice_hoe_reverse.toml").read_text(), "points = [", "\n]\n",
-                                 f"points = [{points}]\n"))
-    err = _one_line(capsys, ["reverse", str(problem)])
-    assert f"trajectory.points = '{count} points': expected at most {LARGEST_POINT_COUNT} points" in err
+    return ", ".join(f"[{44 * np.sin(t):.6f}, {-161.5 + 93 * np.cos(t):.6f}]" for t in angle)
+
+
+@pytest.mark.parametrize("command, example, key, end, cap, rows, field, what", [
+    ("gear", "gear_ratio.toml", "phi_deg", "]\n", LARGEST_SAMPLE_COUNT, _ratio_angles, "driver.phi_deg", "numbers"),
+    ("reverse", "rice_hoe_reverse.toml", "points", "\n]\n", LARGEST_POINT_COUNT, _path_points, "trajectory.points",
+     "points"),
+])
+def test_a_list_past_its_cap(tmp_path, capsys, command, example, key, end, cap, rows, field, what):
+    """A sampled ratio's angles, a reverse path's points: one past the cap is refused before the work."""
+    problem = tmp_path / "problem.toml"
+    problem.write_text(_replaced((EXAMPLES / example).read_text(), f"{key} = [", end,
+                                 f"{key} = [{rows(cap + 1)}]\n"))
+    err = _one_line(capsys, [command, str(problem)])
+    assert f"{field} = '{cap + 1} {what}': expected at most {cap} {what}" in err
 
 
 def test_burmester_poses_past_their_cap(tmp_path, capsys):
