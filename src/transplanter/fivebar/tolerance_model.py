@@ -26,7 +26,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-import casadi as ca
 import numpy as np
 
 from transplanter._generated.fivebar import (
@@ -34,11 +33,10 @@ from transplanter._generated.fivebar import (
     fivebar_half_angle_quadratic,
     fivebar_transmission_margin,
 )
-from transplanter.generated import CASADI, NUMPY
 from transplanter.geometry.planar import TWO_PI, cross
-from transplanter.tolerance.dimensions import Dimension
+from transplanter.tolerance.dimensions import Dimension, hinge_plays
 from transplanter.tolerance.iso2768 import angular_limit_deg, linear_limit_mm
-from transplanter.tolerance.model import ToleranceModel
+from transplanter.tolerance.model import ToleranceModel, backend_motion
 from transplanter.tolerance.planetary_gears import GEAR_DIMENSION_NAMES, gear_dimensions, gear_rows, planet_turn
 
 #: Radial play of every hinge (mm) where the drawings set no shaft diameter to take an H7/g6 fit from.
@@ -114,23 +112,9 @@ def _dimensions(result) -> tuple[Dimension, ...]:
              for name, value in nominal.items()]
     bend = Dimension("bend_angle", float(np.degrees(toothed.bend_angle)),
                      angular_limit_deg(min(a1, mech.carrier_length)), "deg", "ISO 2768-m, shorter leg")
-    play = [Dimension(f"clearance_{h}_{axis}", 0.0, HINGE_PLAY_MM, "mm", "radial play")
-            for h in HINGES for axis in "xy"]
+    play = hinge_plays(HINGES, HINGE_PLAY_MM)
     gears = gear_dimensions(result.design.relative_angle, toothed.train, toothed.module, toothed.pressure_angle)
     return (*links, bend, *play, *gears)
-
-
-@dataclass(frozen=True)
-class SampledMotion:
-    """The motion (N, rows, T) of N built mechanisms (dimensions (N, n)) by the numpy backend."""
-
-    result: Any
-    turn_data: np.ndarray
-
-    def __call__(self, dimensions: np.ndarray) -> np.ndarray:
-        v = {name: dimensions[:, i, None] for i, name in enumerate(DIMENSION_NAMES)}
-        with np.errstate(invalid="ignore"):        # a chain that does not close: NaN, judged by the conditions
-            return np.stack(np.broadcast_arrays(*built_motion(NUMPY, self.result, v, self.turn_data)), axis=1)
 
 
 @dataclass(frozen=True)
@@ -167,11 +151,8 @@ def tolerance_model(result) -> ToleranceModel:
     returns = result.design.stroke.carrier_turns
     turns = np.r_[problem.carrier_turns, returns, np.linspace(0, TWO_PI, TURN_SAMPLES, endpoint=False)]
     rows = gear_rows(result.design.relative_angle, result.toothed.train, turns)
-    d, g = ca.SX.sym("dimensions", len(DIMENSION_NAMES)), ca.SX.sym("gear_row", len(rows))
-    at_turn = ca.Function("fivebar_built_motion", [d, g],
-                          [ca.vertcat(*built_motion(CASADI, result, dict(zip(DIMENSION_NAMES, ca.vertsplit(d),
-                                                                             strict=True)), ca.vertsplit(g)))])
+    at_turn, sampled = backend_motion("fivebar_built_motion", built_motion, result, DIMENSION_NAMES, rows)
     return ToleranceModel(problem.title or problem.source, _dimensions(result), at_turn, rows,
-                          SampledMotion(result, rows), np.degrees(turns), problem.labels,
+                          sampled, np.degrees(turns), problem.labels,
                           slice(len(turns) - TURN_SAMPLES, None),
                           HardConditions(result, len(problem.carrier_turns), len(returns)))

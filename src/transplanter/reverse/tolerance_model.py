@@ -27,18 +27,15 @@ numpy (N built mechanisms by T turns at once, for the Monte Carlo).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
-import casadi as ca
 import numpy as np
 
 from transplanter._generated.planetary import pickup_tip
 from transplanter.errors import ProblemError
-from transplanter.generated import CASADI, NUMPY
 from transplanter.geometry.planar import TWO_PI
-from transplanter.tolerance.dimensions import Dimension
+from transplanter.tolerance.dimensions import Dimension, hinge_plays
 from transplanter.tolerance.iso2768 import angular_limit_deg, linear_limit_mm
-from transplanter.tolerance.model import ToleranceModel
+from transplanter.tolerance.model import ToleranceModel, backend_motion
 from transplanter.tolerance.planetary_gears import GEAR_DIMENSION_NAMES, gear_dimensions, gear_rows, planet_turn
 from transplanter.trains.planetary import PlanetaryTrain
 
@@ -93,22 +90,9 @@ def _dimensions(result) -> tuple[Dimension, ...]:
              for name, value in nominal.items()]
     bend = Dimension("carrier_bend", float(np.degrees(_bend(result))), angular_limit_deg(min(a1, a2)), "deg",
                      "ISO 2768-m, shorter leg")
-    play = [Dimension(f"clearance_{h}_{axis}", 0.0, HINGE_PLAY_MM, "mm", "radial play")
-            for h in HINGES for axis in "xy"]
+    play = hinge_plays(HINGES, HINGE_PLAY_MM)
     gears = gear_dimensions(result.relative, train, result.problem.module, np.radians(PRESSURE_ANGLE_DEG))
     return (*links, bend, *play, *gears)
-
-
-@dataclass(frozen=True)
-class SampledMotion:
-    """The motion (N, rows, T) of N built mechanisms (dimensions (N, n)) by the numpy backend."""
-
-    result: Any
-    turn_data: np.ndarray
-
-    def __call__(self, dimensions: np.ndarray) -> np.ndarray:
-        v = {name: dimensions[:, i, None] for i, name in enumerate(DIMENSION_NAMES)}
-        return np.stack(np.broadcast_arrays(*built_motion(NUMPY, self.result, v, self.turn_data)), axis=1)
 
 
 @dataclass(frozen=True)
@@ -146,15 +130,12 @@ def tolerance_model(result, roundtrip_tolerance: float) -> ToleranceModel:
     whole = np.linspace(0, TWO_PI, TURN_SAMPLES, endpoint=False)
     turns = np.r_[key_turns, whole]
     rows = gear_rows(result.relative, result.train, turns)
-    d, g = ca.SX.sym("dimensions", len(DIMENSION_NAMES)), ca.SX.sym("gear_row", len(rows))
-    at_turn = ca.Function("reverse_built_motion", [d, g],
-                          [ca.vertcat(*built_motion(CASADI, result, dict(zip(DIMENSION_NAMES, ca.vertsplit(d),
-                                                                             strict=True)), ca.vertsplit(g)))])
+    at_turn, sampled = backend_motion("reverse_built_motion", built_motion, result, DIMENSION_NAMES, rows)
     motion = result.motion
     path = (result.trajectory.evaluate(motion.parameter_at(whole)) + result.problem.pivot).T
     reach = motion.carrier_length + motion.arm_length
     problem = result.problem
     whole_turn = slice(len(turns) - TURN_SAMPLES, None)
     return ToleranceModel(problem.title or problem.source, _dimensions(result), at_turn, rows,
-                          SampledMotion(result, rows), np.degrees(turns), labels, whole_turn,
+                          sampled, np.degrees(turns), labels, whole_turn,
                           RoundTrip(path, whole_turn, roundtrip_tolerance * reach))
