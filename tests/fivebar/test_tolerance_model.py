@@ -10,7 +10,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from transplanter.cli import main
+from tests.tolerance.command_checks import bad_tolerance_is_refused, no_tolerance_reaches_synthesize
+from transplanter import fivebar
 from transplanter.fivebar.loop_closure import close_loop
 from transplanter.fivebar.tolerance_model import DIMENSION_NAMES, TURN_SAMPLES
 from transplanter.fivebar.verification import TURN_SAMPLES as VERIFIED_SAMPLES
@@ -164,19 +165,8 @@ def test_report_section(example_result, analysis, model):
     assert {"tolerance_band", "tolerance_contributions"} <= set(example_result.draw_figures())
 
 
-def test_no_tolerance_flag_skips_the_analysis(monkeypatch, capsys):
-    from transplanter import fivebar
-    from transplanter.errors import InfeasibleError
-
-    seen = {}
-
-    def synthesize(problem, **options):
-        seen.update(options)
-        raise InfeasibleError("stopped here")
-
-    monkeypatch.setattr(fivebar, "synthesize", synthesize)
-    assert main(["fivebar", str(EXAMPLE), "--quiet", "--no-tolerance"]) == 2
-    assert seen["tolerance"] is False
+def test_no_tolerance_flag_skips_the_analysis(monkeypatch):
+    no_tolerance_reaches_synthesize(monkeypatch, fivebar, "fivebar", EXAMPLE)
 
 
 @pytest.mark.parametrize("entry, fragment", [("rod_length_AF = -0.1", "tolerances.rod_length_AF = -0.1"),
@@ -184,11 +174,4 @@ def test_no_tolerance_flag_skips_the_analysis(monkeypatch, capsys):
                                              ("pose_position_mm = 0.0", "tolerances.pose_position_mm = 0.0"),
                                              ("phase_sun = nan", "tolerances.phase_sun = nan")])
 def test_bad_tolerances_give_one_line_and_exit_2_before_the_work(tmp_path, capsys, monkeypatch, entry, fragment):
-    from transplanter import fivebar
-
-    path = tmp_path / "problem.toml"
-    path.write_text(EXAMPLE.read_text() + f"\n[tolerances]\n{entry}\n")
-    monkeypatch.setattr(fivebar, "synthesize", lambda *a, **k: pytest.fail("the work started"))
-    assert main(["fivebar", str(path), "--quiet"]) == 2
-    lines = capsys.readouterr().err.strip().splitlines()
-    assert len(lines) == 1 and fragment in lines[0], lines
+    bad_tolerance_is_refused(tmp_path, capsys, monkeypatch, fivebar, "fivebar", EXAMPLE, entry, fragment)

@@ -10,8 +10,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from tests.tolerance.command_checks import bad_tolerance_is_refused, no_tolerance_reaches_synthesize
 from transplanter import reverse
-from transplanter.cli import main
 from transplanter.errors import ProblemError
 from transplanter.reverse.tolerance_model import DIMENSION_NAMES, TURN_SAMPLES
 from transplanter.reverse.verification import CHECK_POINTS, rebuild_tip
@@ -175,17 +175,7 @@ def test_three_gear_train_has_no_model():
 
 
 def test_no_tolerance_flag_skips_the_analysis(monkeypatch):
-    from transplanter.errors import InfeasibleError
-
-    seen = {}
-
-    def synthesize(problem, **options):
-        seen.update(options)
-        raise InfeasibleError("stopped here")
-
-    monkeypatch.setattr(reverse, "synthesize", synthesize)
-    assert main(["reverse", str(RICE), "--quiet", "--no-tolerance"]) == 2
-    assert seen["tolerance"] is False
+    no_tolerance_reaches_synthesize(monkeypatch, reverse, "reverse", RICE)
 
 
 @pytest.mark.parametrize("entry, fragment", [("arm_length = -0.1", "tolerances.arm_length = -0.1"),
@@ -193,9 +183,4 @@ def test_no_tolerance_flag_skips_the_analysis(monkeypatch):
                                              ("pose_angle_deg = 0.0", "tolerances.pose_angle_deg = 0.0"),
                                              ("phase_sun = inf", "tolerances.phase_sun = inf")])
 def test_bad_tolerances_give_one_line_and_exit_2_before_the_work(tmp_path, capsys, monkeypatch, entry, fragment):
-    path = tmp_path / "problem.toml"
-    path.write_text(RICE.read_text() + f"\n[tolerances]\n{entry}\n")
-    monkeypatch.setattr(reverse, "synthesize", lambda *a, **k: pytest.fail("the work started"))
-    assert main(["reverse", str(path), "--quiet"]) == 2
-    lines = capsys.readouterr().err.strip().splitlines()
-    assert len(lines) == 1 and fragment in lines[0], lines
+    bad_tolerance_is_refused(tmp_path, capsys, monkeypatch, reverse, "reverse", RICE, entry, fragment)
