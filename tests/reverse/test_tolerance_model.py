@@ -182,6 +182,19 @@ def test_report_section_and_figures(result, analysis):
     assert "tolerance" not in result.to_json() and "tolerance_band" not in result.draw_figures()
 
 
+def test_a_train_below_iso_2768_sizes_says_why_it_has_no_analysis_until_the_tolerances_are_given():
+    data = tomllib.loads(RICE.read_text())
+    data["trajectory"]["points"] = [[x / 1000, y / 1000] for x, y in data["trajectory"]["points"]]
+    result = reverse.synthesize(reverse.parse_problem(data, "micro"))
+    assert result.tolerance is None and not result.failures
+    assert "no general tolerance for a length of 0.162 mm" in result.to_json()["tolerance_note"]
+    assert "- Tolerances: no tolerance analysis" in result.to_markdown()
+    data["tolerances"] = {"arm_length": 1e-3, "center_distance_L1": 1e-3, "center_distance_L2": 1e-3,
+                          "carrier_bend": 0.5, "samples": 1000}
+    given = reverse.synthesize(reverse.parse_problem(data, "micro"))
+    assert given.tolerance is not None and given.tolerance_note == ""
+
+
 def test_three_gear_train_has_no_model():
     data = tomllib.loads(RICE.read_text())
     data["train"] = {"topology": "sun-idler-planet"}

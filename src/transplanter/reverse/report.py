@@ -120,6 +120,8 @@ def reverse_result_json(result: ReverseResult) -> dict:
     })
     if result.tolerance is not None:
         report["tolerance"] = result.tolerance.to_json()
+    if result.tolerance_note:
+        report["tolerance_note"] = result.tolerance_note
     if isinstance(train, IdlerTrain):
         report["idler_iteration"] = {"iterations": train.iterations, "settled": bool(train.converged),
                                      "eq5_model_residual": train.model_residual, "correction_x": train.correction,
@@ -172,5 +174,6 @@ def to_markdown(result: ReverseResult, files: Sequence[str] = ()) -> str:
             lines += ["", "The reverse-gear-design paper's split as printed (i1 = i25 bs) would turn the intermediate "
                       f"gear {printed:.3f} deg per cycle (360 closes)."]
     lines += [""] + (result.tolerance.to_markdown() if result.tolerance else [])
+    lines += [f"- Tolerances: {result.tolerance_note}", ""] if result.tolerance_note else []
     lines += [f"![{name}]({name})" for name in files if name.endswith(".png")]
     return "\n".join(lines) + "\n"

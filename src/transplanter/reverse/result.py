@@ -56,6 +56,8 @@ class ReverseResult(CommandResult):
     tolerance : ToleranceAnalysis or None
         How precise the built train and arm will be (``tolerance.analyse``), else None (``tolerance=False``, or a
         train the analysis has no model of: none, or sun-idler-planet).
+    tolerance_note : str
+        Why a four-gear train has no tolerance analysis (a dimension without a default tolerance), else "".
     """
 
     problem: ReverseProblem
@@ -70,6 +72,7 @@ class ReverseResult(CommandResult):
     train: PlanetaryTrain | IdlerTrain | None = None
     verification: ReverseVerification | None = None
     tolerance: ToleranceAnalysis | None = None
+    tolerance_note: str = ""
 
     @property
     def source(self) -> str:

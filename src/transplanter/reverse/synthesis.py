@@ -190,4 +190,13 @@ def synthesize(problem: ReverseProblem, tolerance: bool = True) -> ReverseResult
     train = design_train(relative, centers, problem.source, exponent)
     result = ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, geometry, train,
                            verify_reverse(motion, train, geometry))
-    return dataclasses.replace(result, tolerance=analyse(result, problem.tolerances)) if tolerance else result
+    return _analysed(result) if tolerance else result
+
+
+def _analysed(result: ReverseResult) -> ReverseResult:
+    """``result`` with its tolerance analysis, or with the reason there is none (a dimension without a default
+    tolerance the problem does not give), which does not fail the design."""
+    try:
+        return dataclasses.replace(result, tolerance=analyse(result, result.problem.tolerances))
+    except ProblemError as error:
+        return dataclasses.replace(result, tolerance_note=f"no tolerance analysis: {error}")

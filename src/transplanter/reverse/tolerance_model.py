@@ -82,13 +82,15 @@ def built_motion(lib, result, v: dict, g) -> tuple:
 
 
 def _dimensions(result) -> tuple[Dimension, ...]:
-    """Every toleranced dimension with its nominal value and default tolerance."""
-    train = result.train
+    """Every toleranced dimension with its nominal value and default tolerance; a length or bend the problem's
+    ``[tolerances]`` gives is not looked up in ISO 2768 (which has none below 0.5 mm or above 4 m)."""
+    train, given = result.train, result.problem.tolerances.tolerances
     a1, a2 = train.center_distances
     nominal = {"arm_length": result.motion.arm_length, "center_distance_L1": a1, "center_distance_L2": a2}
-    links = [Dimension(name, float(value), linear_limit_mm(value), "mm", "ISO 2768-m")
+    links = [Dimension(name, float(value), given[name] if name in given else linear_limit_mm(value), "mm", "ISO 2768-m")
              for name, value in nominal.items()]
-    bend = Dimension("carrier_bend", float(np.degrees(_bend(result))), angular_limit_deg(min(a1, a2)), "deg",
+    bend = Dimension("carrier_bend", float(np.degrees(_bend(result))),
+                     given["carrier_bend"] if "carrier_bend" in given else angular_limit_deg(min(a1, a2)), "deg",
                      "ISO 2768-m, shorter leg")
     play = hinge_plays(HINGES, HINGE_PLAY_MM)
     gears = gear_dimensions(result.relative, train, result.problem.module, np.radians(PRESSURE_ANGLE_DEG))
