@@ -144,10 +144,11 @@ def _parallelogram(command: Command, problem, args) -> CommandResult:
 def _reverse(command: Command, problem, args) -> CommandResult:
     """A given design's train (``--design``) or the problem's, with the tolerance analysis unless
     ``--no-tolerance``."""
+    tolerance = not getattr(args, "no_tolerance", False)
     with progress.step(command.step):
         if args.design:
-            return reverse.evaluate_design(problem, reverse.load_design(args.design), tolerance=not args.no_tolerance)
-        return reverse.synthesize(problem, tolerance=not args.no_tolerance)
+            return reverse.evaluate_design(problem, reverse.load_design(args.design), tolerance=tolerance)
+        return reverse.synthesize(problem, tolerance=tolerance)
 
 
 def _study(args) -> int:

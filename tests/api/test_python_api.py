@@ -129,7 +129,7 @@ def test_figures_of_each_job(example_result):
     check_figures(gears.draw_figures(gears.synthesize(gears.load_problem(EXAMPLES / "gear_limacon.toml"))),
                   {"gear_mesh", "gear_kinematics", "gear_curvature"})
     check_figures(reverse.draw_figures(reverse.synthesize(reverse.load_problem(EXAMPLES / "rice_hoe_reverse.toml"))),
-                  {"path", "motion", "gears"})
+                  {"path", "motion", "gears", "tolerance_band", "tolerance_contributions"})
 
 
 def test_naming_the_api_and_computing_import_no_matplotlib():
