@@ -41,7 +41,11 @@ def numpy_like(value):
 
 
 def without_timings(report: dict) -> dict:
-    return {key: value for key, value in report.items() if key != "timings_s"}
+    """The report without its wall times (``timings_s``, the tolerance analysis's too)."""
+    kept = {key: value for key, value in report.items() if key != "timings_s"}
+    if kept.get("tolerance"):
+        kept["tolerance"] = without_timings(kept["tolerance"])
+    return kept
 
 
 def from_dict(job, name: str):
