@@ -141,6 +141,16 @@ def _parallelogram(command: Command, problem, args) -> CommandResult:
         return parallelogram.synthesize(problem, pick=args.pick, progress=_report, tolerance=not args.no_tolerance)
 
 
+def _reverse(command: Command, problem, args) -> CommandResult:
+    """A given design's train (``--design``) or the problem's, with the tolerance analysis unless
+    ``--no-tolerance``."""
+    tolerance = not args.no_tolerance
+    with progress.step(command.step):
+        if args.design:
+            return reverse.evaluate_design(problem, reverse.load_design(args.design), tolerance=tolerance)
+        return reverse.synthesize(problem, tolerance=tolerance)
+
+
 def _study(args) -> int:
     from transplanter.study.command import run_study
 
@@ -148,8 +158,8 @@ def _study(args) -> int:
 
 
 def _given_or_made(command: Command, problem, args) -> CommandResult:
-    """The job of a command whose ``--design`` sets what the problem file leaves to the design (the reverse
-    train's arm and train, the cam's base circle): its subpackage's ``evaluate_design`` of that design, or
+    """The job of a command whose ``--design`` sets what the problem file leaves to the design (the cam's base
+    circle): its subpackage's ``evaluate_design`` of that design, or
     ``synthesize(problem)``."""
     with progress.step(command.step):
         if args.design:
@@ -244,9 +254,10 @@ COMMANDS = (
     Command("reverse", "planetary non-circular gear train that makes the arm tip follow a closed path (the "
             "rice-transplanter, reverse-gear-design and cusp-pitch-curve papers): inverse kinematics, monotonicity, "
             "gears, round trip", "reverse-design problem file (TOML, mm and degrees)", "the figures and design.toml",
-            reverse, run=_given_or_made,
+            reverse, run=_reverse,
             flags=(Flag(("--design",), {"metavar": "DESIGN.toml", "help": "make the train with this design's arm and "
-                                        "train (a run's design.toml) instead of the file's"}),)),
+                                        "train (a run's design.toml) instead of the file's"}),
+                   NO_TOLERANCE)),
     Command("cam", "a disc cam with a roller follower (translating or oscillating): motion laws, profile, pressure "
             "angle, curvature, undercut, the smallest base circle", "cam problem file (TOML, mm and degrees)",
             "cam_profile.csv, cam.dxf, cam.svg, design.toml and the figures", cam, run=_given_or_made,

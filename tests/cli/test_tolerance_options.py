@@ -4,7 +4,7 @@ from pathlib import Path
 
 import pytest
 
-from transplanter import fivebar, parallelogram
+from transplanter import fivebar, parallelogram, reverse
 from transplanter.cli import main
 from transplanter.errors import InfeasibleError
 
@@ -19,6 +19,10 @@ COMMANDS = [
     ("parallelogram", parallelogram, "onion_transplanter.toml",
      [("l1 = -0.1", "tolerances.l1 = -0.1"), ("crank = 0.1", "tolerances.crank = 0.1"),
       ("pose_angle_deg = 0.0", "tolerances.pose_angle_deg = 0.0"), ("backlash = inf", "tolerances.backlash = inf")]),
+    ("reverse", reverse, "rice_hoe_reverse.toml",
+     [("arm_length = -0.1", "tolerances.arm_length = -0.1"),
+      ("carrier_length = 0.1", "tolerances.carrier_length = 0.1"),
+      ("pose_angle_deg = 0.0", "tolerances.pose_angle_deg = 0.0"), ("phase_sun = inf", "tolerances.phase_sun = inf")]),
 ]
 
 

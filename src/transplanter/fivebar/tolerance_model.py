@@ -9,17 +9,12 @@ Dimensions (the names of the report's design table where they are there; mm or d
   ISO 2768-m by size (the bend angle by its shorter leg);
 - ``clearance_<hinge>_x`` / ``_y`` for O, A, F, E, B: where the pin sits in its hole, a constant offset in the
   frame's axes, within the radial play (``HINGE_PLAY_MM``: no shaft diameter is set by the drawings);
-- ``backlash_stage_1`` / ``_2``: the driven gear's lost motion (deg), within half the ISO/TR 10064-2
-  minimum normal backlash 2/3 (0.06 + 0.0005 a + 0.03 m) mm over the driven gear's mean pitch radius;
-- ``phase_<gear>``: each gear's assembly phase on its shaft (deg), +-``PHASE_DEG``.
+- ``backlash_stage_1`` / ``_2`` and ``phase_<gear>``: the gears' lost motion and assembly phases (deg,
+  ``tolerance.planetary_gears``).
 
-Motion. The gears map the carrier turn c to the rod's angle relative to the carrier: the sun, fixed to
-the frame, stands at c + phase_sun against the carrier; seen along the line of centres O->shaft (turned by
-the bend's error) stage 1 turns the intermediate shaft by psi, stage 2 (along the line shaft->A) turns the
-planet by chi, and the rod sits on the planet at its phase. Each stage's driven gear lags its designed
-motion by its lost motion plus the backlash a larger centre distance opens, delta a tan(alpha) / r
-(taken up against the load, which resists the motion). psi and chi enter as their second-order expansion
-about the designed motion at each c (the next term moves P by about 1e-6 mm at a 0.1 deg phase). The
+Motion. The gears map the carrier turn c to the rod's angle relative to the carrier
+(``tolerance.planetary_gears.planet_turn``: the line of centres turned by the bend's error, the backlash taken
+up against the load, the phases), the rod sitting on the planet at its phase. The
 linkage then closes through the generated eq (9) root on the design's branch (exact: eq (8) has no
 residual there but rounding), with the hinge offsets carried as shifts of F and B.
 
@@ -38,74 +33,37 @@ from transplanter._generated.fivebar import (
     fivebar_half_angle_quadratic,
     fivebar_transmission_margin,
 )
-from transplanter.fivebar.relative_angle import RelativeAngle
 from transplanter.geometry.planar import TWO_PI, cross
-from transplanter.tolerance.built_motion import SampledMotion, casadi_motion
-from transplanter.tolerance.dimensions import Dimension
+from transplanter.tolerance.dimensions import Dimension, hinge_plays
 from transplanter.tolerance.iso2768 import angular_limit_deg, linear_limit_mm
-from transplanter.tolerance.model import ToleranceModel
+from transplanter.tolerance.model import ToleranceModel, backend_motion
+from transplanter.tolerance.planetary_gears import GEAR_DIMENSION_NAMES, gear_dimensions, gear_rows, planet_turn
 
 #: Radial play of every hinge (mm) where the drawings set no shaft diameter to take an H7/g6 fit from.
 HINGE_PLAY_MM = 0.02
-#: Assembly phase of each gear on its shaft (deg).
-PHASE_DEG = 0.1
 #: Whole-turn samples the conditions and the trajectory band are judged on (3 deg apart).
 TURN_SAMPLES = 120
 HINGES = ("O", "A", "F", "E", "B")
-GEARS = ("sun", "first_intermediate", "second_intermediate", "planet")
 LINKS = ("carrier_length_OA", "rod_length_AF", "plate_link_length_EF", "receiving_plate_length_BE",
          "push_plate_EP", "push_plate_FP", "frame_length_OB", "center_distance_a1")
 #: Rows of the motion: P (mm), plate angle (rad), sin^2(EBF), sin^2(BEF), x of E and F (mm).
 ROWS = ("x_P", "y_P", "plate_angle", "closure_margin", "transmission_margin", "x_E", "x_F")
 DIMENSION_NAMES = (*LINKS, "bend_angle", *(f"clearance_{h}_{axis}" for h in HINGES for axis in "xy"),
-                   "backlash_stage_1", "backlash_stage_2", *(f"phase_{gear}" for gear in GEARS))
-
-
-def minimum_backlash_mm(center_distance: float, module: float) -> float:
-    """ISO/TR 10064-2's minimum normal backlash (mm) for a centre distance and module (mm)."""
-    return 2 / 3 * (0.06 + 0.0005 * center_distance + 0.03 * module)
+                   *GEAR_DIMENSION_NAMES)
 
 
 def _unit(lib, angle):
     return lib.cos(angle), lib.sin(angle)
 
 
-def _gear_rows(relative: RelativeAngle, train, c: np.ndarray) -> np.ndarray:
-    """Per carrier turn: c, chi(c), psi', psi'' (against c), chi' and chi'' against psi, and the driven gears'
-    pitch radii at their contact (mm); (8, T)."""
-    k, p = train.correction, train.exponent
-    s1, s2 = relative.evaluate(c, 1), relative.evaluate(c, 2)
-    psi_1, psi_2 = k * s1**p, k * p * s1 ** (p - 1) * s2
-    chi_1, chi_2 = s1 / psi_1, (s2 * psi_1 - s1 * psi_2) / psi_1**3
-    a1, a2 = train.center_distances
-    first = a1 - train.sun.evaluate(np.mod(c, TWO_PI))[0]
-    planet = a2 - train.second_intermediate.evaluate(train.intermediate_turn(np.mod(c, TWO_PI)))[0]
-    chi = relative.evaluate(c) - relative.evaluate(np.zeros(1))[0]
-    return np.vstack([c, chi, psi_1, psi_2, chi_1, chi_2, first, planet])
-
-
 def built_motion(lib, result, v: dict, g) -> tuple:
     """The ``ROWS`` of the built mechanism with dimensions ``v`` (by name, in their units) at the turns of gear
-    rows ``g`` (``_gear_rows``), on a backend ``lib`` (``generated.CASADI`` or ``generated.NUMPY``)."""
+    rows ``g`` (``planetary_gears.gear_rows``), on a backend ``lib`` (``generated.CASADI`` or ``generated.NUMPY``)."""
     mech, toothed, relative = result.design.mech, result.toothed, result.design.relative_angle
-    rad = np.pi / 180
-    c, chi0, psi_1, psi_2, chi_1, chi_2, r_first, r_planet = g
-
-    # the carrier's holes: O, the shaft at a1 and the bend, A at OA on the carrier's axis
-    a1_0, a2_0 = toothed.train.center_distances
-    bend_0 = toothed.bend_angle
-    shaft_x, shaft_y = (v["center_distance_a1"] * w for w in _unit(lib, v["bend_angle"] * rad))
-    to_a_x, to_a_y = v["carrier_length_OA"] - shaft_x, -shaft_y
-    line_1 = v["bend_angle"] * rad - bend_0
-    line_2 = lib.atan2(to_a_y, to_a_x) - np.arctan2(-a1_0 * np.sin(bend_0), mech.carrier_length - a1_0 * np.cos(bend_0))
-    tan_alpha = np.tan(toothed.pressure_angle)
-    lag_1 = v["backlash_stage_1"] * rad + (v["center_distance_a1"] - a1_0) * tan_alpha / r_first
-    lag_2 = v["backlash_stage_2"] * rad + (lib.sqrt(to_a_x**2 + to_a_y**2) - a2_0) * tan_alpha / r_planet
-    sun_off = v["phase_sun"] * rad - line_1
-    psi_off = (line_2 - line_1 + psi_1 * sun_off + psi_2 * sun_off**2 / 2 - lag_1
-               + (v["phase_first_intermediate"] - v["phase_second_intermediate"]) * rad)
-    chi = chi0 + chi_1 * psi_off + chi_2 * psi_off**2 / 2
-    rho = relative.rho1 + line_2 + chi - lag_2 + v["phase_planet"] * rad
+    nominal = (mech.carrier_length, toothed.bend_angle)
+    carrier = (v["carrier_length_OA"], v["center_distance_a1"], v["bend_angle"])
+    rho = relative.rho1 + planet_turn(lib, g, toothed.train, toothed.pressure_angle, nominal, carrier, v)
+    c = g[0]
 
     # the linkage, closed by the generated eq (9) root on the design's branch, hinge offsets as shifts of F and B
     theta1 = mech.carrier_angle - c
@@ -154,16 +112,9 @@ def _dimensions(result) -> tuple[Dimension, ...]:
              for name, value in nominal.items()]
     bend = Dimension("bend_angle", float(np.degrees(toothed.bend_angle)),
                      angular_limit_deg(min(a1, mech.carrier_length)), "deg", "ISO 2768-m, shorter leg")
-    play = [Dimension(f"clearance_{h}_{axis}", 0.0, HINGE_PLAY_MM, "mm", "radial play")
-            for h in HINGES for axis in "xy"]
-    turns = np.linspace(0, TWO_PI, TURN_SAMPLES, endpoint=False)
-    rows = _gear_rows(result.design.relative_angle, toothed.train, turns)
-    backlash = [Dimension(f"backlash_stage_{j + 1}", 0.0,
-                          float(np.degrees(minimum_backlash_mm(a, toothed.module) / 2
-                                           / (np.cos(toothed.pressure_angle) * rows[6 + j].mean()))),
-                          "deg", "half the minimum backlash") for j, a in enumerate((a1, a2))]
-    phases = [Dimension(f"phase_{gear}", 0.0, PHASE_DEG, "deg", "assembly phase") for gear in GEARS]
-    return (*links, bend, *play, *backlash, *phases)
+    play = hinge_plays(HINGES, HINGE_PLAY_MM)
+    gears = gear_dimensions(result.design.relative_angle, toothed.train, toothed.module, toothed.pressure_angle)
+    return (*links, bend, *play, *gears)
 
 
 @dataclass(frozen=True)
@@ -199,10 +150,9 @@ def tolerance_model(result) -> ToleranceModel:
     problem = result.problem
     returns = result.design.stroke.carrier_turns
     turns = np.r_[problem.carrier_turns, returns, np.linspace(0, TWO_PI, TURN_SAMPLES, endpoint=False)]
-    rows = _gear_rows(result.design.relative_angle, result.toothed.train, turns)
-    at_turn = casadi_motion("fivebar_built_motion", built_motion, result, DIMENSION_NAMES, len(rows))
+    rows = gear_rows(result.design.relative_angle, result.toothed.train, turns)
+    at_turn, sampled = backend_motion("fivebar_built_motion", built_motion, result, DIMENSION_NAMES, rows)
     return ToleranceModel(problem.title or problem.source, _dimensions(result), at_turn, rows,
-                          SampledMotion(built_motion, result, DIMENSION_NAMES, rows), np.degrees(turns),
-                          problem.labels,
+                          sampled, np.degrees(turns), problem.labels,
                           slice(len(turns) - TURN_SAMPLES, None),
                           HardConditions(result, len(problem.carrier_turns), len(returns)))

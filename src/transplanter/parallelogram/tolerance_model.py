@@ -44,10 +44,9 @@ from transplanter.parallelogram.evaluation import EVALUATION_SAMPLES
 from transplanter.parallelogram.kinematics import Mechanisms, mechanisms
 from transplanter.parallelogram.problem import ParallelogramProblem
 from transplanter.parallelogram.trajectory import measure
-from transplanter.tolerance.built_motion import SampledMotion, casadi_motion
-from transplanter.tolerance.dimensions import Dimension
+from transplanter.tolerance.dimensions import Dimension, hinge_plays
 from transplanter.tolerance.iso2768 import linear_limit_mm
-from transplanter.tolerance.model import ToleranceModel
+from transplanter.tolerance.model import ToleranceModel, backend_motion
 
 #: Radial play of every hinge (mm) where the drawings set no shaft diameter to take an H7/g6 fit from.
 HINGE_PLAY_MM = 0.02
@@ -130,8 +129,7 @@ def _dimensions(built: BuiltDesign) -> tuple[Dimension, ...]:
                "l6": mech.l6[0], "center_distance": built.center_distance}
     links = [Dimension(name, float(value), linear_limit_mm(value), "mm", "ISO 2768-m")
              for name, value in nominal.items()]
-    play = [Dimension(f"clearance_{h}_{axis}", 0.0, HINGE_PLAY_MM, "mm", "radial play")
-            for h in HINGES for axis in "xy"]
+    play = hinge_plays(HINGES, HINGE_PLAY_MM)
     r1 = limacon_driven_angle(NUMPY, [np.linspace(0, TWO_PI, TURN_SAMPLES, endpoint=False)],
                               [float(mech.base_radius[0]), float(mech.amplitude[0]), float(mech.m11[0]),
                                float(mech.m12[0])], [float(mech.center_distance[0])])[1][0]
@@ -207,9 +205,8 @@ def tolerance_model(problem: ParallelogramProblem, design: dict, built_center_di
     built = BuiltDesign(mech, built_center_distance / float(mech.center_distance[0]), problem.pressure_angle,
                         problem.module)
     rows = _turn_rows(mech, turns)
-    at_turn = casadi_motion("parallelogram_built_motion", built_motion, built, DIMENSION_NAMES, len(rows))
+    at_turn, sampled = backend_motion("parallelogram_built_motion", built_motion, built, DIMENSION_NAMES, rows)
     whole = slice(len(KEY_LABELS), len(KEY_LABELS) + TURN_SAMPLES)
-    return ToleranceModel(problem.title or problem.source, _dimensions(built), at_turn, rows,
-                          SampledMotion(built_motion, built, DIMENSION_NAMES, rows), np.degrees(turns), KEY_LABELS,
-                          whole,
+    return ToleranceModel(problem.title or problem.source, _dimensions(built), at_turn, rows, sampled,
+                          np.degrees(turns), KEY_LABELS, whole,
                           HardConditions(problem, slice(whole.stop, None)))

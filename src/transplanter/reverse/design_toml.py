@@ -94,11 +94,13 @@ def load_design(path: str | Path) -> ReverseDesign:
     return ReverseDesign(pivot, lengths, direction, branch, topology, split, coefficient, centers, module, str(path))
 
 
-def evaluate_design(problem: ReverseProblem, design: ReverseDesign) -> ReverseResult:
-    """The train for ``problem``'s path with ``design``'s arm and train (``synthesize``)."""
+def evaluate_design(problem: ReverseProblem, design: ReverseDesign, tolerance: bool = True) -> ReverseResult:
+    """The train for ``problem``'s path with ``design``'s arm and train (``synthesize``, with the tolerance analysis
+    unless ``tolerance`` is False)."""
     require_problem(problem, ReverseProblem, "reverse")
     if not isinstance(design, ReverseDesign):
         raise ProblemError(f"design = {shown(design)!r}: expected a ReverseDesign (from "
                            "transplanter.reverse.load_design(path))")
     fields = {field.name: getattr(design, field.name) for field in dataclasses.fields(design) if field.name != "source"}
-    return synthesize(dataclasses.replace(problem, points=problem.points + problem.pivot - design.pivot, **fields))
+    return synthesize(dataclasses.replace(problem, points=problem.points + problem.pivot - design.pivot, **fields),
+                      tolerance)

@@ -103,7 +103,8 @@ def draw_gears(result: ReverseResult) -> Figure:
 
 
 def draw_figures(result: ReverseResult) -> dict[str, Figure]:
-    """The figures of a reverse design by file stem: ``path``, ``motion``, and ``gears`` when it has a train.
+    """The figures of a reverse design by file stem: ``path``, ``motion``, ``gears`` when it has a train, and with
+    a tolerance analysis ``tolerance_band`` and ``tolerance_contributions``.
 
     Parameters
     ----------
@@ -119,4 +120,6 @@ def draw_figures(result: ReverseResult) -> dict[str, Figure]:
     figures = {"path": draw_path(result), "motion": draw_motion(result)}
     if result.train is not None:
         figures["gears"] = draw_gears(result)
+    if result.tolerance is not None:
+        figures.update(result.tolerance.draw_figures())
     return figures

@@ -19,14 +19,17 @@ Schema (docs/reverse.md, "Problem files"):
     # peak_to_valley = 0.6        # with split = "peak_to_valley" only: its b, in (0, 1)
     center_distances = [46.15, 46.15]      # mm; default s/2 each (collinear carrier)
     module = 2.5                  # mm, for the tooth counts (default 2.5)
+    [tolerances]                  # optional: the built train's tolerances and the analysis (docs/tolerance.md)
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
+from transplanter.reverse.tolerance_model import DIMENSION_NAMES
+from transplanter.tolerance.dimensions import ToleranceSettings, parse_tolerances
 from transplanter.toml_fields import (
     LONGEST_TITLE,
     MAGNITUDE_LIMIT,
@@ -41,7 +44,7 @@ from transplanter.toml_fields import (
 TOPOLOGIES = {"sun-intermediate-planet": ("sqrt", "peak_to_valley"),
               "pick-up": ("sqrt", "peak_to_valley"),
               "sun-idler-planet": ("identical_sun_planet",)}
-_TOP_KEYS = {"title", "description", "trajectory", "arm", "train"}
+_TOP_KEYS = {"title", "description", "trajectory", "arm", "train", "tolerances"}
 #: Most points of a path: time and memory grow with their number (measured on the rice example's loop sampled
 #: evenly: 5000 points 29 s and 0.1 GB, 100,000 points 185 s and 0.53 GB), and a loop sampled more finely than this
 #: gives the same train.
@@ -78,6 +81,9 @@ class ReverseProblem:
         mm, for the tooth counts.
     source, title : str
         Where the problem came from and its title.
+    tolerances : ToleranceSettings
+        The ``[tolerances]`` table: tolerances of the built train's dimensions (``reverse.tolerance_model``) and
+        the analysis settings (``tolerance.dimensions``).
 
     Raises
     ------
@@ -98,6 +104,7 @@ class ReverseProblem:
     module: float = 2.5
     source: str = "<dict>"
     title: str = ""
+    tolerances: ToleranceSettings = field(default_factory=ToleranceSettings)
 
     def __post_init__(self):
         check = ClassFields(self)
@@ -241,4 +248,5 @@ def parse_problem(data: dict, source: str = "<dict>") -> ReverseProblem:
     return ReverseProblem(points=points - pivot, kind=kind, pivot=pivot, lengths=lengths, direction=direction,
                           branch=branch, topology=topology, split=split, peak_to_valley=coefficient,
                           center_distances=centers, module=module, source=source,
-                          title=read.text(data, "title", "", LONGEST_TITLE))
+                          title=read.text(data, "title", "", LONGEST_TITLE),
+                          tolerances=parse_tolerances(data.get("tolerances", {}), DIMENSION_NAMES, source))

@@ -118,6 +118,10 @@ def reverse_result_json(result: ReverseResult) -> dict:
         "roundtrip_max_error_mm": verification.max_error_mm,
         "contact_gap_max_mm": max(float(np.abs(g).max()) for g in verification.contact_gaps_mm),
     })
+    if result.tolerance is not None:
+        report["tolerance"] = result.tolerance.to_json()
+    if result.tolerance_note:
+        report["tolerance_note"] = result.tolerance_note
     if isinstance(train, IdlerTrain):
         report["idler_iteration"] = {"iterations": train.iterations, "settled": bool(train.converged),
                                      "eq5_model_residual": train.model_residual, "correction_x": train.correction,
@@ -169,5 +173,7 @@ def to_markdown(result: ReverseResult, files: Sequence[str] = ()) -> str:
         elif printed is not None:
             lines += ["", "The reverse-gear-design paper's split as printed (i1 = i25 bs) would turn the intermediate "
                       f"gear {printed:.3f} deg per cycle (360 closes)."]
-    lines += [""] + [f"![{name}]({name})" for name in files if name.endswith(".png")]
+    lines += [""] + (result.tolerance.to_markdown() if result.tolerance else [])
+    lines += [f"- Tolerances: {result.tolerance_note}", ""] if result.tolerance_note else []
+    lines += [f"![{name}]({name})" for name in files if name.endswith(".png")]
     return "\n".join(lines) + "\n"

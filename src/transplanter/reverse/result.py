@@ -14,6 +14,7 @@ from transplanter.reverse.idler_train import IdlerTrain
 from transplanter.reverse.monotonicity import Violation
 from transplanter.reverse.problem import ReverseProblem
 from transplanter.reverse.verification import CarrierGeometry, ReverseVerification
+from transplanter.tolerance import ToleranceAnalysis, ToleranceModel
 from transplanter.trains.planetary import PlanetaryTrain
 
 if TYPE_CHECKING:
@@ -52,6 +53,11 @@ class ReverseResult(CommandResult):
         The gear train (pitch curves in mm); None when the criterion fails.
     verification : ReverseVerification or None
         The tip rebuilt from the rolled gears against the path (mm).
+    tolerance : ToleranceAnalysis or None
+        How precise the built train and arm will be (``tolerance.analyse``), else None (``tolerance=False``, or a
+        train the analysis has no model of: none, or sun-idler-planet).
+    tolerance_note : str
+        Why a four-gear train has no tolerance analysis (a dimension without a default tolerance), else "".
     """
 
     problem: ReverseProblem
@@ -65,6 +71,8 @@ class ReverseResult(CommandResult):
     geometry: CarrierGeometry | None = None
     train: PlanetaryTrain | IdlerTrain | None = None
     verification: ReverseVerification | None = None
+    tolerance: ToleranceAnalysis | None = None
+    tolerance_note: str = ""
 
     @property
     def source(self) -> str:
@@ -92,6 +100,12 @@ class ReverseResult(CommandResult):
             return []
         return [f"the {self.problem.topology} train, rolled from its pitch curves, misses the path by up to "
                 f"{miss:.4g} mm (more than {ROUNDTRIP_TOLERANCE:g} of the reach s + l = {reach:.6g} mm)"]
+
+    def tolerance_model(self) -> ToleranceModel:
+        """The built train and arm as a function of their manufactured dimensions (``reverse.tolerance_model``)."""
+        from transplanter.reverse.tolerance_model import tolerance_model
+
+        return tolerance_model(self, ROUNDTRIP_TOLERANCE)
 
     def to_json(self) -> dict[str, Any]:
         from transplanter.reverse.report import reverse_result_json

@@ -8,6 +8,8 @@ the monotonicity criterion comes back with its violations and fix hints and no t
 """
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from transplanter._generated.planetary import arm_lengths_from_extremes
@@ -23,6 +25,7 @@ from transplanter.reverse.monotonicity import fix_hints, violations
 from transplanter.reverse.problem import ReverseProblem
 from transplanter.reverse.result import ReverseResult
 from transplanter.reverse.verification import CarrierGeometry, verify_reverse
+from transplanter.tolerance import analyse
 from transplanter.trains.planetary import design_train
 
 _arm_lengths = numpy_twin(arm_lengths_from_extremes)
@@ -134,19 +137,23 @@ def carrier_geometry(problem: ReverseProblem, carrier_length: float) -> CarrierG
     return CarrierGeometry(first, second, float(np.arccos(cosine)))
 
 
-def synthesize(problem: ReverseProblem) -> ReverseResult:
+def synthesize(problem: ReverseProblem, tolerance: bool = True) -> ReverseResult:
     """The planetary gear train that makes the arm tip follow the problem's closed path.
 
     Parameters
     ----------
     problem : ReverseProblem
         From ``load_problem`` / ``parse_problem`` or built directly (mm).
+    tolerance : bool, optional
+        Analyse how precise the built train and arm will be (``tolerance.analyse`` with the problem's
+        ``[tolerances]``; default True) when there is a four-gear train.
 
     Returns
     -------
     ReverseResult
-        Arm lengths and motion, the monotonicity verdict; when it passes, the train and its
-        round-trip verification (``monotonic`` is False and ``train`` None when it fails).
+        Arm lengths and motion, the monotonicity verdict; when it passes, the train, its
+        round-trip verification and the tolerance analysis (``monotonic`` is False and ``train`` None when it
+        fails).
 
     Raises
     ------
@@ -181,5 +188,15 @@ def synthesize(problem: ReverseProblem) -> ReverseResult:
     centers = (geometry.first, geometry.second) if geometry else (problem.center_distances or halves)
     exponent = problem.peak_to_valley if problem.split == "peak_to_valley" else 0.5
     train = design_train(relative, centers, problem.source, exponent)
-    return ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, geometry, train,
-                         verify_reverse(motion, train, geometry))
+    result = ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, geometry, train,
+                           verify_reverse(motion, train, geometry))
+    return _analysed(result) if tolerance else result
+
+
+def _analysed(result: ReverseResult) -> ReverseResult:
+    """``result`` with its tolerance analysis, or with the reason there is none (a dimension without a default
+    tolerance the problem does not give), which does not fail the design."""
+    try:
+        return dataclasses.replace(result, tolerance=analyse(result, result.problem.tolerances))
+    except ProblemError as error:
+        return dataclasses.replace(result, tolerance_note=f"no tolerance analysis: {error}")

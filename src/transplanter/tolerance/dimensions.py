@@ -71,6 +71,11 @@ class ToleranceSettings:
         return tuple(replace(d, tolerance=float(self.tolerances.get(d.name, d.tolerance))) for d in dimensions)
 
 
+def hinge_plays(hinges: tuple[str, ...], play_mm: float) -> list[Dimension]:
+    """``clearance_<hinge>_x`` / ``_y``: where each pin sits in its hole, within the radial play (mm)."""
+    return [Dimension(f"clearance_{h}_{axis}", 0.0, play_mm, "mm", "radial play") for h in hinges for axis in "xy"]
+
+
 def parse_tolerances(table: Mapping, names: tuple[str, ...], source: str) -> ToleranceSettings:
     """The ``[tolerances]`` table of a problem file: ``name = tolerance`` for any of ``names`` (the dimension's
     unit, >= 0), and the settings of ``SETTING_KEYS``. Each bad entry is refused naming the field."""

@@ -13,16 +13,18 @@ backend, as generated code is:
 
 Dimensions are in ``dimensions`` order, each in its unit (mm or deg). ``conditions`` takes the motion of N
 built mechanisms (N, rows, T) and their dimensions (N, n) and returns, per hard condition, which of them
-violate it ((N,) booleans).
+violate it ((N,) booleans). ``backend_motion`` makes both from the formula.
 """
 from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from typing import Any
 
 import casadi as ca
 import numpy as np
 
+from transplanter.generated import CASADI, NUMPY
 from transplanter.tolerance.dimensions import Dimension
 
 Conditions = Callable[[np.ndarray, np.ndarray], dict[str, np.ndarray]]
@@ -72,3 +74,29 @@ class ToleranceModel:
         turns = self.turn_data.shape[1]
         blocks = np.asarray(per_turn.map(turns)(np.repeat(self.nominal[:, None], turns, 1), self.turn_data))
         return blocks.reshape(rows, turns, len(self.dimensions))
+
+
+@dataclass(frozen=True)
+class SampledMotion:
+    """The motion (N, rows, T) of N built mechanisms (dimensions (N, n)) by the numpy backend of ``formula``
+    (``backend_motion``); a chain that does not close gives NaN, which the mechanism's conditions judge."""
+
+    formula: Callable
+    result: Any
+    names: tuple[str, ...]
+    turn_data: np.ndarray
+
+    def __call__(self, dimensions: np.ndarray) -> np.ndarray:
+        v = {name: dimensions[:, i, None] for i, name in enumerate(self.names)}
+        with np.errstate(invalid="ignore"):
+            return np.stack(np.broadcast_arrays(*self.formula(NUMPY, self.result, v, self.turn_data)), axis=1)
+
+
+def backend_motion(name: str, formula: Callable, result, names: tuple[str, ...],
+                   turn_data: np.ndarray) -> tuple[ca.Function, SampledMotion]:
+    """``at_turn`` and ``sampled`` of a mechanism whose motion is ``formula(lib, result, v, turn)`` (``lib`` a
+    backend of ``transplanter.generated``, ``v`` the dimensions by ``names``, ``turn`` a column of
+    ``turn_data``) -> the rows."""
+    d, g = ca.SX.sym("dimensions", len(names)), ca.SX.sym("turn", turn_data.shape[0])
+    rows = formula(CASADI, result, dict(zip(names, ca.vertsplit(d), strict=True)), ca.vertsplit(g))
+    return ca.Function(name, [d, g], [ca.vertcat(*rows)]), SampledMotion(formula, result, names, turn_data)
