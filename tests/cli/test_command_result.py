@@ -1,6 +1,5 @@
 """Every registered command's result is a ``CommandResult``: each command's quick example run through the
 registry (the five-bar design itself is checked on the session's example in test_fivebar_drawings.py)."""
-import argparse
 import dataclasses
 from pathlib import Path
 
@@ -8,7 +7,7 @@ import pytest
 
 from tests.cli.command_result_checks import check_protocol
 from transplanter import parallelogram
-from transplanter.cli import COMMANDS, Command
+from transplanter.cli import COMMANDS, Command, command_defaults
 from transplanter.command_result import CommandResult
 from transplanter.tolerance import ToleranceSettings
 
@@ -27,7 +26,9 @@ def _registered(name: str) -> Command:
 
 def _run(name: str, problem, **flags) -> CommandResult:
     command = _registered(name)
-    return command.run(command, problem, argparse.Namespace(**{"design": None, "pick": None, **flags}))
+    arguments = command_defaults(name, problem.source)       # as the command line runs it with no option given
+    vars(arguments).update(flags)
+    return command.run(command, problem, arguments)
 
 
 @pytest.mark.parametrize("case", sorted(QUICK))
@@ -40,7 +41,7 @@ def test_a_registered_command_returns_a_command_result(case, tmp_path):
 def test_the_onion_transplanter_design_is_a_command_result(tmp_path):
     small = dataclasses.replace(parallelogram.load_problem(EXAMPLES / "onion_transplanter.toml"), population=12,
                                 generations=4, depth_band=(10.0, 40.0), tolerances=ToleranceSettings(samples=200))
-    check_protocol(_run("parallelogram", small, no_tolerance=False), tmp_path)
+    check_protocol(_run("parallelogram", small), tmp_path)
 
 
 def test_every_command_is_checked():
