@@ -138,4 +138,5 @@ def test_report_section(result):
     assert set(section["violation_fraction"]) == {"depth band"}
     markdown = result.to_markdown()
     assert "## Tolerances (the built mechanism)" in markdown and "| depth band |" in markdown
+    assert "| planting point E 3σ, first order (mm) |" in markdown and "| tool angle worst case (deg) |" in markdown
     assert {"tolerance_band", "tolerance_contributions"} <= set(result.draw_figures())

@@ -159,7 +159,9 @@ def test_first_order_holds_at_ten_times_the_tolerances_and_parts_at_a_hundred(mo
     position, _ = hundred.disagreement()
     assert position[0] > 0.10
     assert not hundred.to_json()["key_poses"][0]["first_order_holds"]
-    assert "First order breaks (Monte Carlo more than 10 % off) at: farthest P" in "\n".join(hundred.to_markdown())
+    section = "\n".join(hundred.to_markdown())
+    assert "First order breaks (Monte Carlo more than 10 % off) at: farthest arm tip" in section
+    assert "| arm angle 3σ, first order (deg) |" in section
 
 
 def test_report_section_and_figures(result, analysis):

@@ -209,4 +209,5 @@ def tolerance_model(problem: ParallelogramProblem, design: dict, built_center_di
     whole = slice(len(KEY_LABELS), len(KEY_LABELS) + TURN_SAMPLES)
     return ToleranceModel(problem.title or problem.source, _dimensions(built), at_turn, rows, sampled,
                           np.degrees(turns), KEY_LABELS, whole,
-                          HardConditions(problem, slice(whole.stop, None)))
+                          HardConditions(problem, slice(whole.stop, None)), point="planting point E",
+                          angle="tool angle")

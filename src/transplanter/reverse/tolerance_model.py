@@ -140,4 +140,5 @@ def tolerance_model(result, roundtrip_tolerance: float) -> ToleranceModel:
     whole_turn = slice(len(turns) - TURN_SAMPLES, None)
     return ToleranceModel(problem.title or problem.source, _dimensions(result), at_turn, rows,
                           sampled, np.degrees(turns), labels, whole_turn,
-                          RoundTrip(path, whole_turn, roundtrip_tolerance * reach))
+                          RoundTrip(path, whole_turn, roundtrip_tolerance * reach), point="arm tip",
+                          angle="arm angle")

@@ -24,8 +24,8 @@ def _ellipse(covariance: np.ndarray, points: int = 90) -> np.ndarray:
 
 
 def draw_band(analysis: ToleranceAnalysis) -> Figure:
-    """The 3-sigma band of P and the plate angle over the turn (first order and Monte Carlo), and the 3-sigma error
-    ellipses of P at the key poses."""
+    """The 3-sigma band of the model's point and angle (the five-bar's P and plate angle) over the turn (first
+    order and Monte Carlo), and the point's 3-sigma error ellipses at the key poses."""
     model, mc, k = analysis.model, analysis.monte_carlo, analysis.key_count
     whole = model.whole_turn
     fig = Figure(figsize=(10, 7.5), layout="constrained")
@@ -38,7 +38,7 @@ def draw_band(analysis: ToleranceAnalysis) -> Figure:
     angle.plot(turns, analysis.first_order_3sigma_deg[whole], "k-", label="first order")
     angle.plot(turns, mc.angle_3sigma_deg[whole], "r--", label="Monte Carlo")
     angle.plot(turns, analysis.worst_case_deg[whole], ":", color="grey", label="worst case")
-    for ax, unit in ((position, "P, 3σ semi-major axis (mm)"), (angle, "plate angle, 3σ (deg)")):
+    for ax, unit in ((position, f"{model.point}, 3σ semi-major axis (mm)"), (angle, f"{model.angle}, 3σ (deg)")):
         ax.set_xlabel("input turn (deg)")
         ax.set_ylabel(unit)
         ax.set_ylim(bottom=0)
@@ -67,8 +67,8 @@ def draw_contributions(analysis: ToleranceAnalysis) -> Figure:
     fig = Figure(figsize=(9, 4.5), layout="constrained")
     ax = fig.subplots()
     rows = np.arange(len(order))
-    ax.barh(rows - 0.2, 100 * position[order], 0.4, label="P position")
-    ax.barh(rows + 0.2, 100 * angle[order], 0.4, label="plate angle")
+    ax.barh(rows - 0.2, 100 * position[order], 0.4, label=f"{analysis.model.point} position")
+    ax.barh(rows + 0.2, 100 * angle[order], 0.4, label=analysis.model.angle)
     ax.set_yticks(rows, names[order], fontsize=8)
     ax.set_xlabel("mean share of the key poses' variance (%)")
     ax.set_ylabel("dimension")

@@ -43,6 +43,8 @@ class ToleranceModel:
     key_labels: tuple[str, ...]
     whole_turn: slice
     conditions: Conditions
+    point: str = "P"                # what rows 0-1 are, as reports and figures name it
+    angle: str = "plate angle"      # what row 2 is
 
     @property
     def nominal(self) -> np.ndarray:

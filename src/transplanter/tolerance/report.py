@@ -75,14 +75,16 @@ def tolerance_markdown(analysis: ToleranceAnalysis) -> list[str]:
              f"order from the exact Jacobian, Monte Carlo of {settings.samples} built mechanisms "
              f"(seed {settings.seed}).",
              "", "| | " + " | ".join(labels) + " |", "|---" * (k + 1) + "|"]
-    rows = (("P 3σ, first order (mm)", analysis.first_order_3sigma_mm),
-            ("P 3σ, Monte Carlo (mm)", mc.position_3sigma_mm), ("P worst case (mm)", analysis.worst_case_mm),
-            ("plate angle 3σ, first order (deg)", analysis.first_order_3sigma_deg),
-            ("plate angle 3σ, Monte Carlo (deg)", mc.angle_3sigma_deg),
-            ("plate angle worst case (deg)", analysis.worst_case_deg))
+    point, angle = model.point, model.angle
+    rows = ((f"{point} 3σ, first order (mm)", analysis.first_order_3sigma_mm),
+            (f"{point} 3σ, Monte Carlo (mm)", mc.position_3sigma_mm),
+            (f"{point} worst case (mm)", analysis.worst_case_mm),
+            (f"{angle} 3σ, first order (deg)", analysis.first_order_3sigma_deg),
+            (f"{angle} 3σ, Monte Carlo (deg)", mc.angle_3sigma_deg),
+            (f"{angle} worst case (deg)", analysis.worst_case_deg))
     lines += [f"| {name} | " + " | ".join(f"{v:.4f}" for v in values[:k]) + " |" for name, values in rows]
-    broken = [f"{label} {what} ({100 * part:.0f} % off)" for what, parts in (("P", position_parts),
-                                                                         ("plate angle", angle_parts))
+    broken = [f"{label} {what} ({100 * part:.0f} % off)" for what, parts in ((point, position_parts),
+                                                                         (angle, angle_parts))
               for label, part in zip(labels, parts, strict=True) if not part <= AGREEMENT]
     agreement = f"{100 * AGREEMENT:.0f} %"
     lines += ["", f"First order and Monte Carlo agree within {agreement} at every key pose." if not broken
