@@ -18,6 +18,7 @@ from transplanter.fivebar.loop_closure import close_loop
 from transplanter.fivebar.tolerance_model import DIMENSION_NAMES, TURN_SAMPLES
 from transplanter.fivebar.verification import TURN_SAMPLES as VERIFIED_SAMPLES
 from transplanter.tolerance import analyse
+from transplanter.tolerance.iso286 import clearance_um
 
 pytestmark = pytest.mark.filterwarnings("error")      # a numpy warning is a failure
 
@@ -141,3 +142,19 @@ def test_report_section(example_result, analysis, model):
     markdown = example_result.to_markdown()
     assert "## Tolerances (the built mechanism)" in markdown and "Dimensions that matter most" in markdown
     assert {"tolerance_band", "tolerance_contributions"} <= set(example_result.draw_figures())
+
+
+def test_hinge_plays_come_from_an_h7_g6_fit_on_the_drawings_shafts(example_result, model):
+    """O turns on the sun's fixed shaft, A on the planet's, F, E and B on the hinge pins: each hinge's play is
+    half the largest clearance of an H7/g6 fit on that diameter, and the report's dimension table says so."""
+    shafts = example_result.shafts.shafts
+    dimensions = {d.name: d for d in model.dimensions}
+    markdown = example_result.to_markdown()
+    for hinge, shaft in (("O", "sun"), ("A", "planet"), ("F", "hinge"), ("E", "hinge"), ("B", "hinge")):
+        diameter = shafts[shaft].diameter
+        lower, upper = clearance_um(diameter)
+        for axis in "xy":
+            play = dimensions[f"clearance_{hinge}_{axis}"]
+            assert play.tolerance == pytest.approx(upper / 2000, rel=1e-12) and lower >= 0
+            assert play.what == f"radial play, H7/g6 on {diameter:g} mm"
+        assert f"| clearance_{hinge}_x | 0 | {upper / 2000:.4g} | mm | radial play, H7/g6 on {diameter:g} mm |" in markdown

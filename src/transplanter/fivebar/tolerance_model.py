@@ -8,7 +8,8 @@ Dimensions (the names of the report's design table where they are there; mm or d
   shaft) and ``bend_angle`` (A-O-shaft): with OA they place the three holes of the carrier, so a2 follows;
   ISO 2768-m by size (the bend angle by its shorter leg);
 - ``clearance_<hinge>_x`` / ``_y`` for O, A, F, E, B: where the pin sits in its hole, a constant offset in the
-  frame's axes, within the radial play (``HINGE_PLAY_MM``: no shaft diameter is set by the drawings);
+  frame's axes, within the radial play of an H7/g6 fit on the shaft the drawings give the hinge
+  (``fivebar.shafts``: O the sun's fixed shaft, A the planet's, F, E and B the hinge pins; ``SHAFT_OF_HINGE``);
 - ``backlash_stage_1`` / ``_2`` and ``phase_<gear>``: the gears' lost motion and assembly phases (deg,
   ``tolerance.planetary_gears``).
 
@@ -39,8 +40,8 @@ from transplanter.tolerance.iso2768 import angular_limit_deg, linear_limit_mm
 from transplanter.tolerance.model import ToleranceModel, backend_motion
 from transplanter.tolerance.planetary_gears import GEAR_DIMENSION_NAMES, gear_dimensions, gear_rows, planet_turn
 
-#: Radial play of every hinge (mm) where the drawings set no shaft diameter to take an H7/g6 fit from.
-HINGE_PLAY_MM = 0.02
+#: The shaft of ``fivebar.shafts`` each hinge turns on.
+SHAFT_OF_HINGE = {"O": "sun", "A": "planet", "F": "hinge", "E": "hinge", "B": "hinge"}
 #: Whole-turn samples the conditions and the trajectory band are judged on (3 deg apart).
 TURN_SAMPLES = 120
 HINGES = ("O", "A", "F", "E", "B")
@@ -112,7 +113,7 @@ def _dimensions(result) -> tuple[Dimension, ...]:
              for name, value in nominal.items()]
     bend = Dimension("bend_angle", float(np.degrees(toothed.bend_angle)),
                      angular_limit_deg(min(a1, mech.carrier_length)), "deg", "ISO 2768-m, shorter leg")
-    play = hinge_plays(HINGES, HINGE_PLAY_MM)
+    play = hinge_plays({h: result.shafts.shafts[SHAFT_OF_HINGE[h]].diameter for h in HINGES})
     gears = gear_dimensions(result.design.relative_angle, toothed.train, toothed.module, toothed.pressure_angle)
     return (*links, bend, *play, *gears)
 

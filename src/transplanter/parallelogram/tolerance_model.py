@@ -6,7 +6,8 @@ Dimensions (the names of the report's design table where they are there; mm or d
   ``l2_O2D`` (the frame's O2D), and the tool's ``l5`` (BC) and ``l6`` (CE); the gears' ``center_distance``
   (O1 to O2, the driven shaft that carries the crank): ISO 2768-m by size;
 - ``clearance_<hinge>_x`` / ``_y`` for O2, A, B, D: where the pin sits in its hole, a constant offset in the
-  frame's axes, within the radial play ``HINGE_PLAY_MM`` (no shaft diameter is set by the drawings);
+  frame's axes, within the radial play ``tolerance.dimensions.HINGE_PLAY_MM`` (the problem sets no shaft
+  diameter to take an H7/g6 fit from);
 - ``backlash``: the driven gear's lost motion (deg), within half the ISO/TR 10064-2 minimum normal backlash
   2/3 (0.06 + 0.0005 a + 0.03 m) mm over the driven gear's mean pitch radius;
 - ``phase_driver`` (the driver gear on its shaft) and ``alpha_deg`` (the crank on the driven shaft, the
@@ -48,8 +49,6 @@ from transplanter.tolerance.dimensions import Dimension, hinge_plays
 from transplanter.tolerance.iso2768 import linear_limit_mm
 from transplanter.tolerance.model import ToleranceModel, backend_motion
 
-#: Radial play of every hinge (mm) where the drawings set no shaft diameter to take an H7/g6 fit from.
-HINGE_PLAY_MM = 0.02
 #: Assembly phase of each gear and of the crank on its shaft (deg).
 PHASE_DEG = 0.1
 #: Whole-turn samples the trajectory band is judged on (3 deg apart).
@@ -129,7 +128,7 @@ def _dimensions(built: BuiltDesign) -> tuple[Dimension, ...]:
                "l6": mech.l6[0], "center_distance": built.center_distance}
     links = [Dimension(name, float(value), linear_limit_mm(value), "mm", "ISO 2768-m")
              for name, value in nominal.items()]
-    play = hinge_plays(HINGES, HINGE_PLAY_MM)
+    play = hinge_plays(dict.fromkeys(HINGES))
     r1 = limacon_driven_angle(NUMPY, [np.linspace(0, TWO_PI, TURN_SAMPLES, endpoint=False)],
                               [float(mech.base_radius[0]), float(mech.amplitude[0]), float(mech.m11[0]),
                                float(mech.m12[0])], [float(mech.center_distance[0])])[1][0]

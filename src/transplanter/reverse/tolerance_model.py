@@ -9,8 +9,8 @@ Dimensions (the report's names; mm or deg):
   the second, 0 on a straight carrier): they place the carrier's three holes, so the carrier length s follows;
   ISO 2768-m by size (the bend by the shorter of L1 and L2);
 - ``clearance_pivot_x`` / ``_y``, ``clearance_planet_x`` / ``_y``: where the carrier's and the planet's shafts
-  sit in their holes, constant offsets in the frame's axes within the radial play ``HINGE_PLAY_MM`` (the
-  problem sets no shaft diameter to take an H7/g6 fit from);
+  sit in their holes, constant offsets in the frame's axes within the radial play
+  ``tolerance.dimensions.HINGE_PLAY_MM`` (the problem sets no shaft diameter to take an H7/g6 fit from);
 - ``backlash_stage_1`` / ``_2`` and ``phase_<gear>``: the gears' lost motion and assembly phases (deg,
   ``tolerance.planetary_gears``), at the standard pressure angle ``PRESSURE_ANGLE_DEG``.
 
@@ -39,8 +39,6 @@ from transplanter.tolerance.model import ToleranceModel, backend_motion
 from transplanter.tolerance.planetary_gears import GEAR_DIMENSION_NAMES, gear_dimensions, gear_rows, planet_turn
 from transplanter.trains.planetary import PlanetaryTrain
 
-#: Radial play of the carrier's and the planet's shafts (mm) where no shaft diameter is set.
-HINGE_PLAY_MM = 0.02
 #: Pressure angle of the teeth (deg): the standard basic rack (ISO 53); the reverse problem sets none.
 PRESSURE_ANGLE_DEG = 20.0
 #: Whole-turn samples the trajectory band and the round trip are judged on (3 deg apart).
@@ -92,7 +90,7 @@ def _dimensions(result) -> tuple[Dimension, ...]:
     bend = Dimension("carrier_bend", float(np.degrees(_bend(result))),
                      given["carrier_bend"] if "carrier_bend" in given else angular_limit_deg(min(a1, a2)), "deg",
                      "ISO 2768-m, shorter leg")
-    play = hinge_plays(HINGES, HINGE_PLAY_MM)
+    play = hinge_plays(dict.fromkeys(HINGES))
     gears = gear_dimensions(result.relative, train, result.problem.module, np.radians(PRESSURE_ANGLE_DEG))
     return (*links, bend, *play, *gears)
 

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from transplanter.errors import ProblemError
+from transplanter.tolerance.iso286 import FIT, radial_play_mm
 from transplanter.toml_fields import is_finite_number, shown
 
 DISTRIBUTIONS = {"uniform": 1 / np.sqrt(3), "normal": 1 / 3}
@@ -28,6 +29,8 @@ SAMPLES_RANGE = (100, 1_000_000)
 #: Accuracy the seedlings need at the key poses unless ``[tolerances]`` says otherwise: P within 1 mm and the
 #: plate within 1 deg (3 sigma), the order of a seedling's stem in a hole.
 POSE_POSITION_MM, POSE_ANGLE_DEG = 1.0, 1.0
+#: Radial play of a hinge (mm) whose shaft diameter is not set (no fit to take it from).
+HINGE_PLAY_MM = 0.02
 SETTING_KEYS = ("distribution", "samples", "seed", "pose_position_mm", "pose_angle_deg")
 
 
@@ -71,9 +74,14 @@ class ToleranceSettings:
         return tuple(replace(d, tolerance=float(self.tolerances.get(d.name, d.tolerance))) for d in dimensions)
 
 
-def hinge_plays(hinges: tuple[str, ...], play_mm: float) -> list[Dimension]:
-    """``clearance_<hinge>_x`` / ``_y``: where each pin sits in its hole, within the radial play (mm)."""
-    return [Dimension(f"clearance_{h}_{axis}", 0.0, play_mm, "mm", "radial play") for h in hinges for axis in "xy"]
+def hinge_plays(diameters_mm: Mapping[str, float | None]) -> list[Dimension]:
+    """``clearance_<hinge>_x`` / ``_y``: where each pin sits in its hole, within the radial play (mm) of an
+    H7/g6 fit on the hinge's shaft diameter (``iso286``), or ``HINGE_PLAY_MM`` where none is set (None)."""
+    plays = {hinge: (HINGE_PLAY_MM, "radial play, no shaft diameter set") if d is None
+             else (radial_play_mm(d, f"shaft diameter of hinge {hinge}"), f"radial play, {FIT} on {d:g} mm")
+             for hinge, d in diameters_mm.items()}
+    return [Dimension(f"clearance_{h}_{axis}", 0.0, play, "mm", what)
+            for h, (play, what) in plays.items() for axis in "xy"]
 
 
 def parse_tolerances(table: Mapping, names: tuple[str, ...], source: str) -> ToleranceSettings:

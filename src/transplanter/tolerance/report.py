@@ -89,7 +89,9 @@ def tolerance_markdown(analysis: ToleranceAnalysis) -> list[str]:
     agreement = f"{100 * AGREEMENT:.0f} %"
     lines += ["", f"First order and Monte Carlo agree within {agreement} at every key pose." if not broken
               else f"First order breaks (Monte Carlo more than {agreement} off) at: {', '.join(broken)}.", ""]
-    lines += ["Dimensions that matter most (mean share of the key poses' position variance): "
+    lines += ["| dimension | nominal | tolerance (±) | unit | from |", "|---|---|---|---|---|"]
+    lines += [f"| {d.name} | {d.nominal:.6g} | {d.tolerance:.4g} | {d.unit} | {d.what} |" for d in model.dimensions]
+    lines += ["", "Dimensions that matter most (mean share of the key poses' position variance): "
               + ", ".join(f"{name} {100 * share:.0f} %" for name, share in analysis.largest_contributions()) + ".", ""]
     lines += ["| hard condition | built mechanisms that violate it |", "|---|---|"]
     lines += [f"| {name} | {_fraction(value)} |" for name, value in mc.violation_fraction.items()]
