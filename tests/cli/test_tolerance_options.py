@@ -22,7 +22,8 @@ COMMANDS = [
     ("reverse", reverse, "rice_hoe_reverse.toml",
      [("arm_length = -0.1", "tolerances.arm_length = -0.1"),
       ("carrier_length = 0.1", "tolerances.carrier_length = 0.1"),
-      ("pose_angle_deg = 0.0", "tolerances.pose_angle_deg = 0.0"), ("phase_sun = inf", "tolerances.phase_sun = inf")]),
+      ("pose_angle_deg = 0.0", "tolerances.pose_angle_deg = 0.0"), ("phase_sun = inf", "tolerances.phase_sun = inf"),
+      ("path_accuracy_mm = 0.0", "tolerances.path_accuracy_mm = 0.0")]),
 ]
 
 

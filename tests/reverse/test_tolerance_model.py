@@ -12,7 +12,7 @@ import pytest
 
 from transplanter import reverse
 from transplanter.errors import ProblemError
-from transplanter.reverse.tolerance_model import DIMENSION_NAMES, TURN_SAMPLES
+from transplanter.reverse.tolerance_model import DIMENSION_NAMES, PATH_ACCURACY, TURN_SAMPLES
 from transplanter.reverse.verification import CHECK_POINTS, rebuild_tip
 from transplanter.tolerance import ToleranceSettings, analyse
 
@@ -177,7 +177,9 @@ def test_report_section_and_figures(result, analysis):
     assert [nominal["center_distance_L1"], nominal["center_distance_L2"]] == report["center_distances"]
     assert nominal["carrier_bend"] == pytest.approx(report.get("carrier_bend_deg", 0.0), abs=1e-12)
     assert [p["label"] for p in section["key_poses"]] == ["farthest", "nearest"]
-    assert set(section["violation_fraction"]) == {"round trip"}
+    assert set(section["violation_fraction"]) == {"path accuracy"}
+    reach = result.motion.carrier_length + result.motion.arm_length
+    assert section["path_accuracy_mm"] == pytest.approx(PATH_ACCURACY * reach, rel=1e-12)
     assert "## Tolerances (the built mechanism)" in done.to_markdown()
     assert {"tolerance_band", "tolerance_contributions"} <= set(done.draw_figures())
     assert "tolerance" not in result.to_json() and "tolerance_band" not in result.draw_figures()
@@ -203,3 +205,39 @@ def test_three_gear_train_has_no_model():
     assert result.train is not None and result.tolerance is None
     with pytest.raises(ProblemError, match="train.topology = 'sun-idler-planet'"):
         result.tolerance_model()
+
+
+def test_path_accuracy_counts_the_built_tips_that_stray_further_than_asked(result, model):
+    """A built tip moved off the designed one by just under and just over the accuracy somewhere on the turn
+    passes and fails; a mechanism that does not close fails; the nominal mechanism passes."""
+    condition = model.conditions
+    accuracy = condition.tolerance_mm
+    nominal = model.sampled(model.nominal[None])[0]
+    moved = np.repeat(nominal[None], 4, axis=0)
+    turn = model.whole_turn.start + 17
+    moved[1, 0, turn] += 0.99 * accuracy
+    moved[2, 1, turn] -= 1.01 * accuracy
+    moved[3, :, turn] = np.nan
+    flags = condition(moved, np.repeat(model.nominal[None], 4, axis=0))["path accuracy"]
+    assert flags.tolist() == [False, False, True, True]
+
+
+def test_path_accuracy_is_read_from_the_tolerances_table():
+    data = tomllib.loads(RICE.read_text())
+    data["tolerances"] = {"path_accuracy_mm": 40.0, "samples": 500}
+    wide = reverse.synthesize(reverse.parse_problem(data, "rice"))
+    assert wide.tolerance.monte_carlo.violation_fraction == {"path accuracy": 0.0}
+    assert wide.to_json()["tolerance"]["path_accuracy_mm"] == 40.0
+    assert "a built tip within 40 mm (15.7 % of the reach s + l)" in wide.to_markdown()
+    data["tolerances"]["path_accuracy_mm"] = 1e-6
+    narrow = reverse.synthesize(reverse.parse_problem(data, "rice"))
+    assert narrow.tolerance.monte_carlo.violation_fraction == {"path accuracy": 1.0}
+    assert not narrow.failures                    # the synthesis's own round trip still judges the design
+
+
+@pytest.mark.parametrize("value", [0.0, -1.0, float("nan"), "2"])
+def test_a_bad_path_accuracy_is_refused_naming_the_field(value):
+    data = tomllib.loads(RICE.read_text())
+    data["tolerances"] = {"path_accuracy_mm": value}
+    with pytest.raises(ProblemError, match="tolerances.path_accuracy_mm = .*: expected a finite distance > 0"):
+        reverse.parse_problem(data, "rice")

@@ -20,6 +20,7 @@ Schema (docs/reverse.md, "Problem files"):
     center_distances = [46.15, 46.15]      # mm; default s/2 each (collinear carrier)
     module = 2.5                  # mm, for the tooth counts (default 2.5)
     [tolerances]                  # optional: the built train's tolerances and the analysis (docs/tolerance.md)
+    path_accuracy_mm = 2.5        # the built tip within this of the path over the turn (default 1 % of s + l)
 """
 from __future__ import annotations
 
@@ -28,7 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
-from transplanter.reverse.tolerance_model import DIMENSION_NAMES
+from transplanter.reverse.tolerance_model import DIMENSION_NAMES, PATH_ACCURACY_KEY
 from transplanter.tolerance.dimensions import ToleranceSettings, parse_tolerances
 from transplanter.toml_fields import (
     LONGEST_TITLE,
@@ -84,6 +85,9 @@ class ReverseProblem:
     tolerances : ToleranceSettings
         The ``[tolerances]`` table: tolerances of the built train's dimensions (``reverse.tolerance_model``) and
         the analysis settings (``tolerance.dimensions``).
+    path_accuracy_mm : float or None
+        How far (mm) a built train's tip may stray from the path over the turn, the tolerance analysis's hard
+        condition; None: ``reverse.tolerance_model.PATH_ACCURACY`` of the reach s + l.
 
     Raises
     ------
@@ -105,6 +109,7 @@ class ReverseProblem:
     source: str = "<dict>"
     title: str = ""
     tolerances: ToleranceSettings = field(default_factory=ToleranceSettings)
+    path_accuracy_mm: float | None = None
 
     def __post_init__(self):
         check = ClassFields(self)
@@ -128,6 +133,7 @@ class ReverseProblem:
         check.number("peak_to_valley", 1e-12, 1 - 1e-12, "a number in (0, 1)")
         check.positive("module")
         check.text("source", "title")
+        check.positive("path_accuracy_mm", optional=True)
 
 
 def load_problem(path: str | Path) -> ReverseProblem:
@@ -249,4 +255,17 @@ def parse_problem(data: dict, source: str = "<dict>") -> ReverseProblem:
                           branch=branch, topology=topology, split=split, peak_to_valley=coefficient,
                           center_distances=centers, module=module, source=source,
                           title=read.text(data, "title", "", LONGEST_TITLE),
-                          tolerances=parse_tolerances(data.get("tolerances", {}), DIMENSION_NAMES, source))
+                          tolerances=parse_tolerances(data.get("tolerances", {}), DIMENSION_NAMES, source,
+                                                      (PATH_ACCURACY_KEY,)),
+                          path_accuracy_mm=read_path_accuracy(read, data.get("tolerances", {})))
+
+
+def read_path_accuracy(read: FieldReader, table) -> float | None:
+    """``tolerances.path_accuracy_mm``: a finite length > 0 (mm), or None where it is not given."""
+    if not isinstance(table, dict) or PATH_ACCURACY_KEY not in table:
+        return None
+    value = table[PATH_ACCURACY_KEY]
+    if not (is_finite_number(value) and 0 < value <= MAGNITUDE_LIMIT):
+        read.fail(f"tolerances.{PATH_ACCURACY_KEY}", value, "a finite distance > 0 (mm) the built tip may stray "
+                  "from the path")
+    return float(value)

@@ -11,6 +11,7 @@ import numpy as np
 from transplanter.geometry.closed_trajectory import TWO_PI
 from transplanter.reverse.arm_inverse import BRANCH_NAMES, DIRECTION_NAMES
 from transplanter.reverse.idler_train import IdlerTrain
+from transplanter.reverse.tolerance_model import path_accuracy_mm
 from transplanter.trains.planetary import printed_peak_to_valley_turn
 
 if TYPE_CHECKING:
@@ -119,7 +120,7 @@ def reverse_result_json(result: ReverseResult) -> dict:
         "contact_gap_max_mm": max(float(np.abs(g).max()) for g in verification.contact_gaps_mm),
     })
     if result.tolerance is not None:
-        report["tolerance"] = result.tolerance.to_json()
+        report["tolerance"] = {**result.tolerance.to_json(), "path_accuracy_mm": path_accuracy_mm(result)}
     if result.tolerance_note:
         report["tolerance_note"] = result.tolerance_note
     if isinstance(train, IdlerTrain):
@@ -173,7 +174,15 @@ def to_markdown(result: ReverseResult, files: Sequence[str] = ()) -> str:
         elif printed is not None:
             lines += ["", "The reverse-gear-design paper's split as printed (i1 = i25 bs) would turn the intermediate "
                       f"gear {printed:.3f} deg per cycle (360 closes)."]
-    lines += [""] + (result.tolerance.to_markdown() if result.tolerance else [])
+    lines += [""] + (result.tolerance.to_markdown() + [_path_accuracy_line(result), ""] if result.tolerance else [])
     lines += [f"- Tolerances: {result.tolerance_note}", ""] if result.tolerance_note else []
     lines += [f"![{name}]({name})" for name in files if name.endswith(".png")]
     return "\n".join(lines) + "\n"
+
+
+def _path_accuracy_line(result: ReverseResult) -> str:
+    """What the tolerance analysis's path accuracy asks of a built train."""
+    reach = result.motion.carrier_length + result.motion.arm_length
+    accuracy = path_accuracy_mm(result)
+    return (f"Path accuracy: a built tip within {accuracy:.4g} mm ({100 * accuracy / reach:.3g} % of the reach "
+            "s + l) of the designed tip at every carrier turn (`[tolerances]` path_accuracy_mm).")

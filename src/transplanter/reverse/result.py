@@ -105,7 +105,7 @@ class ReverseResult(CommandResult):
         """The built train and arm as a function of their manufactured dimensions (``reverse.tolerance_model``)."""
         from transplanter.reverse.tolerance_model import tolerance_model
 
-        return tolerance_model(self, ROUNDTRIP_TOLERANCE)
+        return tolerance_model(self)
 
     def to_json(self) -> dict[str, Any]:
         from transplanter.reverse.report import reverse_result_json

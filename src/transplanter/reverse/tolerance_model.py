@@ -41,8 +41,12 @@ from transplanter.trains.planetary import PlanetaryTrain
 
 #: Pressure angle of the teeth (deg): the standard basic rack (ISO 53); the reverse problem sets none.
 PRESSURE_ANGLE_DEG = 20.0
-#: Whole-turn samples the trajectory band and the round trip are judged on (3 deg apart).
+#: Whole-turn samples the trajectory band and the path accuracy are judged on (3 deg apart).
 TURN_SAMPLES = 120
+#: How far a built tip may stray from the path unless ``[tolerances]`` says (``PATH_ACCURACY_KEY``, mm), as a
+#: fraction of the reach s + l: 2.5 mm on the rice-transplanter paper's 254 mm arm, the order of a seedling's
+#: stem.
+PATH_ACCURACY, PATH_ACCURACY_KEY = 0.01, "path_accuracy_mm"
 HINGES = ("pivot", "planet")
 LINKS = ("arm_length", "center_distance_L1", "center_distance_L2")
 #: Rows of the motion: the tip (mm, in the problem's frame) and the arm's angle (rad).
@@ -96,9 +100,10 @@ def _dimensions(result) -> tuple[Dimension, ...]:
 
 
 @dataclass(frozen=True)
-class RoundTrip:
-    """Which of N built mechanisms miss the path by more than ``tolerance_mm`` somewhere over the turn: the
-    round trip the design is checked by (the tip against the path point where the carrier has turned as far)."""
+class PathAccuracy:
+    """Which of N built mechanisms' tips stray further than ``tolerance_mm`` somewhere over the turn from the
+    path point the designed tip is at at that turn (the carrier turned as far): the accuracy the trajectory's
+    bands measure, timing included."""
 
     path: np.ndarray            # (2, T) the path at the whole turn's samples, mm
     whole_turn: slice
@@ -106,7 +111,7 @@ class RoundTrip:
 
     def __call__(self, motion: np.ndarray, dimensions: np.ndarray) -> dict[str, np.ndarray]:
         miss = np.linalg.norm(motion[:, :2, self.whole_turn] - self.path[None], axis=1)
-        return {"round trip": ~(np.max(miss, axis=1) <= self.tolerance_mm)}
+        return {"path accuracy": ~(np.max(miss, axis=1) <= self.tolerance_mm)}
 
 
 def key_points(result) -> tuple[tuple[str, ...], np.ndarray]:
@@ -118,10 +123,17 @@ def key_points(result) -> tuple[tuple[str, ...], np.ndarray]:
             np.mod(result.motion.carrier_turn_at(np.array([e.parameter for e in chosen])), TWO_PI))
 
 
-def tolerance_model(result, roundtrip_tolerance: float) -> ToleranceModel:
+def path_accuracy_mm(result) -> float:
+    """How far (mm) a built tip may stray from the path: the problem's ``[tolerances]`` path_accuracy_mm, else
+    ``PATH_ACCURACY`` of the reach s + l."""
+    given = result.problem.path_accuracy_mm
+    return PATH_ACCURACY * (result.motion.carrier_length + result.motion.arm_length) if given is None else given
+
+
+def tolerance_model(result) -> ToleranceModel:
     """The designed train and arm of a ``ReverseResult`` as a function of its manufactured dimensions: the key
-    points first (``key_points``), then ``TURN_SAMPLES`` turns over the whole turn; ``roundtrip_tolerance`` the
-    fraction of the reach s + l the round trip allows."""
+    points first (``key_points``), then ``TURN_SAMPLES`` turns over the whole turn; its hard condition the path
+    accuracy (``PathAccuracy``, ``path_accuracy_mm``)."""
     if not isinstance(result.train, PlanetaryTrain):
         raise ProblemError(f"{result.source}: train.topology = {result.problem.topology!r}: the tolerance analysis "
                            "needs a four-gear train (sun-intermediate-planet or pick-up) that meets the "
@@ -133,10 +145,9 @@ def tolerance_model(result, roundtrip_tolerance: float) -> ToleranceModel:
     at_turn, sampled = backend_motion("reverse_built_motion", built_motion, result, DIMENSION_NAMES, rows)
     motion = result.motion
     path = (result.trajectory.evaluate(motion.parameter_at(whole)) + result.problem.pivot).T
-    reach = motion.carrier_length + motion.arm_length
     problem = result.problem
     whole_turn = slice(len(turns) - TURN_SAMPLES, None)
     return ToleranceModel(problem.title or problem.source, _dimensions(result), at_turn, rows,
                           sampled, np.degrees(turns), labels, whole_turn,
-                          RoundTrip(path, whole_turn, roundtrip_tolerance * reach), point="arm tip",
+                          PathAccuracy(path, whole_turn, path_accuracy_mm(result)), point="arm tip",
                           angle="arm angle")

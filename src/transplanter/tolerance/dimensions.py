@@ -84,9 +84,11 @@ def hinge_plays(diameters_mm: Mapping[str, float | None]) -> list[Dimension]:
             for h, (play, what) in plays.items() for axis in "xy"]
 
 
-def parse_tolerances(table: Mapping, names: tuple[str, ...], source: str) -> ToleranceSettings:
+def parse_tolerances(table: Mapping, names: tuple[str, ...], source: str,
+                     own_settings: tuple[str, ...] = ()) -> ToleranceSettings:
     """The ``[tolerances]`` table of a problem file: ``name = tolerance`` for any of ``names`` (the dimension's
-    unit, >= 0), and the settings of ``SETTING_KEYS``. Each bad entry is refused naming the field."""
+    unit, >= 0), and the settings of ``SETTING_KEYS``; ``own_settings`` are the mechanism's own keys, which its
+    problem reads. Each bad entry is refused naming the field."""
     def fail(key, value, expected):
         raise ProblemError(f"{source}: tolerances.{key} = {shown(value)!r}: expected {expected}")
 
@@ -95,10 +97,11 @@ def parse_tolerances(table: Mapping, names: tuple[str, ...], source: str) -> Tol
 
     tolerances = {}
     for key, value in table.items():
-        if key in SETTING_KEYS:
+        if key in SETTING_KEYS or key in own_settings:
             continue
         if key not in names:
-            fail(key, value, f"a dimension name ({', '.join(names)}) or a setting ({', '.join(SETTING_KEYS)})")
+            fail(key, value, f"a dimension name ({', '.join(names)}) or a setting "
+                 f"({', '.join((*SETTING_KEYS, *own_settings))})")
         if not (is_finite_number(value) and value >= 0):
             fail(key, value, "a finite tolerance >= 0 in the dimension's unit (mm or deg)")
         tolerances[key] = float(value)

@@ -100,7 +100,7 @@ def tolerance_markdown(analysis: ToleranceAnalysis) -> list[str]:
     if allocation is None:
         lines += [f"Tolerance allocation: {analysis.allocation_note}.", ""]
     else:
-        lines += [f"Tolerance allocation for P within {settings.pose_position_mm:g} mm and the plate within "
+        lines += [f"Tolerance allocation for {point} within {settings.pose_position_mm:g} mm and the {angle} within "
                   f"{settings.pose_angle_deg:g} deg (3σ) at every key pose (binding: "
                   f"{', '.join(allocation.binding) or 'none, every tolerance at its loosest'}):", "",
                   "| dimension | tolerance now | loosest allowed | unit |", "|---|---|---|---|"]
