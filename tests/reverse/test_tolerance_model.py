@@ -2,7 +2,9 @@
 the model at its nominal dimensions is the synthesis's own round trip, its exact Jacobian equals central
 differences of the forward model and of the verification's tip, the gears' phases move the arm as the designed
 motion says, a planted change moves the key points by J delta to second order, and first order meets the Monte
-Carlo at the default tolerances and parts from it at ten times those."""
+Carlo at the default tolerances and parts from it at ten times those; the same for the sun-idler-planet train,
+and the path accuracy the analysis judges built trains by."""
+import dataclasses
 import json
 import tomllib
 from pathlib import Path
@@ -10,9 +12,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from tests.tolerance.model_checks import (
+    assert_first_order_meets_monte_carlo,
+    assert_jacobian_is_central_differences,
+    assert_planted_change_is_second_order,
+)
 from transplanter import reverse
 from transplanter.errors import ProblemError
-from transplanter.reverse.tolerance_model import DIMENSION_NAMES, PATH_ACCURACY, TURN_SAMPLES
+from transplanter.reverse.idler_train import roll_idler_train
+from transplanter.reverse.tolerance_model import DIMENSION_NAMES, IDLER_DIMENSION_NAMES, PATH_ACCURACY, TURN_SAMPLES
 from transplanter.reverse.verification import CHECK_POINTS, rebuild_tip
 from transplanter.tolerance import ToleranceSettings, analyse
 
@@ -198,13 +206,69 @@ def test_a_train_below_iso_2768_sizes_says_why_it_has_no_analysis_until_the_tole
     assert given.tolerance is not None and given.tolerance_note == ""
 
 
-def test_three_gear_train_has_no_model():
+@pytest.fixture(scope="module")
+def idler_result():
+    """The rice hoe on the rice-transplanter paper's sun-idler-planet train."""
     data = tomllib.loads(RICE.read_text())
     data["train"] = {"topology": "sun-idler-planet"}
-    result = reverse.synthesize(reverse.parse_problem(data, "idler"))
-    assert result.train is not None and result.tolerance is None
-    with pytest.raises(ProblemError, match="train.topology = 'sun-idler-planet'"):
-        result.tolerance_model()
+    return reverse.synthesize(reverse.parse_problem(data, "idler"), tolerance=False)
+
+
+@pytest.fixture(scope="module")
+def idler_analysis(idler_result):
+    return analyse(idler_result, ToleranceSettings(samples=2000))
+
+
+def test_idler_train_at_its_nominal_dimensions_is_the_verified_one(idler_result, idler_analysis):
+    model = idler_analysis.model
+    motion = model.evaluate(model.nominal)
+    reach = idler_result.motion.carrier_length + idler_result.motion.arm_length
+    check, step = idler_result.verification, CHECK_POINTS // TURN_SAMPLES
+    assert np.abs(motion[:2, model.whole_turn].T - check.reproduced[::step] - idler_result.problem.pivot).max() \
+        < 1e-9 * reach
+    assert model.names == IDLER_DIMENSION_NAMES
+
+
+def test_idler_train_sensitivities_equal_central_differences(idler_analysis):
+    assert_jacobian_is_central_differences(idler_analysis)
+
+
+def test_idler_train_sun_phase_rolls_the_train_from_a_turned_sun(idler_result, idler_analysis):
+    """The sun's phase shifts the carrier turn the rolled train sees, chi(c + phase): the model's second-order
+    expansion of the idler's and the planet's turns meets the train rolled again to third order in the phase."""
+    model = idler_analysis.model
+    turns = np.radians(model.turns_deg)
+    train = idler_result.train
+
+    def miss(phase):
+        dimensions = model.nominal.copy()
+        dimensions[model.names.index("phase_sun")] = phase
+        chi = roll_idler_train(train.stage_one, train.planet, np.r_[0.0, turns + np.radians(phase)])[0]
+        rolled = _tip(idler_result, model, chi[1:] - chi[0])
+        return np.linalg.norm(model.sampled(dimensions[None])[0][:2] - rolled, axis=0)
+
+    misses = [miss(phase) for phase in (0.1, 0.05)]
+    assert 6 < np.median(misses[0]) / np.median(misses[1]) < 10
+
+
+def test_idler_train_planted_change_and_monte_carlo(idler_result, idler_analysis):
+    assert_planted_change_is_second_order(idler_analysis, "carrier_bend", (0.25, 0.5))
+    assert_first_order_meets_monte_carlo(idler_analysis)
+    done = dataclasses.replace(idler_result, tolerance=idler_analysis)
+    report = done.to_json()
+    json.dumps(report, allow_nan=False)
+    assert [d["name"] for d in report["tolerance"]["dimensions"]] == list(IDLER_DIMENSION_NAMES)
+    # the train as built misses the path by more than the path accuracy: every built one does too
+    assert idler_result.verification.max_error_mm > report["tolerance"]["path_accuracy_mm"]
+    assert report["tolerance"]["violation_fraction"] == {"path accuracy": 1.0}
+
+
+def test_idler_train_tolerances_name_its_own_dimensions():
+    data = tomllib.loads(RICE.read_text())
+    data["train"] = {"topology": "sun-idler-planet"}
+    data["tolerances"] = {"phase_first_intermediate": 0.2}
+    with pytest.raises(ProblemError, match="tolerances.phase_first_intermediate = 0.2: expected a dimension name"):
+        reverse.parse_problem(data, "idler")
 
 
 def test_path_accuracy_counts_the_built_tips_that_stray_further_than_asked(result, model):

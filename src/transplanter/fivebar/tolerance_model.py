@@ -38,7 +38,13 @@ from transplanter.geometry.planar import TWO_PI, cross
 from transplanter.tolerance.dimensions import Dimension, hinge_plays
 from transplanter.tolerance.iso2768 import angular_limit_deg, linear_limit_mm
 from transplanter.tolerance.model import ToleranceModel, backend_motion
-from transplanter.tolerance.planetary_gears import GEAR_DIMENSION_NAMES, gear_dimensions, gear_rows, planet_turn
+from transplanter.tolerance.planetary_gears import (
+    BACKLASH_GRID,
+    GEAR_DIMENSION_NAMES,
+    gear_dimensions,
+    gear_rows,
+    planet_turn,
+)
 
 #: The shaft of ``fivebar.shafts`` each hinge turns on.
 SHAFT_OF_HINGE = {"O": "sun", "A": "planet", "F": "hinge", "E": "hinge", "B": "hinge"}
@@ -63,7 +69,8 @@ def built_motion(lib, result, v: dict, g) -> tuple:
     mech, toothed, relative = result.design.mech, result.toothed, result.design.relative_angle
     nominal = (mech.carrier_length, toothed.bend_angle)
     carrier = (v["carrier_length_OA"], v["center_distance_a1"], v["bend_angle"])
-    rho = relative.rho1 + planet_turn(lib, g, toothed.train, toothed.pressure_angle, nominal, carrier, v)
+    rho = relative.rho1 + planet_turn(lib, g, toothed.train.center_distances, toothed.pressure_angle, nominal,
+                                      carrier, v)
     c = g[0]
 
     # the linkage, closed by the generated eq (9) root on the design's branch, hinge offsets as shifts of F and B
@@ -114,7 +121,8 @@ def _dimensions(result) -> tuple[Dimension, ...]:
     bend = Dimension("bend_angle", float(np.degrees(toothed.bend_angle)),
                      angular_limit_deg(min(a1, mech.carrier_length)), "deg", "ISO 2768-m, shorter leg")
     play = hinge_plays({h: result.shafts.shafts[SHAFT_OF_HINGE[h]].diameter for h in HINGES})
-    gears = gear_dimensions(result.design.relative_angle, toothed.train, toothed.module, toothed.pressure_angle)
+    gears = gear_dimensions(gear_rows(result.design.relative_angle, toothed.train, BACKLASH_GRID),
+                            toothed.train.center_distances, toothed.module, toothed.pressure_angle)
     return (*links, bend, *play, *gears)
 
 

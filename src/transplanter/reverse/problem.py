@@ -29,7 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
-from transplanter.reverse.tolerance_model import DIMENSION_NAMES, PATH_ACCURACY_KEY
+from transplanter.reverse.tolerance_model import PATH_ACCURACY_KEY, dimension_names
 from transplanter.tolerance.dimensions import ToleranceSettings, parse_tolerances
 from transplanter.toml_fields import (
     LONGEST_TITLE,
@@ -255,7 +255,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> ReverseProblem:
                           branch=branch, topology=topology, split=split, peak_to_valley=coefficient,
                           center_distances=centers, module=module, source=source,
                           title=read.text(data, "title", "", LONGEST_TITLE),
-                          tolerances=parse_tolerances(data.get("tolerances", {}), DIMENSION_NAMES, source,
+                          tolerances=parse_tolerances(data.get("tolerances", {}), dimension_names(topology), source,
                                                       (PATH_ACCURACY_KEY,)),
                           path_accuracy_mm=read_path_accuracy(read, data.get("tolerances", {})))
 

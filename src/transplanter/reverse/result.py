@@ -55,9 +55,9 @@ class ReverseResult(CommandResult):
         The tip rebuilt from the rolled gears against the path (mm).
     tolerance : ToleranceAnalysis or None
         How precise the built train and arm will be (``tolerance.analyse``), else None (``tolerance=False``, or a
-        train the analysis has no model of: none, or sun-idler-planet).
+        path without a train).
     tolerance_note : str
-        Why a four-gear train has no tolerance analysis (a dimension without a default tolerance), else "".
+        Why a train has no tolerance analysis (a dimension without a default tolerance), else "".
     """
 
     problem: ReverseProblem

@@ -146,7 +146,7 @@ def synthesize(problem: ReverseProblem, tolerance: bool = True) -> ReverseResult
         From ``load_problem`` / ``parse_problem`` or built directly (mm).
     tolerance : bool, optional
         Analyse how precise the built train and arm will be (``tolerance.analyse`` with the problem's
-        ``[tolerances]``; default True) when there is a four-gear train.
+        ``[tolerances]``; default True) when there is a train.
 
     Returns
     -------
@@ -182,8 +182,9 @@ def synthesize(problem: ReverseProblem, tolerance: bool = True) -> ReverseResult
     relative = CarrierFrameMotion(motion)
     if problem.topology == "sun-idler-planet":
         idler = design_idler_train(relative, carrier_length / 2, problem.source)
-        return ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, None, idler,
-                             verify_idler_train(motion, idler))
+        result = ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, None, idler,
+                               verify_idler_train(motion, idler))
+        return _analysed(result) if tolerance else result
     halves = (carrier_length / 2, carrier_length / 2)
     centers = (geometry.first, geometry.second) if geometry else (problem.center_distances or halves)
     exponent = problem.peak_to_valley if problem.split == "peak_to_valley" else 0.5

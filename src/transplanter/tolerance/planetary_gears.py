@@ -23,6 +23,8 @@ from transplanter.tolerance.dimensions import Dimension
 
 #: Assembly phase of each gear on its shaft (deg).
 PHASE_DEG = 0.1
+#: Carrier turns the default backlash is averaged over.
+BACKLASH_GRID = np.linspace(0, TWO_PI, 120, endpoint=False)
 GEARS = ("sun", "first_intermediate", "second_intermediate", "planet")
 GEAR_DIMENSION_NAMES = ("backlash_stage_1", "backlash_stage_2", *(f"phase_{gear}" for gear in GEARS))
 
@@ -47,23 +49,28 @@ def gear_rows(relative, train, c: np.ndarray) -> np.ndarray:
     return np.vstack([c, chi, psi_1, psi_2, chi_1, chi_2, first, planet])
 
 
-def gear_dimensions(relative, train, module: float, pressure_angle: float) -> list[Dimension]:
-    """The backlash and phase dimensions of ``train`` (module mm, pressure angle rad) with their defaults."""
-    rows = gear_rows(relative, train, np.linspace(0, TWO_PI, 120, endpoint=False))
+def gear_dimensions(rows: np.ndarray, center_distances: tuple[float, float], module: float, pressure_angle: float,
+                    gears: tuple[str, ...] = GEARS) -> list[Dimension]:
+    """The backlash and phase dimensions (with their defaults) of a train whose ``gear_rows`` over an even grid
+    of the turn are ``rows``, at ``center_distances`` (mm), ``module`` (mm) and ``pressure_angle`` (rad); a phase
+    for each of ``gears``."""
     backlash = [Dimension(f"backlash_stage_{j + 1}", 0.0,
                           float(np.degrees(minimum_backlash_mm(a, module) / 2
                                            / (np.cos(pressure_angle) * rows[6 + j].mean()))),
-                          "deg", "half the minimum backlash") for j, a in enumerate(train.center_distances)]
-    return [*backlash, *(Dimension(f"phase_{gear}", 0.0, PHASE_DEG, "deg", "assembly phase") for gear in GEARS)]
+                          "deg", "half the minimum backlash") for j, a in enumerate(center_distances)]
+    return [*backlash, *(Dimension(f"phase_{gear}", 0.0, PHASE_DEG, "deg", "assembly phase") for gear in gears)]
 
 
-def planet_turn(lib, g, train, pressure_angle: float, nominal: tuple[float, float], carrier: tuple, v: dict):
+def planet_turn(lib, g, center_distances: tuple[float, float], pressure_angle: float, nominal: tuple[float, float],
+                carrier: tuple, v: dict):
     """The planet's turn against the carrier's axis (rad) of the built train, on a backend ``lib``: ``g`` the
-    ``gear_rows`` of the turns, ``nominal`` the designed (carrier length OA (mm), bend (rad)), ``carrier`` the
-    built (OA, a1 (mm), bend (deg)), ``v`` the ``GEAR_DIMENSION_NAMES`` by name (deg)."""
+    ``gear_rows`` of the turns, ``center_distances`` the designed a1, a2 (mm), ``nominal`` the designed (carrier
+    length OA (mm), bend (rad)), ``carrier`` the built (OA, a1 (mm), bend (deg)), ``v`` the
+    ``GEAR_DIMENSION_NAMES`` by name (deg; a train with one gear on the intermediate shaft, an idler, has no
+    intermediate phases: its phase against itself is nil)."""
     rad = np.pi / 180
     _, chi0, psi_1, psi_2, chi_1, chi_2, r_first, r_planet = g
-    a1_0, a2_0 = train.center_distances
+    a1_0, a2_0 = center_distances
     length_0, bend_0 = nominal
     length, a1, bend = carrier
     shaft_x, shaft_y = a1 * lib.cos(bend * rad), a1 * lib.sin(bend * rad)
@@ -75,6 +82,6 @@ def planet_turn(lib, g, train, pressure_angle: float, nominal: tuple[float, floa
     lag_2 = v["backlash_stage_2"] * rad + (lib.sqrt(to_a_x**2 + to_a_y**2) - a2_0) * tan_alpha / r_planet
     sun_off = v["phase_sun"] * rad - line_1
     psi_off = (line_2 - line_1 + psi_1 * sun_off + psi_2 * sun_off**2 / 2 - lag_1
-               + (v["phase_first_intermediate"] - v["phase_second_intermediate"]) * rad)
+               + (v.get("phase_first_intermediate", 0.0) - v.get("phase_second_intermediate", 0.0)) * rad)
     chi = chi0 + chi_1 * psi_off + chi_2 * psi_off**2 / 2
     return line_2 + chi - lag_2 + v["phase_planet"] * rad
