@@ -136,7 +136,7 @@ def _parallelogram(command: Command, problem, args) -> CommandResult:
     if args.design:
         given = parallelogram.load_design(args.design)
         with progress.step("evaluation"):
-            return parallelogram.evaluate_design(problem, given)
+            return parallelogram.evaluate_design(problem, given, tolerance=not args.no_tolerance)
     with progress.step("search"):
         return parallelogram.synthesize(problem, pick=args.pick, progress=_report, tolerance=not args.no_tolerance)
 

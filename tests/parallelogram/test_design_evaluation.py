@@ -16,7 +16,7 @@ PUBLISHED = ROOT / "examples/onion_published.toml"
 @pytest.fixture(scope="module")
 def published():
     problem = parallelogram.load_problem(PROBLEM)
-    return problem, parallelogram.evaluate_design(problem, parallelogram.load_design(PUBLISHED))
+    return problem, parallelogram.evaluate_design(problem, parallelogram.load_design(PUBLISHED), tolerance=False)
 
 
 def _row(report, curve, conventions):
@@ -59,7 +59,8 @@ def test_eq17_read_literally_cannot_release_at_zero_speed(published):
 
 
 def test_design_json_and_figures(tmp_path, capsys):
-    """``--design --json --out``: the published evaluation, the gear and the trajectory summary; figures written.
+    """``--design --json --out``: the published evaluation, the gear, the trajectory summary and the tolerance
+    section (the design's own, the fraction of built mechanisms outside the depth band); figures written.
     The published optimum's depth under the file's conventions (24.996 mm) is below the band [25, 30] mm, so
     the run is FAILED (exit 1) and says so in one line naming the depth."""
     out = tmp_path / "out"
@@ -76,8 +77,19 @@ def test_design_json_and_figures(tmp_path, capsys):
     assert len(report["published"]["evaluations"]) == 4
     assert report["gear"]["teeth"] == [54, 54] and report["gear"]["convex"] == [True, True]
     assert report["published"]["paper"]["depth_mm"] == 27.0
-    assert {"FAILED-trajectory.png", "FAILED-velocity.png", "FAILED-acceleration.png",
+    assert {"FAILED-trajectory.png", "FAILED-velocity.png", "FAILED-acceleration.png", "FAILED-tolerance_band.png",
             "FAILED-report.md"} <= {p.name for p in out.iterdir()}
+    design = parallelogram.load_design(PUBLISHED).design
+    nominal = {d["name"]: d["nominal"] for d in report["tolerance"]["dimensions"]}
+    assert nominal["l1"] == pytest.approx(design["l1"], rel=1e-12) and nominal["l6"] == pytest.approx(design["l6"])
+    # the design plants below the band's low end: more than half of the built ones do too
+    assert 0.5 < report["tolerance"]["violation_fraction"]["depth band"] < 1
+    assert "## Tolerances (the built mechanism)" in (out / "FAILED-report.md").read_text()
+    skipped = tmp_path / "skipped"
+    assert main(["parallelogram", str(PROBLEM), "--design", str(PUBLISHED), "--quiet", "--no-tolerance", "--out",
+                 str(skipped)]) == 1
+    assert "tolerance" not in json.loads((skipped / "FAILED-report.json").read_text())
+    assert not (skipped / "FAILED-tolerance_band.png").exists()
 
 
 @pytest.mark.parametrize("alpha_deg", [6.3, 0.0])
@@ -87,12 +99,13 @@ def test_a_design_passes_exactly_when_it_meets_the_band_and_gear_checks(alpha_de
     path = tmp_path / "design.toml"
     path.write_text(PUBLISHED.read_text().replace("alpha_deg = 6.0", f"alpha_deg = {alpha_deg}"))
     problem = parallelogram.load_problem(PROBLEM)
-    report = parallelogram.evaluate_design(problem, parallelogram.load_design(path))
+    report = parallelogram.evaluate_design(problem, parallelogram.load_design(path), tolerance=False)
     low, high = problem.depth_band
     gear = report.gear.to_json()
     meets = low <= report.closed.depth <= high and all(gear["convex"]) and not any(gear["undercut"] or ())
     assert report.passed == meets
-    assert main(["parallelogram", str(PROBLEM), "--design", str(path), "--quiet"]) == (0 if meets else 1)
+    assert main(["parallelogram", str(PROBLEM), "--design", str(path), "--quiet", "--no-tolerance"]) == (0 if meets
+                                                                                                      else 1)
     assert meets == (alpha_deg == 6.3)      # both outcomes are exercised
 
 

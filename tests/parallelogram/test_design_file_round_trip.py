@@ -33,8 +33,8 @@ def test_design_file_is_written_listed_and_read_back(run, tmp_path):
     assert report["files"]["design"] == ["design.toml"]
     assert set(tomllib.loads((out / "design.toml").read_text())["design"]) == set(report["design"])
     given = tmp_path / "given"
-    assert main(["parallelogram", str(path), "--design", str(out / "design.toml"), "--quiet", "--out",
-                 str(given)]) == 0
+    assert main(["parallelogram", str(path), "--design", str(out / "design.toml"), "--quiet", "--no-tolerance",
+                 "--out", str(given)]) == 0
     assert_round_trip(report, read_report(given), ("design", "trajectory"))
 
 
@@ -42,7 +42,7 @@ def test_a_design_on_the_end_of_its_depth_band_meets_it():
     """The published design's closed curve moved to plant exactly at the band's low end, and by the last bits
     below it, meets the band; moved below it by more than the tolerance, it does not."""
     problem = load_problem(PROBLEM)
-    report = evaluate_design(problem, load_design(ROOT / "examples/onion_published.toml"))
+    report = evaluate_design(problem, load_design(ROOT / "examples/onion_published.toml"), tolerance=False)
     low, high = problem.depth_band
     for depth, fails in ((low, False), (low * (1 - 1e-14), False), (low - 2 * AGREEMENT * high, True)):
         moved = dataclasses.replace(report.closed, depth=depth)

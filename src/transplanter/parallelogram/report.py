@@ -125,6 +125,7 @@ def design_report_json(report: DesignReport) -> dict:
             "translation_only": [FILE_NAMES[k] for k in TRANSLATION_ONLY],
             "published": published_json(report.given, report.evaluations),
             "gear": gear_json(report.gear), "trajectory": trajectory_json(report.closed),
+            **({"tolerance": report.tolerance.to_json()} if report.tolerance else {}),
             "timings_s": report.timings_s}
 
 
@@ -206,6 +207,7 @@ def evaluation_markdown(report: DesignReport, files: Sequence[str] = ()) -> str:
     lines = [f"# Given design {given.source}", "", given.title, "", *_variables(given.design), "",
              "l2, l5, l6 only translate the path: no objective depends on them.", "",
              *_published(given, report.evaluations), *_trajectory(report.closed), *_gear(report.gear)]
+    lines += ["", *report.tolerance.to_markdown()] if report.tolerance else []
     lines += _figures(files)
     return "\n".join(lines) + "\n"
 

@@ -22,7 +22,8 @@ if TYPE_CHECKING:
 @dataclass(frozen=True)
 class DesignReport(CommandResult):
     """A given design evaluated (``--design``): every reading of its gear and conventions, the
-    gear pair through the gear library, and the closed curve under the file's conventions."""
+    gear pair through the gear library, the closed curve under the file's conventions, and how precise the
+    built design will be (``tolerance``, None with ``tolerance=False``)."""
 
     problem: ParallelogramProblem
     given: DesignFile
@@ -31,11 +32,19 @@ class DesignReport(CommandResult):
     gear: GearResult
     timings_s: dict = field(default_factory=dict)
     failures: tuple[str, ...] = ()
+    tolerance: ToleranceAnalysis | None = None
 
     @property
     def source(self) -> str:
         """The problem file (the design is judged against its requirements)."""
         return self.problem.source
+
+    def tolerance_model(self) -> ToleranceModel:
+        """The given design, its gears at their closing centre distance, as a function of its manufactured
+        dimensions (``parallelogram.tolerance_model``)."""
+        from transplanter.parallelogram.tolerance_model import tolerance_model
+
+        return tolerance_model(self.problem, self.given.design, self.gear.design.center_distance)
 
     def to_json(self) -> dict[str, Any]:
         from transplanter.parallelogram.report import design_report_json
@@ -48,10 +57,12 @@ class DesignReport(CommandResult):
         return evaluation_markdown(self, files)
 
     def draw_figures(self) -> dict[str, Figure]:
-        """The design's trajectory, velocity and acceleration (``draw_design_figures``)."""
+        """The design's trajectory, velocity and acceleration (``draw_design_figures``), and with a tolerance
+        analysis its figures."""
         from transplanter.parallelogram.figures import draw_design_figures
 
-        return draw_design_figures(self.problem, self.given.design)
+        figures = draw_design_figures(self.problem, self.given.design)
+        return {**figures, **self.tolerance.draw_figures()} if self.tolerance is not None else figures
 
 
 def objective_values(problem: ParallelogramProblem, evaluation: Evaluation) -> np.ndarray:

@@ -148,7 +148,7 @@ def synthesize(problem: ParallelogramProblem, pick: int | None = None,
     return dataclasses.replace(result, tolerance=analysis)
 
 
-def evaluate_design(problem: ParallelogramProblem, given: DesignFile) -> DesignReport:
+def evaluate_design(problem: ParallelogramProblem, given: DesignFile, tolerance: bool = True) -> DesignReport:
     """A given design under every reading of its gear (as printed, closed) and of the conventions
     (the file's, eq 17 literal), with its closed gear pair from the gear library. It fails when the
     closed curve under the file's conventions misses the problem's requirements
@@ -160,6 +160,9 @@ def evaluate_design(problem: ParallelogramProblem, given: DesignFile) -> DesignR
         Machine, conventions and objectives (its own [design] is not used).
     given : DesignFile
         The eight variables, and optionally the printed gear values and published figures.
+    tolerance : bool, optional
+        Analyse how precise the built design will be (``tolerance.analyse`` with the problem's
+        ``[tolerances]``; default True).
     """
     require_problem(problem, ParallelogramProblem, "parallelogram")
     if not isinstance(given, DesignFile):
@@ -173,4 +176,10 @@ def evaluate_design(problem: ParallelogramProblem, given: DesignFile) -> DesignR
     gear = gear_pair(given.design, problem.module, problem.pressure_angle, problem.driver_speed,
                      source=given.source)
     timings["gear"] = time.perf_counter() - start
-    return DesignReport(problem, given, rows, closed, gear, timings, requirement_failures(problem, closed, gear))
+    report = DesignReport(problem, given, rows, closed, gear, timings, requirement_failures(problem, closed, gear))
+    if not tolerance:
+        return report
+    start = time.perf_counter()
+    analysis = analyse(report, problem.tolerances)
+    timings["tolerance"] = time.perf_counter() - start
+    return dataclasses.replace(report, tolerance=analysis)
