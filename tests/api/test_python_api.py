@@ -127,13 +127,13 @@ def test_the_main_job_result_pickles(example_result):
 def test_figures_of_each_job(example_result):
     check_figures(fivebar.draw_figures(example_result),
                   {"region", "relative_angle", "gears", "trajectory", "tradeoff", "loads", "pressure_angle",
-                   "tolerance_band", "tolerance_contributions"})
+                   "tolerance_trajectory", "tolerance_band", "tolerance_contributions"})
     four_poses = burmester.load_problem(EXAMPLES / "burmester_4poses.toml")
     check_figures(burmester.draw_figures(burmester.synthesize(four_poses)), {"burmester"})
     check_figures(gears.draw_figures(gears.synthesize(gears.load_problem(EXAMPLES / "gear_limacon.toml"))),
                   {"gear_mesh", "gear_kinematics", "gear_curvature"})
     check_figures(reverse.draw_figures(reverse.synthesize(reverse.load_problem(EXAMPLES / "rice_hoe_reverse.toml"))),
-                  {"path", "motion", "gears", "tolerance_band", "tolerance_contributions"})
+                  {"path", "motion", "gears", "tolerance_trajectory", "tolerance_band", "tolerance_contributions"})
 
 
 def test_naming_the_api_and_computing_import_no_matplotlib():

@@ -141,7 +141,7 @@ def test_report_section(example_result, analysis, model):
     assert max(allocation["first_order_3sigma_mm"]) <= section["allocation"]["pose_position_mm"] * (1 + 1e-6)
     markdown = example_result.to_markdown()
     assert "## Tolerances (the built mechanism)" in markdown and "Dimensions that matter most" in markdown
-    assert {"tolerance_band", "tolerance_contributions"} <= set(example_result.draw_figures())
+    assert {"tolerance_trajectory", "tolerance_band", "tolerance_contributions"} <= set(example_result.draw_figures())
 
 
 def test_hinge_plays_come_from_an_h7_g6_fit_on_the_drawings_shafts(example_result, model):

@@ -139,4 +139,4 @@ def test_report_section(result):
     markdown = result.to_markdown()
     assert "## Tolerances (the built mechanism)" in markdown and "| depth band |" in markdown
     assert "| planting point E 3σ, first order (mm) |" in markdown and "| tool angle worst case (deg) |" in markdown
-    assert {"tolerance_band", "tolerance_contributions"} <= set(result.draw_figures())
+    assert {"tolerance_trajectory", "tolerance_band", "tolerance_contributions"} <= set(result.draw_figures())

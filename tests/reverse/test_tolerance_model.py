@@ -189,7 +189,7 @@ def test_report_section_and_figures(result, analysis):
     reach = result.motion.carrier_length + result.motion.arm_length
     assert section["path_accuracy_mm"] == pytest.approx(PATH_ACCURACY * reach, rel=1e-12)
     assert "## Tolerances (the built mechanism)" in done.to_markdown()
-    assert {"tolerance_band", "tolerance_contributions"} <= set(done.draw_figures())
+    assert {"tolerance_trajectory", "tolerance_band", "tolerance_contributions"} <= set(done.draw_figures())
     assert "tolerance" not in result.to_json() and "tolerance_band" not in result.draw_figures()
 
 

@@ -216,7 +216,8 @@ def draw_pressure_angle(result: FiveBarResult) -> Figure:
 def draw_figures(result: FiveBarResult) -> dict[str, Figure]:
     """The figures of a five-bar design by file stem: ``region``, ``relative_angle``, ``gears``, ``trajectory``,
     ``tradeoff``, ``loads``, ``pressure_angle``, with a seedling support ``support`` and the cam's own
-    (``cam_motion``, ...), and with a tolerance analysis ``tolerance_band`` and ``tolerance_contributions``.
+    (``cam_motion``, ...), and with a tolerance analysis ``tolerance_trajectory``, ``tolerance_band`` and
+    ``tolerance_contributions``.
 
     Parameters
     ----------

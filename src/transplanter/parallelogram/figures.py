@@ -104,7 +104,7 @@ def draw_pareto(result) -> Figure:
 
 def draw_figures(result: ParallelogramResult) -> dict[str, Figure]:
     """Pareto front, and the final design's (polished, else chosen) trajectory, velocity and acceleration;
-    with a tolerance analysis ``tolerance_band`` and ``tolerance_contributions``."""
+    with a tolerance analysis ``tolerance_trajectory``, ``tolerance_band`` and ``tolerance_contributions``."""
     require_result(result, ParallelogramResult, "parallelogram")
     figures = {"pareto": draw_pareto(result), **draw_design_figures(result.problem, result.final)}
     if result.tolerance is not None:

@@ -104,7 +104,7 @@ def draw_gears(result: ReverseResult) -> Figure:
 
 def draw_figures(result: ReverseResult) -> dict[str, Figure]:
     """The figures of a reverse design by file stem: ``path``, ``motion``, ``gears`` when it has a train, and with
-    a tolerance analysis ``tolerance_band`` and ``tolerance_contributions``.
+    a tolerance analysis ``tolerance_trajectory``, ``tolerance_band`` and ``tolerance_contributions``.
 
     Parameters
     ----------
