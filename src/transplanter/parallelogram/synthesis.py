@@ -140,10 +140,14 @@ def synthesize(problem: ParallelogramProblem, pick: int | None = None,
         failures += polished.failures(problem)
     result = ParallelogramResult(problem, search, rank, chosen, evaluation, gear, reference, timings, failures,
                                  polished, published)
-    if not tolerance:
-        return result
+    return _analysed(result, timings) if tolerance else result
+
+
+def _analysed(result: ParallelogramResult | DesignReport, timings: dict):
+    """``result`` with its tolerance analysis (``tolerance.analyse`` with the problem's ``[tolerances]``), its
+    time in ``timings`` (the result's own)."""
     start = time.perf_counter()
-    analysis = analyse(result, problem.tolerances)
+    analysis = analyse(result, result.problem.tolerances)
     timings["tolerance"] = time.perf_counter() - start
     return dataclasses.replace(result, tolerance=analysis)
 
@@ -177,9 +181,4 @@ def evaluate_design(problem: ParallelogramProblem, given: DesignFile, tolerance:
                      source=given.source)
     timings["gear"] = time.perf_counter() - start
     report = DesignReport(problem, given, rows, closed, gear, timings, requirement_failures(problem, closed, gear))
-    if not tolerance:
-        return report
-    start = time.perf_counter()
-    analysis = analyse(report, problem.tolerances)
-    timings["tolerance"] = time.perf_counter() - start
-    return dataclasses.replace(report, tolerance=analysis)
+    return _analysed(report, timings) if tolerance else report
