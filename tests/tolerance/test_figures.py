@@ -3,7 +3,7 @@ error ellipse's extent there, and the magnification it is drawn at is a stated 1
 import numpy as np
 import pytest
 
-from transplanter.tolerance.figures import DRAWN_BAND, _magnification, band_normal_offsets
+from transplanter.tolerance.figures import DRAWN_BAND, magnification, band_normal_offsets
 
 
 def test_a_circle_with_round_ellipses_has_radial_normals_and_a_band_of_three_sigma():
@@ -26,6 +26,6 @@ def test_a_straight_path_takes_the_ellipse_extent_across_it():
 
 @pytest.mark.parametrize("band, extent, factor", [(1.0, 100.0, 5.0), (0.01, 100.0, 500.0), (0.3, 100.0, 10.0),
                                                   (6.0, 190.0, 1.0), (0.0, 100.0, 1.0)])
-def test_magnification_is_the_largest_1_2_5_factor_that_keeps_the_band_small(band, extent, factor):
-    assert _magnification(band, extent) == factor
+def testmagnification_is_the_largest_1_2_5_factor_that_keeps_the_band_small(band, extent, factor):
+    assert magnification(band, extent) == factor
     assert factor == 1.0 or factor * band <= DRAWN_BAND * extent

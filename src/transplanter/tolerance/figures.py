@@ -73,7 +73,7 @@ def band_normal_offsets(path: np.ndarray, covariance: np.ndarray, closed: bool) 
     return normal, 3 * np.sqrt(np.maximum(np.einsum("ti,tij,tj->t", normal, covariance, normal), 0))
 
 
-def _magnification(band_mm: float, extent_mm: float) -> float:
+def magnification(band_mm: float, extent_mm: float) -> float:
     """The 1-2-5 factor that draws the largest band at most ``DRAWN_BAND`` of the path's extent, at least 1."""
     wanted = DRAWN_BAND * extent_mm / band_mm if band_mm > 0 else 1.0
     if wanted <= 1:
@@ -94,7 +94,7 @@ def draw_trajectory_band(analysis: ToleranceAnalysis) -> Figure:
     closed = bool(np.linalg.norm(path[0] - path[-1]) <= 2 * np.median(steps))
     first = position_covariance(analysis.jacobian[:2], analysis.sigma)
     extent = float(np.ptp(path, axis=0).max())
-    factor = _magnification(float(max(analysis.first_order_3sigma_mm[whole].max(), mc.position_3sigma_mm[whole].max())),
+    factor = magnification(float(max(analysis.first_order_3sigma_mm[whole].max(), mc.position_3sigma_mm[whole].max())),
                             extent)
     fig = Figure(figsize=(9, 7), layout="constrained")
     ax = fig.subplots()
