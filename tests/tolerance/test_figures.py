@@ -3,7 +3,7 @@ error ellipse's extent there, and the magnification it is drawn at is a stated 1
 import numpy as np
 import pytest
 
-from transplanter.tolerance.figures import DRAWN_BAND, magnification, band_normal_offsets
+from transplanter.tolerance.figures import DRAWN_BAND, band_normal_offsets, magnification
 
 
 def test_a_circle_with_round_ellipses_has_radial_normals_and_a_band_of_three_sigma():
