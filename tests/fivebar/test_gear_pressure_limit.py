@@ -77,8 +77,9 @@ def test_on_the_fixed_poses_the_pressure_limit_is_what_holds_the_transmission_an
 
 def test_with_the_pressure_limit_the_former_design_met_the_transmission_angle_is_at_least_its(tmp_path):
     """With gears.max_pressure_angle_deg = 48 the former design (47.35 deg) is a feasible point of the NLP, so the
-    design that maximises the angle at E has at least its 26.78 deg (measured on the hinges)."""
+    design that maximises the angle at E has at least its 26.78 deg (measured on the hinges). Only the design is
+    read, so the tolerance analysis is not run."""
     data = read_toml(FIXED)
     data["gears"]["max_pressure_angle_deg"] = 48.0
-    result = synthesize(parse_problem(data, "fixed.toml"))
+    result = synthesize(parse_problem(data, "fixed.toml"), tolerance=False)
     assert _smallest_angle_at_e_deg(result.design) >= 26.78
