@@ -1,7 +1,7 @@
 """Time a study of the five-bar example with its key poses shifted a little: two workers against one, the
 scheduling overhead, each worker's memory over the cases, and a resume after a kill.
 
-    python bench/bench_study.py [--cases 64] [--resume-cases 8]
+    python bench/bench_study.py [--cases 64] [--resume-cases 8] [--keep DIR]
 
 - The cases: examples/vegetable_planting_variants_study.toml (most of its cases give a design) with ``--cases``
   Latin hypercube samples, run once on one local worker and once on two, in this process (the same cases, the
@@ -121,13 +121,15 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--cases", type=int, default=64)
     parser.add_argument("--resume-cases", type=int, default=8)
+    parser.add_argument("--keep", type=Path, help="write the two-worker study (its report and figures) into this "
+                        "new folder instead of a temporary one")
     args = parser.parse_args()
     print("load average (1, 5, 15 min) before: " + ", ".join(f"{load:.1f}" for load in os.getloadavg()))
     with tempfile.TemporaryDirectory() as temporary:
         folder = Path(temporary)
         checks = checks_seconds(_spec(args.cases, 1))
         one, start_up, rows_one, _ = timed_study(args.cases, 1, folder / "one")
-        two, _, rows_two, memory = timed_study(args.cases, 2, folder / "two")
+        two, _, rows_two, memory = timed_study(args.cases, 2, args.keep or folder / "two")
         same = sorted((r["case_id"], r["status"], r["transmission_angle_min_deg"]) for r in rows_one) == \
             sorted((r["case_id"], r["status"], r["transmission_angle_min_deg"]) for r in rows_two)
         case_seconds = sum(float(r["seconds"]) for r in rows_one)
