@@ -55,6 +55,17 @@ def test_lane_k_refines_candidates_k_k_plus_2_on_a_solver_fresh_when_the_lane_st
         assert len(built) == 1 and {pids[k] for k in (1, 3, 5)} == {os.getpid()}
 
 
+def test_within_lanes_here_lane_1_runs_in_this_process_with_the_forked_outcome(monkeypatch):
+    """A study with a worker per core: no fork, each candidate refined from the same solver state."""
+    forked = run(5, True, monkeypatch)[2]
+    with lanes.lanes_here():
+        solver, built, reported = run(5, True, monkeypatch)
+    assert len(built) == 1 and {outcome[2] for _, outcome, *_ in reported} == {os.getpid()}
+    assert sorted((index, outcome[:2]) for index, outcome, *_ in reported) == \
+        sorted((index, outcome[:2]) for index, outcome, *_ in forked)
+    assert lanes._may_fork.get()        # forking again after the block
+
+
 def test_one_candidate_needs_no_second_lane(monkeypatch):
     solver, built, reported = run(1, True, monkeypatch)
     assert [index for index, *_ in reported] == [0] and built == [] and solver.refined == [0]

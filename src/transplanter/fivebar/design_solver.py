@@ -14,6 +14,7 @@ they change no solution, and starts that end in the same mechanism need one roun
 """
 from __future__ import annotations
 
+import copy
 import dataclasses
 
 import numpy as np
@@ -72,6 +73,11 @@ class DesignSolver:
         self.nlp: DesignNLP = build_nlp(self.problem, capacity)
         self.solver = Solver("fivebar_design", self.nlp.layout, stall=STALL)
         self.builds += 1
+
+    def twin(self) -> DesignSolver:
+        """A solver in this one's state that shares its built NLP and IPOPT Functions (no build): what each
+        solve changes, the exchange turns and a rebuild with more room, stays each one's own."""
+        return copy.copy(self)
 
     def solve(self, start: Candidate, added_turns=(), warm: DesignSolution | None = None,
               curvature_floor: float | None = None, iteration_limit: int | None = None,

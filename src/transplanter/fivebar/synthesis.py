@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
+from typing import Any
 
 import numpy as np
 
@@ -93,7 +94,7 @@ def pick_alternative(alternatives: list[Alternative], pick: int, source: str) ->
 
 
 def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progress | None = None,
-               tolerance: bool = True) -> FiveBarResult:
+               tolerance: bool = True, executor: Any = None) -> FiveBarResult:
     """Design the five-bar and its four-gear planetary train for ``problem``, and verify it.
 
     Every feasible region candidate is refined by the design NLP; the results are judged by
@@ -115,6 +116,9 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
     tolerance : bool, optional
         Analyse how precise the built mechanism will be (``tolerance.analyse`` with the problem's
         ``[tolerances]``; default True).
+    executor : concurrent.futures.Executor or distributed.Client, optional
+        Where the regions of pose sets drawn inside the key poses' bands are built, several at once
+        (``band_search``); the result is the one built here.
 
     Returns
     -------
@@ -136,7 +140,7 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
     require_progress(progress)
     timings: dict[str, object] = {}
     start = _step(progress, "region")
-    starts = band_starts(problem)
+    starts = band_starts(problem, executor)
     region = starts.region
     timings["region"] = _done(progress, "region", start)
     if not region.feasible and len(starts.trials) > 1:

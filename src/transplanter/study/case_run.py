@@ -3,14 +3,20 @@ runs it, reduced to what the study records.
 
 The solvers a job builds (CasADi Functions, which do not pickle) are built in the worker from the problem data
 and kept there by the mechanisms' own caches, so the worker's next case reuses them.
+
+A five-bar job refines its candidates in two lanes, the second in a forked process (``fivebar.lanes``); where a
+study runs as many cases at once as there are cores, the workers are the parallelism and a fork per case would
+oversubscribe the cores: the case then runs both lanes in its worker (the same outcome).
 """
 from __future__ import annotations
 
+import contextlib
 import time
 import warnings
 from typing import Any
 
 from transplanter.errors import TransplanterError
+from transplanter.fivebar.lanes import lanes_here
 from transplanter.study.binding import binding_requirement
 
 #: The statuses of a case, by the exit class of the command (0, 1, 2) or by what stopped it.
@@ -22,18 +28,18 @@ def one_line(text: object) -> str:
     return " ".join(str(text).split())
 
 
-def run_case(command_name: str, problem: dict, source: str) -> dict[str, Any]:
+def run_case(command_name: str, problem: dict, source: str, fork_lanes: bool = True) -> dict[str, Any]:
     """Run ``command_name`` on ``problem`` (the problem file's content) as the command line does, without
-    figures or files: the case's status, the command's exit class (0 passed, 1 failed a check, 2 no result;
-    None for an error the command does not expect, a bug), its one-line error, the requirement that binds,
-    the seconds it took and its report (report.json's content). Errors are recorded without the ``source``
-    they start with."""
+    figures or files (``fork_lanes`` False: a five-bar's lanes both in this process): the case's status, the
+    command's exit class (0 passed, 1 failed a check, 2 no result; None for an error the command does not
+    expect, a bug), its one-line error, the requirement that binds, the seconds it took and its report
+    (report.json's content). Errors are recorded without the ``source`` they start with."""
     from transplanter.cli import COMMANDS, command_defaults
 
     command = next(c for c in COMMANDS if c.name == command_name)
     start = time.perf_counter()
     report: dict[str, Any] = {}
-    with warnings.catch_warnings(record=True) as warned:
+    with warnings.catch_warnings(record=True) as warned, contextlib.nullcontext() if fork_lanes else lanes_here():
         warnings.simplefilter("always")
         try:
             result = command.run(command, command.package.parse_problem(problem, source),

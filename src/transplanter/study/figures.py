@@ -20,9 +20,9 @@ _MILLIMETRES = {"x", "y", "module"}
 
 
 def axis_label(path: str) -> str:
-    """A field or quantity with its unit: from the name's ending (``_deg``, ``_mm``...), mm for coordinates and
-    lengths, "1" for a count or ratio."""
-    name = path.rsplit(".", 1)[-1]
+    """A field or quantity with its unit: from the name's ending (``_deg``, ``_mm``...; an array's entry has its
+    array's), mm for coordinates and lengths, "1" for a count or ratio."""
+    name = [part for part in path.split(".") if not part.isdigit()][-1]
     unit = next((u for end, u in _UNITS if name.endswith(end)), None)
     if unit is None:
         unit = "mm" if name in _MILLIMETRES or "length" in name else "1"

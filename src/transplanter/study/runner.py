@@ -4,10 +4,13 @@ Nothing finished is lost: a case's report.json and its row of cases.csv are writ
 study stopped in any way (Ctrl-C, a kill, a crash) keeps them, and ``resume`` runs only the cases the table
 lacks. A worker that dies takes the cases it was running with it: they are run again, alone (so a second
 death is theirs), and recorded as crashed after ``attempts`` deaths. A case past ``case_timeout_s`` is
-recorded as a timeout (local workers are killed and restarted; another executor's call is cancelled).
+recorded as a timeout (local workers are killed and restarted; another executor's call is cancelled). Where
+the executor runs as many cases at once as this machine has cores, a five-bar case runs both its refinement
+lanes in its worker instead of forking the second (``case_run``): the workers are the parallelism.
 """
 from __future__ import annotations
 
+import os
 import time
 from collections import deque
 from collections.abc import Callable
@@ -97,12 +100,13 @@ class _Study:
 def _loop(study: _Study, todo: deque[Case], executor, window: int, local: LocalWorkers | None):
     """Run the cases of ``todo`` with at most ``window`` at once until each is recorded."""
     spec, limit, timeout = study.spec, study.spec.executor.attempts, study.spec.executor.case_timeout_s
+    fork_lanes = window < (os.cpu_count() or 1)     # fewer workers than cores: a forked lane has a core to use
     suspects: deque[tuple[Case, int]] = deque()
     running: dict[Future, _Running] = {}
 
     def submit(case: Case, attempts: int):
         pool = local.executor if local else executor
-        future = pool.submit(run_case, spec.command, case.problem, _case_source(spec, case))
+        future = pool.submit(run_case, spec.command, case.problem, _case_source(spec, case), fork_lanes)
         running[future] = _Running(case, attempts, time.monotonic())
 
     def died(lost: list[_Running], message: str):
