@@ -73,10 +73,11 @@ def gear_drawings(result: GearResult) -> list[GearDrawing]:
 def bore_failures(result: GearResult) -> list[str]:
     """Each cut gear whose keyed bore leaves too thin a rim under its teeth (``shafts.sizing.rim_failures``), with
     the numbers; none before teeth are cut."""
-    if result.teeth is None:
+    module = result.problem.module
+    if result.teeth is None or module is None:
         return []
     return [text for gear in gear_drawings(result)
-            for text in rim_failures(f"{gear.name} bore", gear.root_radius, gear.bore, result.problem.module)]
+            for text in rim_failures(f"{gear.name} bore", gear.root_radius, gear.bore, module)]
 
 
 def write_drawings(result: GearResult, folder: str | Path) -> list[Path]:
