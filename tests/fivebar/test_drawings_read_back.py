@@ -255,14 +255,15 @@ def test_the_design_is_a_command_result(result, tmp_path):
 def quick_command(example_result_from_synthesize, monkeypatch):
     """The fivebar command on the module's result with one small figure, a stand-in animation and no solids (all
     tested above or elsewhere; here only what the command writes and lists)."""
-    from transplanter.fivebar import output_files, solid_files
+    from transplanter.fivebar import output_files
+    from transplanter.solids import part_files
 
     def stand_in(result, folder, teeth=None):
         (folder / "animation.gif").write_bytes(b"GIF89a")
         return [folder / "animation.gif"]
     monkeypatch.setattr(fivebar.FiveBarResult, "draw_figures", lambda result: {"trajectory": Figure(figsize=(1, 1))})
     monkeypatch.setattr(output_files, "write_animation", stand_in)
-    monkeypatch.setattr(solid_files, "cad_installed", lambda: False)
+    monkeypatch.setattr(part_files, "cad_installed", lambda: False)
 
 
 @pytest.mark.parametrize("animation", [True, False])

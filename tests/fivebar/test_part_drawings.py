@@ -12,6 +12,8 @@ from transplanter.fivebar.drawings import write_drawings
 from transplanter.fivebar.report import fivebar_result_json
 from transplanter.fivebar.shaft_spec import ShaftSpec
 from transplanter.fivebar.shafts import shaft_torques
+from transplanter.shafts.sizing import diameter_for_pin
+from transplanter.solids.sizes import SolidSizes
 
 PARTS = ("carrier", "rod_AF", "push_plate_EFP", "receiving_plate_BE")
 GEARS = ("sun", "first_intermediate", "second_intermediate", "planet")
@@ -89,6 +91,20 @@ def test_shaft_torques_balance_power_through_the_train(example_result):
     for shaft in example_result.shafts.shafts.values():
         if shaft.peak_torque_nm is not None:
             assert 16 * shaft.peak_torque_nm * 1e3 / (np.pi * shaft.diameter**3) <= 20.0
+
+
+def test_hinge_pins_are_sized_by_the_largest_force_at_b_e_and_f(example_result):
+    """The pins carry the largest force on B, E or F over the turn (the loads' own hinge forces), on the plates'
+    thickness: the default one, then a given one."""
+    loads = example_result.loads
+    force = max(np.hypot(*loads.hinge_forces[name].T).max() for name in "BEF")
+    pin = example_result.shafts.shafts["hinge"]
+    assert pin.peak_force_n == pytest.approx(force, rel=1e-12)
+    assert pin.diameter == diameter_for_pin(force)
+    thin = replace(example_result.problem, solid_sizes=SolidSizes(thickness_mm=0.5))
+    assert replace(example_result, problem=thin).shafts.shafts["hinge"].diameter == diameter_for_pin(force, 0.5)
+    given = replace(example_result.problem, shafts=ShaftSpec({"hinge": 12.0}))
+    assert replace(example_result, problem=given).shafts.shafts["hinge"].diameter == 12.0
 
 
 def test_a_bore_that_reaches_the_teeth_fails_with_the_numbers(example_result):

@@ -8,12 +8,16 @@ from transplanter.shafts.keyed_bore import KeyedBore
 from transplanter.shafts.keys import DIN_6885, STANDARD_DIAMETERS, parallel_key
 from transplanter.shafts.sizing import (
     GEAR_SIZE_FRACTION,
+    PIN_BEARING_PRESSURE_MPA,
+    PIN_SHEAR_STRESS_MPA,
     TORSION_STRESS_MPA,
     diameter_for_gear,
+    diameter_for_pin,
     diameter_for_torque,
     min_rim,
     rim_failures,
 )
+from transplanter.solids.sizes import PLATE_THICKNESS_PIN_DIAMETERS
 
 
 def test_table_ranges_follow_on_and_keys_grow_with_the_shaft():
@@ -56,6 +60,24 @@ def test_torque_diameter_is_the_smallest_standard_one_within_the_stress(torque_n
     assert stress(d) <= TORSION_STRESS_MPA
     smaller = [s for s in STANDARD_DIAMETERS if s < d]
     assert not smaller or stress(smaller[-1]) > TORSION_STRESS_MPA
+
+
+@pytest.mark.parametrize(("force_n", "thickness_mm"), [(50.0, None), (2500.0, None), (9000.0, None), (2500.0, 4.0),
+                                                       (2500.0, 30.0)])
+def test_pin_diameter_is_the_smallest_standard_one_within_shear_and_bearing(force_n, thickness_mm):
+    def within(d):
+        t = PLATE_THICKNESS_PIN_DIAMETERS * d if thickness_mm is None else thickness_mm
+        return (force_n / (np.pi * d**2 / 4) <= PIN_SHEAR_STRESS_MPA
+                and force_n / (d * t) <= PIN_BEARING_PRESSURE_MPA)
+
+    d = diameter_for_pin(force_n, thickness_mm)
+    assert within(d)
+    smaller = [s for s in STANDARD_DIAMETERS if s < d]
+    assert not smaller or not within(smaller[-1])
+
+
+def test_a_thinner_plate_asks_a_thicker_pin():
+    assert diameter_for_pin(2500.0, 4.0) > diameter_for_pin(2500.0, 30.0)
 
 
 def test_gear_size_diameter_is_the_largest_standard_one_within_the_fraction():

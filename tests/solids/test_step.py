@@ -3,9 +3,9 @@ without the optional extra transplanter[cad] (build123d)."""
 from pathlib import Path
 
 import numpy as np
-import pytest
 import shapely
 
+from tests.solids.step_checks import check_solid, keyed_hole_area, read_back
 from transplanter import gears
 from transplanter.drawing.gear_sheet import GearDrawing
 from transplanter.drawing.plate_sheet import Hole, PlatePart
@@ -14,31 +14,7 @@ from transplanter.geometry.outline_thinning import thinned
 from transplanter.shafts.keyed_bore import KeyedBore
 from transplanter.solids.step import FIXED_TIME, gear_solid, plate_solid, write_step
 
-bd = pytest.importorskip("build123d")
-
 ROOT = Path(__file__).resolve().parents[2]
-
-
-def _read_back(solid, path: Path):
-    write_step(solid, path)
-    return bd.import_step(str(path))
-
-
-def _check_solid(solid, outline: np.ndarray, area: float, height: float, holes: int):
-    """Volume = area x height within 0.1 %, the outline's bounding box and ``height``, ``holes`` through the top."""
-    assert solid.volume == pytest.approx(area * height, rel=1e-3)
-    box = solid.bounding_box()
-    assert np.allclose([box.min.X, box.min.Y, box.max.X, box.max.Y], [*outline.min(axis=0), *outline.max(axis=0)],
-                       atol=1e-6)
-    assert abs(box.size.Z - height) < 1e-9
-    assert len(solid.faces().sort_by(bd.Axis.Z)[-1].inner_wires()) == holes
-
-
-def _keyed_hole_area(bore: KeyedBore) -> float:
-    """The disk, less its segment beyond the keyway's chord, plus the keyway's rectangle from that chord out."""
-    r, alpha = bore.radius, bore.half_angle
-    return (np.pi * r**2 - r**2 * (alpha - np.sin(alpha) * np.cos(alpha))
-            + bore.key.width * (bore.reach - r * np.cos(alpha)))
 
 
 def test_plate_solid_has_the_outline_less_its_holes_times_its_thickness(tmp_path):
@@ -46,10 +22,10 @@ def test_plate_solid_has_the_outline_less_its_holes_times_its_thickness(tmp_path
              Hole("S", np.array([30.0, 45.0]), 8.0))
     part = PlatePart("carrier", holes, (("O", "A"),), TitleBlock("carrier", 1, "t"))
     thickness = 6.0
-    solid = _read_back(plate_solid(part, thickness), tmp_path / "carrier.step")
+    solid = read_back(plate_solid(part, thickness), tmp_path / "carrier.step")
     outline = part.outline()
     area = shapely.Polygon(outline).area - sum(np.pi * (hole.diameter / 2) ** 2 for hole in holes)
-    _check_solid(solid, outline, area, thickness, 3)
+    check_solid(solid, outline, area, thickness, 3)
 
 
 def test_gear_solid_has_the_tooth_outline_less_its_keyed_bore_times_its_face_width(tmp_path):
@@ -59,8 +35,8 @@ def test_gear_solid_has_the_tooth_outline_less_its_keyed_bore_times_its_face_wid
     bore = KeyedBore.for_shaft(20.0, 0.3)
     gear = GearDrawing("driver", outline, outline, bore, TitleBlock("driver", 1, "t"))
     width = 10 * module
-    solid = _read_back(gear_solid(gear, width), tmp_path / "driver.step")
-    _check_solid(solid, outline, shapely.Polygon(outline).area - _keyed_hole_area(bore), width, 1)
+    solid = read_back(gear_solid(gear, width), tmp_path / "driver.step")
+    check_solid(solid, outline, shapely.Polygon(outline).area - keyed_hole_area(bore), width, 1)
 
 
 def test_the_same_part_gives_the_same_step_bytes(tmp_path):

@@ -17,15 +17,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from transplanter.fivebar.linkage import FiveBar
-from transplanter.geometry.outline_thinning import thinned
+from transplanter.geometry.outline_thinning import DRAWN_WITHIN_MODULES, thinned
 from transplanter.geometry.poses import rotate_about, rotation
 from transplanter.trains.planetary import PlanetaryTrain
 from transplanter.trains.toothed_train import ToothedTrain, bend_angle
 
 MIRROR = np.array([1.0, -1.0])
-#: Drawn tooth outlines stay within this many modules of the cut ones (1.5 um at module 1.5, a few times
-#: finer than wire EDM or a gear shaper holds a profile); a tenth of it tripled the DXF writing time.
-DRAWN_WITHIN_MODULES = 1e-3
 
 
 @dataclass(frozen=True)

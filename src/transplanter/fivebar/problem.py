@@ -41,9 +41,11 @@ Schema (docs/fivebar.md, "Problem files"); the carrier pivot O is the origin:
     layout = "bent"               # "bent": intermediate shaft off O-A; "straight": a1 + a2 = |OA|
     first_center_distance = 93.8  # optional, both or neither: a1, a2 (mm) fixed instead of searched;
     second_center_distance = 122. # they must give whole teeth at the module
+    face_width_mm = 15.0          # optional: the gears' solids (solids/sizes.py; default 10 modules)
     [support]                     # optional: the seedling support timed to the design (fivebar/support_problem.py)
     [load]                        # optional: the planting load and link masses (fivebar/load_spec.py)
     [shafts]                      # optional: shaft and hinge-pin diameters (fivebar/shaft_spec.py)
+    [plates]                      # optional: thickness_mm of the link plates' solids (solids/sizes.py)
 """
 from __future__ import annotations
 
@@ -67,6 +69,7 @@ from transplanter.fivebar.load_spec import LoadSpec, parse_load
 from transplanter.fivebar.shaft_spec import ShaftSpec, parse_shafts
 from transplanter.fivebar.support_problem import SupportSpec, parse_support
 from transplanter.fivebar.tolerance_model import DIMENSION_NAMES
+from transplanter.solids.sizes import SolidSizes, read_solid_sizes
 from transplanter.tolerance.dimensions import ToleranceSettings, parse_tolerances
 from transplanter.toml_fields import LONGEST_LABEL, LONGEST_TITLE, ClassFields, FieldReader, read_toml, warn_if_radians
 from transplanter.trains.toothed_train import (
@@ -83,7 +86,7 @@ RANGE_FIELDS = {"ep": "|EP| (mm)", "fp": "|FP| (mm)", "x_e": "x of E in pose 1 (
 MOST_CONTROL_POINTS = 72
 _TOP_KEYS = {"title", "description", "key_poses", "return_points", "ranges", "conditions", "requirements", "spline",
              "region", "gears",
-             "support", "load", "tolerances", "shafts"}
+             "support", "load", "tolerances", "shafts", "plates"}
 
 
 @dataclass(frozen=True)
@@ -133,6 +136,9 @@ class FiveBarProblem:
         velocity over the pushing stroke, no masses).
     shafts : ShaftSpec
         Given shaft and hinge-pin diameters (``[shafts]``, mm); the rest are sized by ``shafts.sizing``.
+    solid_sizes : SolidSizes
+        The gears' face width (``[gears]``) and the link plates' thickness (``[plates]``) of the STEP solids (mm);
+        None takes the rules of ``solids.sizes``.
     source, title : str
         Where the problem came from (file name or ``"<dict>"``) and its title.
     tolerances : ToleranceSettings
@@ -165,6 +171,7 @@ class FiveBarProblem:
     min_transmission_angle: float | None = None
     load: LoadSpec = field(default_factory=LoadSpec)
     shafts: ShaftSpec = field(default_factory=lambda: ShaftSpec({}))
+    solid_sizes: SolidSizes = field(default_factory=SolidSizes)
     source: str = "<dict>"
     title: str = ""
     tolerances: ToleranceSettings = field(default_factory=ToleranceSettings)
@@ -195,6 +202,8 @@ class FiveBarProblem:
             check.fail("load", self.load, "a fivebar.load_spec.LoadSpec")
         if not isinstance(self.shafts, ShaftSpec):
             check.fail("shafts", self.shafts, "a fivebar.shaft_spec.ShaftSpec")
+        if not isinstance(self.solid_sizes, SolidSizes):
+            check.fail("solid_sizes", self.solid_sizes, "a solids.sizes.SolidSizes")
         if self.pose_bands is not None and not isinstance(self.pose_bands, PoseBands):
             check.fail("pose_bands", self.pose_bands, "None or a fivebar.key_pose_bands.PoseBands")
         if not isinstance(self.requirements, Requirements):
@@ -260,7 +269,7 @@ def _choice(read: FieldReader, table: dict, key: str, choices: tuple[str, ...], 
 def _gearing(read: FieldReader, table: dict) -> Gearing:
     """The [gears] table: module, pressure angle, cutter, layout and optional fixed centre distances."""
     read.keys(table, {"module", "pressure_angle_deg", "cutter", "shaper_teeth", "layout", "first_center_distance",
-                      "second_center_distance", "max_pressure_angle_deg"}, "gears")
+                      "second_center_distance", "max_pressure_angle_deg", "face_width_mm"}, "gears")
     module = read.number(table, "module", "gears") if "module" in table else 1.5
     if not MODULE_RANGE[0] <= module <= MODULE_RANGE[1]:
         read.fail("gears.module", module, f"a module from {MODULE_RANGE[0]:g} to {MODULE_RANGE[1]:g} mm (finer gives "
@@ -411,6 +420,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
     support = parse_support(read, data["support"], ranges.get("x_e")) if "support" in data else None
     load = parse_load(read, data.get("load", {}))
     shafts = parse_shafts(read, data.get("shafts", {}))
+    solid_sizes = read_solid_sizes(read, data.get("gears", {}), "gears", data.get("plates", {}))
 
     poses = rows[:, :3].copy()
     poses[:, 2] = np.radians(poses[:, 2])
@@ -418,7 +428,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> FiveBarProblem:
     bands = PoseBands(low * to_internal, high * to_internal) if np.any(high > low) else None
     return FiveBarProblem(poses=poses, carrier_turns=np.radians(turns), return_points=points, labels=tuple(labels),
                           return_tolerance_mm=tolerance, pose_bands=bands, requirements=requirements,
-                          band_samples=band_samples, load=load, shafts=shafts,
+                          band_samples=band_samples, load=load, shafts=shafts, solid_sizes=solid_sizes,
                           min_transmission_angle=None if transmission is None else float(np.radians(transmission)),
                           return_labels=tuple(return_labels), ranges=ranges, min_closure_margin=margin,
                           ratio_bounds=ratio, spline_count=count, samples=samples, radius_mm=radius,

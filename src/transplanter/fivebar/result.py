@@ -100,7 +100,7 @@ class FiveBarResult(CommandResult):
     @cached_property
     def shafts(self) -> ShaftDesign:
         """Shaft and hinge-pin diameters and each gear's keyed bore (``fivebar.shafts``), worked out once."""
-        return design_shafts(self.problem.shafts, self.toothed, self.loads)
+        return design_shafts(self.problem.shafts, self.toothed, self.loads, self.problem.solid_sizes.thickness_mm)
 
     @property
     def failures(self) -> list[str]:

@@ -8,8 +8,8 @@ Schema (docs/fivebar.md):
     planet_mm = 20.0         # the shaft at A, keyed to the planet and to rod AF
     hinge_mm = 8.0           # the pins at B, E and F
 
-Each is optional: a shaft not given is sized from the peak torque of the loads (``shafts.sizing``), a hinge pin
-not given takes the smallest standard diameter. Keyed shafts take a parallel key of DIN 6885-1, so they lie over
+Each is optional: a shaft not given is sized from the peak torque of the loads, a hinge pin not given from the
+peak force at B, E and F (``shafts.sizing``). Keyed shafts take a parallel key of DIN 6885-1, so they lie over
 6 and up to 130 mm.
 """
 from __future__ import annotations

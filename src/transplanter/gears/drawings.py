@@ -16,7 +16,7 @@ from transplanter.gears.result import GearResult
 from transplanter.gears.teeth import driven_table, driver_table
 from transplanter.output_folder import writable_folder
 from transplanter.shafts.keyed_bore import KeyedBore
-from transplanter.shafts.sizing import diameter_for_gear
+from transplanter.shafts.sizing import diameter_for_gear, rim_failures
 
 NAMES = ("driver", "driven")
 
@@ -68,6 +68,16 @@ def gear_drawings(result: GearResult) -> list[GearDrawing]:
         bore = KeyedBore.for_shaft(diameter_for_gear(root), np.pi * index)
         drawings.append(GearDrawing(name, outline, pitch_curve, bore, title))
     return drawings
+
+
+def bore_failures(result: GearResult) -> list[str]:
+    """Each cut gear whose keyed bore leaves too thin a rim under its teeth (``shafts.sizing.rim_failures``), with
+    the numbers; none before teeth are cut."""
+    module = result.problem.module
+    if result.teeth is None or module is None:
+        return []
+    return [text for gear in gear_drawings(result)
+            for text in rim_failures(f"{gear.name} bore", gear.root_radius, gear.bore, module)]
 
 
 def write_drawings(result: GearResult, folder: str | Path) -> list[Path]:

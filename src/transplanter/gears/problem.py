@@ -28,6 +28,7 @@
     shaper_teeth = 16             # shaper cutter teeth
     corner_pressure_angle_deg = 22.0   # composite: pressure angle of the contact as a corner passes; when
                                        # absent 22, 26, 30, 34, 38 are tried and the first pair that passes is kept
+    face_width_mm = 20.0          # optional: the gears' STEP solids (solids/sizes.py; default 10 modules)
 """
 from __future__ import annotations
 
@@ -51,6 +52,7 @@ from transplanter.gears.pitch_curves import (
     spline,
 )
 from transplanter.gears.ratio_expression import ExpressionError, parse_ratio
+from transplanter.solids.sizes import SolidSizes, read_solid_sizes
 from transplanter.toml_fields import LONGEST_TITLE, ClassFields, FieldReader, read_toml, shown
 
 FAMILIES = ("ellipse", "higher_order_ellipse", "denatured_ellipse", "limacon", "denatured_limacon", "spline", "ratio",
@@ -84,7 +86,7 @@ MAX_COMPOSITE_TEETH = 200
 #: 1.2 GB, 20000 teeth over 5 min and 4.4 GB).
 MAX_SHAPER_TEETH = 1000
 _PAIR_KEYS = {"driven_order", "center_distance", "module", "teeth", "pressure_angle_deg", "driver_speed_rpm",
-              "cutter", "shaper_teeth", "corner_pressure_angle_deg"}
+              "cutter", "shaper_teeth", "corner_pressure_angle_deg", "face_width_mm"}
 
 
 @dataclass(frozen=True)
@@ -121,6 +123,8 @@ class GearProblem:
         The driver's parameters as given, for the report.
     corner_pressure_angle : float or None
         Composite teeth: rad, the contact's pressure angle as a corner passes (theta_J / 2); None tries several.
+    solid_sizes : SolidSizes
+        The face width of the gears' STEP solids (mm; None: the rule of ``solids.sizes``).
 
     Raises
     ------
@@ -143,6 +147,7 @@ class GearProblem:
     correct_ratio: bool = False
     parameters: dict = field(default_factory=dict)
     corner_pressure_angle: float | None = None
+    solid_sizes: SolidSizes = field(default_factory=SolidSizes)
 
     def __post_init__(self):
         check = ClassFields(self)
@@ -160,6 +165,8 @@ class GearProblem:
             check.positive(name, optional=True)
         check.choice("cutter", ("rack", "shaper"))
         check.text("source", "title")
+        if not isinstance(self.solid_sizes, SolidSizes):
+            check.fail("solid_sizes", self.solid_sizes, "a solids.sizes.SolidSizes")
         corner = self.corner_pressure_angle
         if corner is not None and not self.pressure_angle < corner < np.radians(80):
             check.fail("corner_pressure_angle", self.corner_pressure_angle,
@@ -405,4 +412,5 @@ def parse_problem(data: dict, source: str = "<dict>") -> GearProblem:
         source=source, title=read.text(data, "title", "", LONGEST_TITLE), ratio=driver if is_ratio else None,
         correct_ratio=correct, parameters={k: shown(v) for k, v in data["driver"].items()
                                            if k not in ("family", "phi_deg", "radius", "ratio", "expression")},
-        corner_pressure_angle=None if corner is None else float(np.radians(corner)))
+        corner_pressure_angle=None if corner is None else float(np.radians(corner)),
+        solid_sizes=read_solid_sizes(read, pair, "pair"))

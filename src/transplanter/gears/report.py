@@ -10,6 +10,7 @@ import numpy as np
 
 from transplanter.gears.composite_curve import CompositeCurve, cusps
 from transplanter.gears.composite_teeth import CompositeTeeth, CornerPressureTrial
+from transplanter.gears.solid_files import solids_note
 
 if TYPE_CHECKING:
     from transplanter.gears.mesh_check import MeshCheck
@@ -85,6 +86,7 @@ def gear_result_json(result: GearResult) -> dict:
         "module": problem.module,
         "tooth_counts": None, "undercut": result.undercut, "contact_ratio_range": None, "self_intersections": None,
         "timings_s": result.timings_s,
+        "solids": solids_note(result, problem.solid_sizes),
     }
     if result.tooth_counts is not None:
         counts = result.tooth_counts
@@ -132,6 +134,8 @@ def to_markdown(result: GearResult, files: Sequence[str] = ()) -> str:
                         "(osculating spur pair, convex parts)"))
     if isinstance(teeth, CompositeTeeth):
         lines += _composite_lines(teeth)
+    note = solids_note(result, problem.solid_sizes)
+    lines += [] if note is None else [f"- {note}"]
     drawings = [name for name in files if not name.endswith(".png")]
     if drawings:
         lines += ["", "Drawings: " + ", ".join(drawings)]

@@ -104,11 +104,18 @@ class GearResult(CommandResult):
     @property
     def failures(self) -> list[str]:
         """Checks the pair fails: tooth outlines that cross themselves (a cutter that cuts away teeth it
-        made) cannot be made or drawn as given; composite teeth add their contact and mesh checks."""
+        made) cannot be made or drawn as given; composite teeth add their contact and mesh checks; a keyed bore
+        that comes too close to the teeth (``gears.drawings.bore_failures``)."""
+        from transplanter.gears.drawings import bore_failures
+
+        return self._tooth_failures + bore_failures(self)
+
+    @property
+    def _tooth_failures(self) -> list[str]:
         if self.teeth is None:
             return []
         if isinstance(self.teeth, CompositeTeeth):          # composite teeth name their own crossings
-            return self.teeth.failures
+            return list(self.teeth.failures)
         if not any(self.teeth.self_intersections):
             return []
         driver, driven = self.teeth.self_intersections
@@ -132,8 +139,12 @@ class GearResult(CommandResult):
         return draw_figures(self)
 
     def write_files(self, folder: Path, animation: bool = True) -> list[Path]:
-        """The pitch curves and tooth outlines as CSV, SVG and DXF (``gears.write_drawings``)."""
+        """The pitch curves and tooth outlines as CSV, SVG and DXF (``gears.write_drawings``), and the cut gears'
+        STEP solids with the extra transplanter[cad] (``gears.solid_files``)."""
         from transplanter.gears.drawings import write_drawings
+        from transplanter.gears.solid_files import write_solids
 
         with progress.step("drawings"):
-            return write_drawings(self, folder)
+            written = write_drawings(self, folder)
+        with progress.step("solids"):
+            return written + write_solids(self, Path(folder), self.problem.solid_sizes)

@@ -15,6 +15,7 @@ Schema (docs/parallelogram.md, "Problem files"); the driver gear's center O1 is 
     [gear]
     module = 2.0                  # mm: undercut check (rack, m / sin^2 of the pressure angle), tooth count
     pressure_angle_deg = 20.0
+    face_width_mm = 20.0          # optional: the gears' STEP solids (solids/sizes.py; default 10 modules)
     [machine]
     driver_speed_rpm = 60.0       # constant speed of the driver gear
     forward_speed_mm_s = 300.0    # machine speed over the field (> 0)
@@ -51,6 +52,7 @@ from pathlib import Path
 import numpy as np
 
 from transplanter.errors import ProblemError
+from transplanter.solids.sizes import SolidSizes, read_solid_sizes
 from transplanter.tolerance.dimensions import ToleranceSettings, parse_tolerances
 from transplanter.toml_fields import (
     LONGEST_TITLE,
@@ -139,6 +141,8 @@ class ParallelogramProblem:
     tolerances : ToleranceSettings
         The ``[tolerances]`` table: tolerances of the built mechanism's dimensions
         (``parallelogram.tolerance_model``) and the analysis settings (``tolerance.dimensions``).
+    solid_sizes : SolidSizes
+        The face width of the gears' STEP solids (``[gear]``, mm; None: the rule of ``solids.sizes``).
     """
 
     design: dict
@@ -161,6 +165,7 @@ class ParallelogramProblem:
     printed: dict = field(default_factory=dict)
     published: dict = field(default_factory=dict)
     tolerances: ToleranceSettings = field(default_factory=ToleranceSettings)
+    solid_sizes: SolidSizes = field(default_factory=SolidSizes)
 
     def __post_init__(self):
         check = ClassFields(self)
@@ -172,6 +177,8 @@ class ParallelogramProblem:
         check.array("crank_pivot", (2,))
         if not isinstance(self.conventions, Conventions):
             check.fail("conventions", self.conventions, "a Conventions")
+        if not isinstance(self.solid_sizes, SolidSizes):
+            check.fail("solid_sizes", self.solid_sizes, "a solids.sizes.SolidSizes")
         c = self.conventions
         for name, value, expected in (("crank_sense", c.crank_sense, (1.0, -1.0)), ("forward", c.forward, (1.0, -1.0)),
                                       ("alpha_instant", c.alpha_instant, ("slowest", "driver_zero"))):
@@ -351,7 +358,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> ParallelogramProblem:
                            f"expected the eight variables {', '.join(FILE_NAMES.values())}")
     design = read_design(read, data["design"])
     gear = data.get("gear", {})
-    read.keys(gear, {"module", "pressure_angle_deg"}, "gear")
+    read.keys(gear, {"module", "pressure_angle_deg", "face_width_mm"}, "gear")
     pressure = read.number(gear, "pressure_angle_deg", "gear") if "pressure_angle_deg" in gear else 20.0
     if not 5 <= pressure <= 35:
         read.fail("gear.pressure_angle_deg", pressure, "an angle from 5 to 35 degrees")
@@ -404,4 +411,5 @@ def parse_problem(data: dict, source: str = "<dict>") -> ParallelogramProblem:
         source=source, title=read.text(data, "title", "", LONGEST_TITLE),
         printed=read_printed(read, data.get("printed", {}), design),
         published=read_published(read, data.get("published", {})),
-        tolerances=parse_tolerances(data.get("tolerances", {}), DIMENSION_NAMES, source))
+        tolerances=parse_tolerances(data.get("tolerances", {}), DIMENSION_NAMES, source),
+        solid_sizes=read_solid_sizes(read, gear, "gear"))

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from transplanter.gears.solid_files import solids_note
 from transplanter.parallelogram.evaluation import problem_design
 from transplanter.parallelogram.objectives import OBJECTIVES
 from transplanter.parallelogram.problem import FILE_NAMES, PUBLISHED_FIELDS, TRANSLATION_ONLY
@@ -147,7 +148,8 @@ def parallelogram_result_json(result: ParallelogramResult) -> dict:
                        "evaluation": evaluation_json(e)},
             "start": evaluation_json(result.start),
             "published": published_json(problem_design(problem), result.published),
-            "gear": gear_json(result.gear), "trajectory": trajectory_json(result.final_evaluation),
+            "gear": gear_json(result.gear), "solids": solids_note(result.gear, problem.solid_sizes),
+            "trajectory": trajectory_json(result.final_evaluation),
             "design": variables_json(result.final),
             "polished": None if result.polished is None else polished_json(result.polished, problem),
             **({"tolerance": result.tolerance.to_json()} if result.tolerance else {}),
@@ -173,6 +175,10 @@ def _gear(gear: GearResult) -> list[str]:
             f"{_fmt(fractional[0] if fractional else None, 6)} teeth fit the driver "
             f"(nearest {teeth[0] if teeth else '-'}); convex {gear.convex}, undercut "
             f"{gear.undercut}, smallest curvature radii {_fmt(radii[0])} and {_fmt(radii[1])} mm.", ""]
+
+
+def _solids(note: str | None) -> list[str]:
+    return [] if note is None else [note + ".", ""]
 
 
 def _trajectory(e: Evaluation) -> list[str]:
@@ -229,6 +235,7 @@ def to_markdown(result: ParallelogramResult, files: Sequence[str] = ()) -> str:
              f"## Chosen design (rank {result.pick}; 1 = the knee)", "", *_variables(result.chosen), "",
              "Objectives (fine grid): " + _objectives(objective_values(problem, result.evaluation), 4), "",
              *_trajectory(result.final_evaluation), *_gear(result.gear),
+             *_solids(solids_note(result.gear, problem.solid_sizes)),
              *_published(problem_design(problem), result.published),
              "## Pareto designs (first 10)", "",
              "| rank | " + " | ".join(names) + " | f1 | f2 | f3 |", "|---" * (len(names) + 4) + "|"]

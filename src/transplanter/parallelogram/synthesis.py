@@ -9,6 +9,7 @@ import numpy as np
 
 from transplanter.api_arguments import require_pick, require_problem, require_progress
 from transplanter.errors import ProblemError, SolverError, TransplanterError
+from transplanter.gears.drawings import bore_failures
 from transplanter.gears.result import GearResult
 from transplanter.gears.synthesis import tooth_counts
 from transplanter.parallelogram.evaluation import (
@@ -35,14 +36,15 @@ AGREEMENT = 1e-6
 
 def requirement_failures(problem: ParallelogramProblem, evaluation: Evaluation, gear: GearResult) -> tuple[str, ...]:
     """Why a design misses the problem's requirements (empty when it meets them): its depth on the fine
-    grid within the depth band, its gear pair (gear library) convex and free of undercut."""
+    grid within the depth band, its gear pair (gear library) convex and free of undercut, the gears' keyed bores
+    clear of their teeth (``gears.drawings.bore_failures``)."""
     failures = []
     low, high = problem.depth_band
     if not low - AGREEMENT * high <= evaluation.depth <= high * (1 + AGREEMENT):
         failures.append(f"depth {evaluation.depth:.4f} mm outside the band [{low:g}, {high:g}] mm")
     if not all(gear.convex) or any(gear.undercut or ()):
         failures.append(f"gear pair: convex {gear.convex}, undercut {gear.undercut}")
-    return tuple(failures)
+    return (*failures, *bore_failures(gear))
 
 
 def _checks(problem: ParallelogramProblem, search: SearchResult, rank: int, evaluation: Evaluation,

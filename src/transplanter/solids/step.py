@@ -1,9 +1,8 @@
 """Parts as STEP solids through build123d (the optional extra ``transplanter[cad]``): a gear's tooth outline
 extruded to its face width, less its keyed bore; a link plate's outline extruded to its thickness, less its holes.
 
-Without build123d nothing is written and ``MISSING_NOTE`` says so. Default sizes (mm): a gear's face width
-``FACE_WIDTH_MODULES`` modules (spur gears run 6 to 12), a plate ``PLATE_THICKNESS_PIN_DIAMETERS`` of its hinge
-pin's diameter thick.
+Without build123d nothing is written and ``MISSING_NOTE`` says so. The sizes are ``solids.sizes``'; every command
+writes its parts through ``solids.part_files``.
 """
 from __future__ import annotations
 
@@ -17,8 +16,6 @@ from transplanter.drawing.gear_sheet import GearDrawing
 from transplanter.drawing.plate_sheet import PlatePart
 from transplanter.shafts.keyed_bore import KeyedBore
 
-FACE_WIDTH_MODULES = 10.0
-PLATE_THICKNESS_PIN_DIAMETERS = 0.75
 #: The time stamp every STEP header gets, the one ezdxf's fixed metadata gives DXF files.
 FIXED_TIME = "2000-01-01T00:00:00"
 _STAMP = re.compile(r"(FILE_NAME\('[^']*',)'[^']*'")

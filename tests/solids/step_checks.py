@@ -1,0 +1,33 @@
+"""A STEP solid read back and checked against the outline it was made from: volume = area x height within 0.1 %,
+the outline's bounding box and the height, the holes through its top face."""
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from transplanter.shafts.keyed_bore import KeyedBore
+from transplanter.solids.step import write_step
+
+bd = pytest.importorskip("build123d")
+
+
+def read_back(solid, path: Path):
+    write_step(solid, path)
+    return bd.import_step(str(path))
+
+
+def check_solid(solid, outline: np.ndarray, area: float, height: float, holes: int):
+    """Volume = area x height within 0.1 %, the outline's bounding box and ``height``, ``holes`` through the top."""
+    assert solid.volume == pytest.approx(area * height, rel=1e-3)
+    box = solid.bounding_box()
+    assert np.allclose([box.min.X, box.min.Y, box.max.X, box.max.Y], [*outline.min(axis=0), *outline.max(axis=0)],
+                       atol=1e-6)
+    assert abs(box.size.Z - height) < 1e-9
+    assert len(solid.faces().sort_by(bd.Axis.Z)[-1].inner_wires()) == holes
+
+
+def keyed_hole_area(bore: KeyedBore) -> float:
+    """The disk, less its segment beyond the keyway's chord, plus the keyway's rectangle from that chord out."""
+    r, alpha = bore.radius, bore.half_angle
+    return (np.pi * r**2 - r**2 * (alpha - np.sin(alpha) * np.cos(alpha))
+            + bore.key.width * (bore.reach - r * np.cos(alpha)))

@@ -1,0 +1,27 @@
+"""The five-bar's STEP solids read back: each link plate its outline less its holes, each gear its drawn tooth
+outline less its keyed bore, extruded to the problem's thickness and face width."""
+from dataclasses import replace
+
+import numpy as np
+import shapely
+
+from tests.solids.step_checks import bd, check_solid, keyed_hole_area
+from transplanter.fivebar.drawings import gear_drawings, parts
+from transplanter.fivebar.gears_on_carrier import tooth_outlines
+from transplanter.fivebar.solid_files import write_solids
+from transplanter.solids.sizes import SolidSizes
+
+
+def test_every_plate_and_gear_is_its_drawing_extruded(example_result, tmp_path):
+    sizes = SolidSizes(face_width_mm=14.0, thickness_mm=5.0)
+    result = replace(example_result, problem=replace(example_result.problem, solid_sizes=sizes))
+    written = write_solids(result, tmp_path)
+    plates, gears = parts(result), gear_drawings(result, tooth_outlines(result.toothed))
+    assert sorted(path.name for path in written) == sorted(f"{part.name}.step" for part in [*plates, *gears])
+    for part in plates:
+        holes = [hole for hole in part.holes if hole.diameter]
+        area = shapely.Polygon(part.outline()).area - sum(np.pi * (hole.diameter / 2) ** 2 for hole in holes)
+        check_solid(bd.import_step(str(tmp_path / f"{part.name}.step")), part.outline(), area, 5.0, len(holes))
+    for gear in gears:
+        area = shapely.Polygon(gear.outline).area - keyed_hole_area(gear.bore)
+        check_solid(bd.import_step(str(tmp_path / f"{gear.name}.step")), gear.outline, area, 14.0, 1)
