@@ -143,7 +143,8 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
         raise InfeasibleError(f"{problem.source}: no pose set inside the key poses' bands gives a feasible five-bar: "
                               f"{len(starts.trials)} tried (the bands' centres, then region.band_samples = "
                               f"{problem.band_samples} drawn sets); the condition that binds most often: "
-                              f"{starts.most_binding()}")
+                              f"{starts.most_binding()}; relax that condition, widen the bands or draw more sets "
+                              "(region.band_samples)")
     if not region.receiving.kept.any():
         _empty_family(starts.problem, "2R chain B-E", region.receiving)
     if not region.carrier.kept.any():
@@ -160,7 +161,9 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
     timings["nlp_per_candidate"] = seconds
     if not alternatives:
         raise SolverError(f"{problem.source}: none of the {len(failed)} feasible region candidates refined into a "
-                          f"design that passes its checks", "; ".join(f"{f.start + 1}: {f.reason}" for f in failed))
+                          f"design that passes its checks (each one's reason names the condition that held it: "
+                          "relax that condition or the ranges)",
+                          "; ".join(f"{f.start + 1}: {f.reason}" for f in failed))
     alternatives = [with_gear_sizes(problem, alternative) for alternative in alternatives]
     chosen = pick_alternative(alternatives, pick, problem.source)
     design = chosen.design
