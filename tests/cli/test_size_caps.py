@@ -11,6 +11,7 @@ import pytest
 from scipy.interpolate import CubicSpline
 
 from transplanter.burmester.problem import LARGEST_POSE_COUNT
+from transplanter.cam.problem import LARGEST_SEGMENT_COUNT
 from transplanter.cli import main
 from transplanter.fivebar.problem import MOST_CONTROL_POINTS
 from transplanter.gears.pitch_curves import PeriodicSpline
@@ -62,6 +63,19 @@ def test_burmester_poses_past_their_cap(tmp_path, capsys):
     problem.write_text("".join(f"[[poses]]\nx = {k}.0\ny = {k % 7}.0\nangle_deg = {k % 11}.0\n" for k in range(count)))
     err = _one_line(capsys, ["burmester", str(problem)])
     assert f"poses = '{count} poses': expected at most {LARGEST_POSE_COUNT} poses" in err
+
+
+def test_cam_segments_past_their_cap(tmp_path, capsys):
+    """A turn cut into one more rise than the cap (and a return to the base): refused before the work."""
+    count = LARGEST_SEGMENT_COUNT
+    text = (EXAMPLES / "cam_flat_faced.toml").read_text()
+    rows = "".join(f'[[segments]]\nkind = "rise"\nangle_deg = {180 / count!r}\nlaw = "cycloidal"\nlift = 0.01\n\n'
+                   for _ in range(count))
+    rows += f'[[segments]]\nkind = "return"\nangle_deg = 180.0\nlaw = "cycloidal"\nlift = {0.01 * count!r}\n\n'
+    problem = tmp_path / "cam.toml"
+    problem.write_text(text[:text.index("[[segments]]")] + rows + text[text.index("[limits]"):])
+    err = _one_line(capsys, ["cam", str(problem)])
+    assert f"segments = '{count + 1} segments': expected at most {count} segments" in err
 
 
 def test_return_points_past_the_spline_name_their_own_limit(tmp_path, capsys):
