@@ -15,7 +15,7 @@ import time
 
 import numpy as np
 
-from transplanter.api_arguments import require_pick, require_progress
+from transplanter.api_arguments import require_pick, require_progress, require_switch
 from transplanter.errors import InfeasibleError, ProblemError, SolverError
 from transplanter.fivebar.alternatives import Alternative, Progress, refine_all, with_gear_sizes
 from transplanter.fivebar.band_search import band_starts
@@ -134,6 +134,7 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
     """
     pick = require_pick(pick)
     require_progress(progress)
+    require_switch("tolerance", tolerance)
     timings: dict[str, object] = {}
     start = _step(progress, "region")
     starts = band_starts(problem)
