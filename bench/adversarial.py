@@ -72,6 +72,7 @@ class Row:
     hung: bool
     out: str
     allowed: tuple[int, ...]
+    stderr: str
 
     @property
     def clean(self) -> bool:
@@ -133,7 +134,7 @@ def run(case: Case, timeout: float) -> Row:
         if second.returncode not in case.allowed:
             err += f"second run exited {second.returncode}\n"
     return Row(case.name, case.kind, None if hung else process.returncode, err.count("\n"), "Traceback" in err,
-               hung, out_state(case.out), case.allowed)
+               hung, out_state(case.out), case.allowed, err)
 
 
 def _write(folder: Path, name: str, text: str) -> str:
@@ -382,6 +383,8 @@ def main():
                 print(f"{row.name[:62]:<62} {str(row.exit):>5} {row.lines:>5} {str(row.traceback):>9} "
                       f"{str(row.hung):>5} {row.out:>8}  {'yes' if row.clean else 'NO'}"
                       f"  ({time.perf_counter() - start:.1f} s)", flush=True)
+                if not row.clean:
+                    print(textwrap.indent(row.stderr[-2000:], "    | "), flush=True)
         for kind in args.classes:
             some = [row for row in rows if row.kind == kind]
             print(f"{kind}: {sum(row.clean for row in some)} clean of {len(some)}")
