@@ -1,3 +1,3 @@
-from transplanter.cli import console
+from transplanter.entry_point import console
 
 console()

@@ -43,6 +43,13 @@ def require_pick(pick) -> int:
     return int(pick)
 
 
+def require_switch(name: str, value):
+    """Refuse (ProblemError) an on/off option ``name`` (``tolerance``, ``polish_nlp``) that is not True or False: a
+    text such as "no" would switch it on."""
+    if not isinstance(value, bool):
+        raise ProblemError(f"{name} = {_described(value)}: expected True or False")
+
+
 def require_progress(progress):
     """Refuse (ProblemError) a ``progress`` that is neither None nor a callable ``progress(step, done, total)``."""
     if progress is not None and not callable(progress):

@@ -17,6 +17,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import io
+import os
 import signal
 import sys
 import threading
@@ -378,7 +379,10 @@ def _run(args) -> int:
         _say(f"transplanter: error: {error.filename or out or 'a file'}: {error.strerror or error}"
              + (f"; {out} is left as it was" if out else ""), args.warned)
         return 2
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, Exception) as error:
+        # an interrupt raised inside a library's C call can come out as another error (CasADi's: SystemError)
+        if not isinstance(error, KeyboardInterrupt) and not _RUN.stopped:
+            raise
         _say("transplanter: interrupted" + (f"; {out} is left as it was" if out else ""), args.warned)
         return 130
     return code
@@ -417,9 +421,10 @@ def _interrupt(signum, frame):
 
 def console() -> NoReturn:
     """The ``transplanter`` program: ``main()``, then exit with its code. An interrupt after the run (its
-    output complete) ends it with 130 and says so in one line; one while the interpreter shuts down (which
-    sets the default action again, and can take a moment when a forked lane was stopped) is ignored: the run's
-    ending is already decided."""
+    output complete) ends it with 130 and says so in one line; one after that is ignored: the run's ending is
+    already decided. The program ends with ``os._exit`` once its output is flushed: the interpreter's shutdown
+    (destroying CasADi objects a solve left when it was interrupted) killed it with SIGINT after its last line,
+    in 2 of 14 runs of the pick-up interrupted near its end."""
     late = threading.Event()
     for number in INTERRUPTS:
         signal.signal(number, lambda signum, frame: late.set())
@@ -430,7 +435,10 @@ def console() -> NoReturn:
         if late.is_set() and code != 130:
             print("transplanter: interrupted after the run; its output is complete", file=sys.stderr)
             code = 130
-    sys.exit(code)
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(OSError):
+            stream.flush()
+    os._exit(code)
 
 
 class _UntilInterrupted(io.TextIOBase):

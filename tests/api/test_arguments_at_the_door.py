@@ -37,8 +37,10 @@ def test_a_problem_of_the_wrong_kind_is_named(name, given, other_problem):
 @pytest.mark.parametrize("name, problem_file", [("fivebar", "vegetable_planting.toml"),
                                                 ("parallelogram", "onion_transplanter.toml")])
 @pytest.mark.parametrize("option, value", [("pick", "1"), ("pick", 0), ("pick", True), ("pick", 1.5),
-                                           ("progress", "yes"), ("progress", 3)])
+                                           ("progress", "yes"), ("progress", 3), ("tolerance", "no"),
+                                           ("tolerance", None)])
 def test_options_of_the_wrong_type_are_named(name, problem_file, option, value):
+    """Before any work: a text for an on/off option (tolerance="no") would have switched it on."""
     package = PACKAGES[name]
     problem = package.load_problem(EXAMPLES / problem_file)
     with pytest.raises(ProblemError, match=rf"^(--)?{option} = .*: expected "):

@@ -11,8 +11,10 @@ import pytest
 from scipy.interpolate import CubicSpline
 
 from transplanter.burmester.problem import LARGEST_POSE_COUNT
+from transplanter.cam.problem import LARGEST_SEGMENT_COUNT
 from transplanter.cli import main
 from transplanter.fivebar.problem import MOST_CONTROL_POINTS
+from transplanter.gears.composite_fields import LARGEST_SEGMENT_COUNT as LARGEST_COMPOSITE_SEGMENTS
 from transplanter.gears.pitch_curves import PeriodicSpline
 from transplanter.gears.problem import LARGEST_SAMPLE_COUNT
 from transplanter.reverse.problem import LARGEST_POINT_COUNT
@@ -62,6 +64,47 @@ def test_burmester_poses_past_their_cap(tmp_path, capsys):
     problem.write_text("".join(f"[[poses]]\nx = {k}.0\ny = {k % 7}.0\nangle_deg = {k % 11}.0\n" for k in range(count)))
     err = _one_line(capsys, ["burmester", str(problem)])
     assert f"poses = '{count} poses': expected at most {LARGEST_POSE_COUNT} poses" in err
+
+
+def test_cam_segments_past_their_cap(tmp_path, capsys):
+    """A turn cut into one more rise than the cap (and a return to the base): refused before the work."""
+    count = LARGEST_SEGMENT_COUNT
+    text = (EXAMPLES / "cam_flat_faced.toml").read_text()
+    rows = "".join(f'[[segments]]\nkind = "rise"\nangle_deg = {180 / count!r}\nlaw = "cycloidal"\nlift = 0.01\n\n'
+                   for _ in range(count))
+    rows += f'[[segments]]\nkind = "return"\nangle_deg = 180.0\nlaw = "cycloidal"\nlift = {0.01 * count!r}\n\n'
+    problem = tmp_path / "cam.toml"
+    problem.write_text(text[:text.index("[[segments]]")] + rows + text[text.index("[limits]"):])
+    err = _one_line(capsys, ["cam", str(problem)])
+    assert f"segments = '{count + 1} segments': expected at most {count} segments" in err
+
+
+def _arcs(count: int, splines: int = 0, samples: int = 0) -> str:
+    """A composite circle of radius 20 mm cut into ``count`` pieces, the first ``splines`` of them splines of
+    ``samples`` radii each."""
+    rows = ""
+    for k in range(count):
+        rows += f'[[driver.segments]]\nphi_deg = [{360 * k / count!r}, {360 * (k + 1) / count!r}]\n'
+        rows += (f'kind = "spline"\nradius = {[20.0] * samples}\n' if k < splines
+                 else 'kind = "arc"\ncenter = [0.0, 0.0]\nradius = 20.0\n')
+    return '[driver]\nfamily = "composite"\n' + rows
+
+
+def test_composite_segments_past_their_cap(tmp_path, capsys):
+    count = LARGEST_COMPOSITE_SEGMENTS + 1
+    problem = tmp_path / "composite.toml"
+    problem.write_text(_arcs(count))
+    err = _one_line(capsys, ["gear", str(problem)])
+    assert f"driver.segments = '{count} segments': expected at most {count - 1} segments" in err
+
+
+def test_composite_spline_samples_past_their_cap_together(tmp_path, capsys):
+    """Two spline segments of half the cap and one more each: each is within the cap, together they are past it."""
+    half = LARGEST_SAMPLE_COUNT // 2 + 1
+    problem = tmp_path / "composite.toml"
+    problem.write_text(_arcs(4, splines=2, samples=half))
+    err = _one_line(capsys, ["gear", str(problem)])
+    assert f"driver.segments = '{2 * half} spline samples': expected at most {LARGEST_SAMPLE_COUNT}" in err
 
 
 def test_return_points_past_the_spline_name_their_own_limit(tmp_path, capsys):

@@ -77,7 +77,8 @@ BAD = {
                                   '[pair]\ncenter_distance = 35.0\n',
                                   ["pair.center_distance = 35", "largest driver radius"]),
     "center distance does not close": ('[driver]\nfamily = "ellipse"\nsemi_major_axis = 30.0\neccentricity = 0.3\n'
-                                       '[pair]\ncenter_distance = 70.0\n', ["does not close", "60.000000000"]),
+                                       '[pair]\ncenter_distance = 70.0\n', ["does not close", "60.000000000",
+                                                                        "leave pair.center_distance out"]),
     "eccentricity": ('[driver]\nfamily = "ellipse"\nsemi_major_axis = 30.0\neccentricity = 1.2\n',
                      ["driver.eccentricity", "1.2", "[0, 1)"]),
     "m12 breaks eq 2": ('[driver]\nfamily = "denatured_limacon"\nbase = 53.0\namplitude = 13.0\n'

@@ -117,8 +117,10 @@ BAD = {
     "translation-only bound": ({"search": {"bounds": {"l6": [100.0, 200.0]}}}, "search.bounds.l6"),
     "bad convention": ({"conventions": {"crank_sense": "cw"}}, "conventions.crank_sense"),
     "depth target outside the band": ({"objectives": {"depth_target_mm": 40.0}}, "objectives.depth_target_mm = 40.0"),
-    "a search too long to finish": ({"search": {"population": 10000, "generations": 100000}},
-                                    "search.generations = 100000: expected at most 100"),
+    "a search too long to finish": ({"search": {"population": 5000, "generations": 100000}},
+                                    "search.generations = 100000: expected at most 200"),
+    "a population past its cap": ({"search": {"population": 5001}},
+                                  "search.population = 5001: expected a whole number from 8 to 5000"),
 }
 
 

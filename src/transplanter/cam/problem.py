@@ -55,6 +55,11 @@ DESIGN_REACH = 20.0
 DEFAULT_PRESSURE_LIMIT_DEG = {"translating": 30.0, "oscillating": 45.0, "flat_faced": 30.0}
 #: Segment angles must add up to a turn within this (degrees).
 TURN_TOLERANCE_DEG = 1e-6
+#: Most segments of a motion program: the work grows with their number (measured in design mode on the flat-faced
+#: example's turn cut into rises: 200 segments 9 s, 2000 11 s, 20,000 45 s), and a program of more is a sampled
+#: motion the laws are not made for.
+LARGEST_SEGMENT_COUNT = 2000
+_TOO_MANY_SEGMENTS = f"at most {LARGEST_SEGMENT_COUNT} segments"
 _TOP_KEYS = {"title", "description", "cam", "follower", "segments", "limits", "design"}
 _CAM_KEYS = {"base_radius", "direction", "samples", "bore_radius"}
 _FOLLOWER_KEYS = {"translating": {"kind", "roller_radius", "offset"}, "flat_faced": {"kind"},
@@ -197,6 +202,8 @@ def _check_segments(check: ClassFields, segments, follower):
     (rad) below a half turn."""
     if not isinstance(segments, tuple) or not segments or not all(isinstance(s, Segment) for s in segments):
         check.fail("segments", segments, "a tuple of Segment")
+    if len(segments) > LARGEST_SEGMENT_COUNT:
+        check.fail("segments", f"{len(segments)} segments", _TOO_MANY_SEGMENTS)
     for k, segment in enumerate(segments):
         if segment.kind not in SEGMENT_KINDS or (segment.law not in LAWS) != (segment.kind == "dwell"):
             check.fail(f"segments[{k}]", segment, f"a kind of {SEGMENT_KINDS} with a law of {LAWS} (None on a dwell)")
@@ -274,6 +281,8 @@ def _follower(read: FieldReader, table) -> Follower:
 
 def _segments(read: FieldReader, data: dict, oscillating: bool) -> tuple[Segment, ...]:
     rows = read.tables(data, "segments", "an array of tables [[segments]] with kind, angle_deg, law and lift")
+    if len(rows) > LARGEST_SEGMENT_COUNT:
+        read.fail("segments", f"{len(rows)} segments", _TOO_MANY_SEGMENTS)
     amount_key, other_key = ("swing_deg", "lift") if oscillating else ("lift", "swing_deg")
     segments, level = [], 0.0
     for k, row in enumerate(rows):

@@ -125,7 +125,8 @@ def _closed_loop(mech: FiveBar, relative: RelativeAngle, turns: np.ndarray) -> d
     loop = mech.forward(turns, rho)
     if not np.all(loop["margin"] >= 0):
         where = np.degrees(turns[np.argmin(np.nan_to_num(loop["margin"], nan=-np.inf))])
-        raise InfeasibleError(f"kinetostatics: the chain B-E-F does not close at carrier turn {where:.2f} deg")
+        raise InfeasibleError(f"kinetostatics: the chain B-E-F does not close at carrier turn {where:.2f} deg; the "
+                              "loads need a design whose closure margin stays above 0 all round")
     theta1 = mech.carrier_angle - turns
     receiving = loop["e"] - mech.hinge_b
     loop["angles"] = [theta1, theta1 + rho, np.arctan2(receiving[:, 1], receiving[:, 0]), loop["direction"]]

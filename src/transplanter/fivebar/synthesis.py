@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from transplanter.api_arguments import require_pick, require_progress
+from transplanter.api_arguments import require_pick, require_progress, require_switch
 from transplanter.errors import InfeasibleError, ProblemError, SolverError
 from transplanter.fivebar.alternatives import Alternative, Progress, refine_all, with_gear_sizes
 from transplanter.fivebar.band_search import band_starts
@@ -138,6 +138,7 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
     """
     pick = require_pick(pick)
     require_progress(progress)
+    require_switch("tolerance", tolerance)
     timings: dict[str, object] = {}
     start = _step(progress, "region")
     starts = band_starts(problem, executor)
@@ -147,7 +148,8 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
         raise InfeasibleError(f"{problem.source}: no pose set inside the key poses' bands gives a feasible five-bar: "
                               f"{len(starts.trials)} tried (the bands' centres, then region.band_samples = "
                               f"{problem.band_samples} drawn sets); the condition that binds most often: "
-                              f"{starts.most_binding()}")
+                              f"{starts.most_binding()}; relax that condition, widen the bands or draw more sets "
+                              "(region.band_samples)")
     if not region.receiving.kept.any():
         _empty_family(starts.problem, "2R chain B-E", region.receiving)
     if not region.carrier.kept.any():
@@ -164,7 +166,9 @@ def synthesize(problem: FiveBarProblem, pick: int | None = None, progress: Progr
     timings["nlp_per_candidate"] = seconds
     if not alternatives:
         raise SolverError(f"{problem.source}: none of the {len(failed)} feasible region candidates refined into a "
-                          f"design that passes its checks", "; ".join(f"{f.start + 1}: {f.reason}" for f in failed))
+                          f"design that passes its checks (each one's reason names the condition that held it: "
+                          "relax that condition or the ranges)",
+                          "; ".join(f"{f.start + 1}: {f.reason}" for f in failed))
     alternatives = [with_gear_sizes(problem, alternative) for alternative in alternatives]
     chosen = pick_alternative(alternatives, pick, problem.source)
     design = chosen.design

@@ -23,6 +23,9 @@ import numpy as np
 from transplanter.gears.composite_curve import Segment, arc, chord, composite, line, rotated
 from transplanter.toml_fields import FieldReader, is_sequence
 
+#: Most segments of a composite curve: its pitch curves' work grows with their number (measured on a circle cut
+#: into arcs: 100 segments 7 s, 1000 segments 66 s).
+LARGEST_SEGMENT_COUNT = 100
 SEGMENT_FAMILIES = ("ellipse", "higher_order_ellipse", "denatured_ellipse", "limacon", "denatured_limacon", "spline")
 _KIND_KEYS = {"line": {"distance", "normal_deg"}, "arc": {"center", "radius"}}
 _COMMON = {"kind", "phi_deg", "rotation_deg"}
@@ -38,12 +41,20 @@ def _range(read: FieldReader, table: dict, where: str) -> tuple[float, float]:
     return float(np.radians(start)), float(np.radians(end))
 
 
-def read_composite(read: FieldReader, table: dict, where: str, read_family, family_keys: dict[str, set]):
+def read_composite(read: FieldReader, table: dict, where: str, read_family, family_keys: dict[str, set],
+                   largest_samples: int):
     """Segments in order round the turn; ``read_family(read, table, where, families)`` reads a family's curve,
-    whose own fields are ``family_keys[family]``."""
+    whose own fields are ``family_keys[family]``; the spline segments hold at most ``largest_samples`` samples
+    together (as many as one spline gear)."""
     rows = table.get("segments")
     if not isinstance(rows, (list, tuple)) or len(rows) < 2 or not all(isinstance(r, dict) for r in rows):
         read.fail(f"{where}.segments", rows, "at least two [[driver.segments]] tables")
+    if len(rows) > LARGEST_SEGMENT_COUNT:
+        read.fail(f"{where}.segments", f"{len(rows)} segments", f"at most {LARGEST_SEGMENT_COUNT} segments")
+    samples = sum(len(row["radius"]) for row in rows if row.get("kind") == "spline" and is_sequence(row.get("radius")))
+    if samples > largest_samples:
+        read.fail(f"{where}.segments", f"{samples} spline samples", f"at most {largest_samples} spline samples over "
+                  "all segments together (each segment's spline costs as a gear of its samples)")
     pieces = []
     for k, row in enumerate(rows):
         at = f"{where}.segments[{k}]"

@@ -289,7 +289,8 @@ def generate_composite_teeth(design: GearPairDesign, module: float, alpha: float
     if concave:
         raise InfeasibleError(f"{source}: driver.segments: the corner at {concave[0]['phi_deg']:.3f} deg turns "
                               f"{concave[0]['turn_deg']:.3f} deg (concave): "
-                              "composite teeth stand on convex corners only")
+                              "composite teeth stand on convex corners only: make the segments meet there at a "
+                              "convex corner or without a corner")
     starts = [float(np.mod(s.start, 2 * np.pi)) for s in curve.segments]
     joint_index = [int(np.argmin(np.abs(np.radians(c["phi_deg"]) - np.array(starts)))) for c in corners]
     edge_arc = {float(phi): float(arc) for phi, arc in zip(design.phi1, design.arc, strict=True)}

@@ -145,7 +145,8 @@ def design_pair(driver: PitchCurve, driven_order: int, center_distance: float | 
         raise InfeasibleError(
             f"{source}: pair.center_distance = {center_distance:g} mm does not close with orders {orders}: the driven "
             f"gear turns {np.degrees(closure_error + target):.6f} deg per driver turn instead of "
-            f"{np.degrees(target):.6f}; the closing center distance is {closing:.9f} mm")
+            f"{np.degrees(target):.6f}; the closing center distance is {closing:.9f} mm: give that, or leave "
+            "pair.center_distance out to have it found")
 
     phi1 = grid.edges
     r1, slope1, bend1 = driver.evaluate(phi1)

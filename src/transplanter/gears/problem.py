@@ -289,7 +289,7 @@ def read_driver(read: FieldReader, table: dict, where: str = "driver", families=
         read.fail(f"{where}.family", family, "one of " + ", ".join(families))
     read.keys(table, _FAMILY_KEYS[family] | {"family"}, where)
     if family == "composite":
-        return read_composite(read, table, where, read_driver, _FAMILY_KEYS)
+        return read_composite(read, table, where, read_driver, _FAMILY_KEYS, LARGEST_SAMPLE_COUNT)
     if family in ("ellipse", "higher_order_ellipse"):
         low = 1 if family == "ellipse" else 2
         order = read.integer(table, "order", where, low, 1 if family == "ellipse" else 12, default=low)

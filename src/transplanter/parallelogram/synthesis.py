@@ -7,7 +7,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from transplanter.api_arguments import require_pick, require_problem, require_progress
+from transplanter.api_arguments import require_pick, require_problem, require_progress, require_switch
 from transplanter.errors import ProblemError, SolverError, TransplanterError
 from transplanter.gears.drawings import bore_failures
 from transplanter.gears.result import GearResult
@@ -112,6 +112,8 @@ def synthesize(problem: ParallelogramProblem, pick: int | None = None,
     require_problem(problem, ParallelogramProblem, "parallelogram")
     rank = require_pick(pick)
     require_progress(progress)
+    require_switch("polish_nlp", polish_nlp)
+    require_switch("tolerance", tolerance)
     if not problem.bounds:
         raise ProblemError(f"{problem.source}: search.bounds is missing: expected [low, high] for at least one of "
                            "m11, b, l, l1, alpha_deg")

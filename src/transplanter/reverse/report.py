@@ -11,6 +11,7 @@ import numpy as np
 from transplanter.geometry.closed_trajectory import TWO_PI
 from transplanter.reverse.arm_inverse import BRANCH_NAMES, DIRECTION_NAMES
 from transplanter.reverse.idler_train import IdlerTrain
+from transplanter.reverse.ratio_extremes import ratio_range
 from transplanter.reverse.tolerance_model import path_accuracy_mm
 from transplanter.trains.planetary import printed_peak_to_valley_turn
 
@@ -66,11 +67,6 @@ def _lengths_from(result: ReverseResult) -> str:
     return "path extremes (the rice-transplanter paper eq 1-2)" if result.lengths_derived else "problem file"
 
 
-def _ratio_range(result: ReverseResult) -> tuple[float, float]:
-    ratio = result.motion.total_ratio()
-    return float(ratio.min()), float(ratio.max())
-
-
 def _closure_errors(train: PlanetaryTrain | IdlerTrain) -> list[float]:
     return [train.stage_one.closure_error, train.stage_two.closure_error]
 
@@ -111,7 +107,7 @@ def reverse_result_json(result: ReverseResult) -> dict:
     if train is None or verification is None:          # no train: the path fails the monotonicity criterion
         return report
     report.update({
-        "ratio_range": list(_ratio_range(result)),
+        "ratio_range": list(ratio_range(result.motion)),
         "gears": [{"gear": g.name, "radius_range_mm": list(g.radius_range), "convex": g.convex,
                    "perimeter_mm": g.perimeter, "teeth_at_module": g.teeth_at_module}
                   for g in gear_rows(train, problem.module)],
@@ -157,7 +153,7 @@ def to_markdown(result: ReverseResult, files: Sequence[str] = ()) -> str:
     lines += [f"  - would pass with: {hint}" for hint in result.hints]
     train, verification = result.train, result.verification
     if train is not None and verification is not None:         # a train: the path meets the criterion
-        low, high = _ratio_range(result)
+        low, high = ratio_range(result.motion)
         miss = verification.max_error_mm
         lines += [f"- Train: {problem.topology}, split {problem.split}; total ratio i0 from {low:.4f} to {high:.4f}",
                   f"- Gear closure errors (rad): {', '.join(f'{e:.2e}' for e in _closure_errors(train))}",

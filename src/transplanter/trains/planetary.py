@@ -130,7 +130,8 @@ def design_train(relative: RelativeMotion, center_distances: tuple[float, float]
     slope = relative.evaluate(np.linspace(0, TWO_PI, 7200, endpoint=False), 1)
     if slope.min() <= 0:
         raise InfeasibleError(f"{source}: the relative angle is not strictly increasing (rho' reaches "
-                              f"{slope.min():.4g}): the gears would have to reverse")
+                              f"{slope.min():.4g}): the gears would have to reverse; a train needs a motion "
+                              "whose planet turns one way against the carrier all round")
     a1, a2 = center_distances
     k = correction_factor(relative, exponent)
     sun = from_ratio(_Power(relative, -exponent), 1 / k, a1, relative.knots)
