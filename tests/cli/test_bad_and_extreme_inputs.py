@@ -177,7 +177,7 @@ class _SelfCrossing:
 
     def __init__(self, result):
         self._result = result
-        self.teeth = type("Teeth", (), {"self_intersections": (4, 4)})()
+        self.teeth = type("Teeth", (), {"self_intersections": (4, 4), "outlines": result.teeth.outlines})()
 
     def __getattr__(self, name):
         return getattr(self._result, name)

@@ -50,6 +50,20 @@ def _min_convex(rho, convexity) -> float | None:
     return float(rho[convex].min()) if convex.any() else None
 
 
+def _tooth_failures(teeth: PairTeeth | CompositeTeeth | None) -> list[str]:
+    """Tooth outlines that cross themselves, or a composite pair's own checks."""
+    if teeth is None:
+        return []
+    if isinstance(teeth, CompositeTeeth):          # composite teeth name their own crossings
+        return list(teeth.failures)
+    if not any(teeth.self_intersections):
+        return []
+    driver, driven = teeth.self_intersections
+    return [f"tooth outlines cross themselves (driver {driver}, driven {driven} crossings): the cutter cuts "
+            "away teeth it made, usually where a pitch curve bends sharper than the tooth; try fewer teeth "
+            "(a larger pair.module), or pair.cutter = \"shaper\" for concave stretches"]
+
+
 @dataclass(frozen=True)
 class GearResult(CommandResult):
     """A pair of non-circular gears designed from a ``GearProblem``.
@@ -108,20 +122,7 @@ class GearResult(CommandResult):
         that comes too close to the teeth (``gears.drawings.bore_failures``)."""
         from transplanter.gears.drawings import bore_failures
 
-        return self._tooth_failures + bore_failures(self)
-
-    @property
-    def _tooth_failures(self) -> list[str]:
-        if self.teeth is None:
-            return []
-        if isinstance(self.teeth, CompositeTeeth):          # composite teeth name their own crossings
-            return list(self.teeth.failures)
-        if not any(self.teeth.self_intersections):
-            return []
-        driver, driven = self.teeth.self_intersections
-        return [f"tooth outlines cross themselves (driver {driver}, driven {driven} crossings): the cutter cuts "
-                "away teeth it made, usually where a pitch curve bends sharper than the tooth; try fewer teeth "
-                "(a larger pair.module), or pair.cutter = \"shaper\" for concave stretches"]
+        return _tooth_failures(self.teeth) + bore_failures(self)
 
     def to_json(self) -> dict[str, Any]:
         from transplanter.gears.report import gear_result_json
