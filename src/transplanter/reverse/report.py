@@ -8,15 +8,18 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from transplanter.gears.mesh_check import OVERLAP_MODULES
 from transplanter.geometry.closed_trajectory import TWO_PI
 from transplanter.reverse.arm_inverse import BRANCH_NAMES, DIRECTION_NAMES
 from transplanter.reverse.idler_train import IdlerTrain
 from transplanter.trains.planetary import printed_peak_to_valley_turn
+from transplanter.trains.report import toothed_train_json, worst_mesh
 
 if TYPE_CHECKING:
     from transplanter.reverse.monotonicity import Violation
     from transplanter.reverse.result import ReverseResult
     from transplanter.trains.planetary import PlanetaryTrain
+    from transplanter.trains.toothed_train import ToothedTrain
 
 
 @dataclass(frozen=True)
@@ -82,6 +85,27 @@ def _printed_turn_deg(result: ReverseResult) -> float | None:
     return float(np.degrees(printed_peak_to_valley_turn(result.relative, result.problem.peak_to_valley)))
 
 
+def toothed_train_markdown(toothed: ToothedTrain) -> list[str]:
+    """The whole-tooth train: layout, counts, how each gear is cut and why, the mesh check over a turn."""
+    a1, a2 = toothed.train.center_distances
+    worst = worst_mesh(toothed)
+    limit = OVERLAP_MODULES * toothed.module
+    lines = [f"## Toothed train ({toothed.layout} carrier)", "",
+             f"- Module {toothed.module:g} mm, pressure angle {np.degrees(toothed.pressure_angle):g} deg; teeth "
+             f"Z1 = {toothed.counts[0]} (sun, first intermediate), Z2 = {toothed.counts[1]} (second intermediate, "
+             f"planet); centre distances a1 = {a1:.6f} mm, a2 = {a2:.6f} mm; the intermediate shaft "
+             f"{np.degrees(toothed.bend_angle):.4f} deg off the line pivot-planet at O, at ({toothed.shaft[0]:.4f}, "
+             f"{toothed.shaft[1]:.4f}) mm in the carrier frame",
+             f"- Mesh check over a turn ({'passed' if toothed.passed else 'FAILED'}): largest overlap "
+             f"{worst.max_overlap_mm:.5f} mm ({worst.max_overlap_mm / toothed.module:.5f} module; allowed {limit:.4f} "
+             f"mm), smallest clearance {worst.min_clearance_mm:.5f} mm, transmission error "
+             f"{worst.transmission_error_deg:.4f} deg", "",
+             "| gear | teeth | cutter | why |", "| --- | --- | --- | --- |"]
+    lines += [f"| {g.name} | {g.teeth} | {g.cutter} | {g.reason} |" for g in toothed.gears]
+    lines += [f"- {text}" for text in toothed.failures]
+    return lines + [""]
+
+
 def violation_json(violation: Violation) -> dict:
     return {"condition": violation.condition, "u": [violation.u_start, violation.u_end], "worst": violation.worst,
             "message": violation.message}
@@ -118,6 +142,10 @@ def reverse_result_json(result: ReverseResult) -> dict:
         "roundtrip_max_error_mm": verification.max_error_mm,
         "contact_gap_max_mm": max(float(np.abs(g).max()) for g in verification.contact_gaps_mm),
     })
+    if result.toothed is not None:
+        report["toothed_train"] = toothed_train_json(result.toothed)
+    if result.teeth_note:
+        report["teeth_note"] = result.teeth_note
     if result.tolerance is not None:
         report["tolerance"] = result.tolerance.to_json()
     if result.tolerance_note:
@@ -173,7 +201,9 @@ def to_markdown(result: ReverseResult, files: Sequence[str] = ()) -> str:
         elif printed is not None:
             lines += ["", "The reverse-gear-design paper's split as printed (i1 = i25 bs) would turn the intermediate "
                       f"gear {printed:.3f} deg per cycle (360 closes)."]
-    lines += [""] + (result.tolerance.to_markdown() if result.tolerance else [])
+    lines += [""] + (toothed_train_markdown(result.toothed) if result.toothed else [])
+    lines += [f"- Teeth: {result.teeth_note}", ""] if result.teeth_note else []
+    lines += (result.tolerance.to_markdown() if result.tolerance else [])
     lines += [f"- Tolerances: {result.tolerance_note}", ""] if result.tolerance_note else []
     lines += [f"![{name}]({name})" for name in files if name.endswith(".png")]
     return "\n".join(lines) + "\n"
