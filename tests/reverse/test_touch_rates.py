@@ -15,8 +15,11 @@ import numpy as np
 import pytest
 
 from transplanter.reverse.arm_inverse import solve_arm
+from transplanter.reverse.carrier_frame_motion import CarrierFrameMotion
+from transplanter.reverse.pitch_corners import pitch_corners
 from transplanter.reverse.problem import load_problem
 from transplanter.reverse.synthesis import build_trajectory
+from transplanter.trains.planetary import design_train
 
 RICE = Path(__file__).parents[2] / "examples" / "rice_hoe_reverse.toml"
 
@@ -82,3 +85,22 @@ def test_rates_near_a_touch_match_the_exact_motion(motions, circle, offset):
     scale = [abs(float(v)) for v in exact.relative_rates(mp.mpf(float(touch.parameter) - 0.1), 1.0)]
     for order, (value, reference, size) in enumerate(zip(rates, expected, scale, strict=True), 1):
         assert abs(float(value) - float(reference)) <= 1e-7 * max(abs(float(reference)), size), order
+
+
+def test_sun_corner_at_the_nearest_point_follows_the_exact_motion(motions):
+    """The nearest point lies on a spline knot: chi'' jumps there, and the sun's pitch curve r = a / (1 + I1),
+    I1 = chi'^(-1/2) / k, turns its tangent by the jump of atan2(r, dr/dc)."""
+    motion, exact = motions
+    train = design_train(CarrierFrameMotion(motion), (40.0, 50.0))
+    touch = next(t for t in motion.touches if t.circle == "inner")
+    corner = next(c for c in pitch_corners(motion, train) if c.gear == "sun" and c.corner)
+    a, k = 40.0, train.correction
+    mu = []
+    for side in (-1e-8, 1e-8):       # a stencil of mp.diff clear of the knot at the touch
+        x = mp.mpf(float(touch.parameter)) + side if side < 0 else mp.mpf(side)
+        slope, bend, _ = exact.relative_rates(x, float(motion.branch(np.array([float(x)]))[0]))
+        ratio = slope ** mp.mpf(-0.5) / k
+        r = a / (1 + ratio)
+        mu.append(mp.atan2(r, a * slope ** mp.mpf(-1.5) * bend / (2 * k) / (1 + ratio) ** 2))
+    assert corner.tangent_turn == pytest.approx(float(mu[1] - mu[0]), rel=1e-5)
+    assert corner.hollow and not any(c.corner for c in pitch_corners(motion, train) if c.carrier_turn > 1)

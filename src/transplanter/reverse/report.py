@@ -12,10 +12,12 @@ from transplanter.gears.mesh_check import OVERLAP_MODULES
 from transplanter.geometry.closed_trajectory import TWO_PI
 from transplanter.reverse.arm_inverse import BRANCH_NAMES, DIRECTION_NAMES
 from transplanter.reverse.idler_train import IdlerTrain
+from transplanter.reverse.pitch_corners import pitch_corners
 from transplanter.trains.planetary import printed_peak_to_valley_turn
 from transplanter.trains.report import toothed_train_json, worst_mesh
 
 if TYPE_CHECKING:
+    from transplanter.reverse.arm_inverse import ArmMotion
     from transplanter.reverse.monotonicity import Violation
     from transplanter.reverse.result import ReverseResult
     from transplanter.trains.planetary import PlanetaryTrain
@@ -106,6 +108,17 @@ def toothed_train_markdown(toothed: ToothedTrain) -> list[str]:
     return lines + [""]
 
 
+def corner_lines(motion: ArmMotion, train: PlanetaryTrain) -> list[str]:
+    """The pitch curves' corners (``pitch_corners``), one line each, under a heading line; none: []."""
+    corners = [c for c in pitch_corners(motion, train) if c.corner]
+    if not corners:
+        return []
+    return ["", "Pitch-curve corners where the path touches a reach circle on a knot of its spline (the tangent's "
+            "turn; a hollow is one no rack cuts):"] + [
+        f"- {c.gear}: {np.degrees(c.tangent_turn):+.4f} deg at carrier turn {np.degrees(c.carrier_turn):.2f} deg"
+        f" ({'hollow' if c.hollow else 'convex'})" for c in corners]
+
+
 def violation_json(violation: Violation) -> dict:
     return {"condition": violation.condition, "u": [violation.u_start, violation.u_end], "worst": violation.worst,
             "message": violation.message}
@@ -142,6 +155,11 @@ def reverse_result_json(result: ReverseResult) -> dict:
         "roundtrip_max_error_mm": verification.max_error_mm,
         "contact_gap_max_mm": max(float(np.abs(g).max()) for g in verification.contact_gaps_mm),
     })
+    if not isinstance(train, IdlerTrain):
+        report["pitch_curve_corners"] = [
+            {"gear": c.gear, "carrier_turn_deg": float(np.degrees(c.carrier_turn)),
+             "tangent_turn_deg": float(np.degrees(c.tangent_turn)), "hollow": c.hollow}
+            for c in pitch_corners(result.motion, train)]
     if result.toothed is not None:
         report["toothed_train"] = toothed_train_json(result.toothed)
     if result.teeth_note:
@@ -198,7 +216,9 @@ def to_markdown(result: ReverseResult, files: Sequence[str] = ()) -> str:
             lines += ["", f"The rice-transplanter paper's iteration: {train.iterations} iterations, "
                       f"settled: {bool(train.converged)}, eq (5) model residual {train.model_residual:.3e}; the train "
                       f"as built misses the path by {miss:.3f} mm (see docs/reverse.md, 'Published findings')."]
-        elif printed is not None:
+        else:
+            lines += corner_lines(result.motion, train)
+        if printed is not None:
             lines += ["", "The reverse-gear-design paper's split as printed (i1 = i25 bs) would turn the intermediate "
                       f"gear {printed:.3f} deg per cycle (360 closes)."]
     lines += [""] + (toothed_train_markdown(result.toothed) if result.toothed else [])
