@@ -136,6 +136,14 @@ def carrier_geometry(problem: ReverseProblem, carrier_length: float) -> CarrierG
     return CarrierGeometry(first, second, float(np.arccos(cosine)))
 
 
+def toothed_side(geometry: CarrierGeometry, direction: int) -> CarrierGeometry:
+    """The bent carrier of a toothed train: its intermediate shaft counterclockwise of pivot -> planet in the
+    frame of a clockwise carrier (``trains.toothed_train``), mirrored for a counterclockwise one. A positive bend
+    puts the shaft clockwise of it (``verification.rebuild_tip``: pivot -> shaft at the carrier angle minus the
+    offset), so the bend takes the sign of the rotation direction."""
+    return dataclasses.replace(geometry, bend=direction * abs(geometry.bend))
+
+
 def synthesize(problem: ReverseProblem, tolerance: bool = True) -> ReverseResult:
     """The planetary gear train that makes the arm tip follow the problem's closed path.
 
@@ -193,6 +201,8 @@ def synthesize(problem: ReverseProblem, tolerance: bool = True) -> ReverseResult
         train = toothed.train
         geometry = carrier_geometry(dataclasses.replace(problem, center_distances=train.center_distances),
                                     carrier_length)
+        if geometry is not None:      # the shaft on the side the toothed layout puts it (``toothed_side``)
+            geometry = toothed_side(geometry, problem.direction)
     result = ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, geometry, train,
                            verify_reverse(motion, train, geometry), toothed=toothed, teeth_note=teeth_note)
     return _analysed(result) if tolerance else result
