@@ -100,7 +100,7 @@ def test_center_distances_that_cannot_place_the_planet(tmp_path, capsys):
     assert "train.center_distances" in capsys.readouterr().err
     text = RICE.replace('split = "sqrt"', 'split = "sqrt"\ncenter_distances = [40.0, 40.0]')
     assert _run(tmp_path, text) == 2
-    assert "adding up to the carrier length 92.3" in capsys.readouterr().err
+    assert "can place the planet 92.3 mm from the pivot" in capsys.readouterr().err    # on a bent carrier
     text = RICE.replace('topology = "sun-intermediate-planet"', 'topology = "sun-idler-planet"').replace(
         'split = "sqrt"', 'split = "identical_sun_planet"\ncenter_distances = [40.0, 52.3]')
     assert _run(tmp_path, text) == 2

@@ -38,6 +38,9 @@ from transplanter.fivebar.parts import link_parts
 from transplanter.fivebar.result import FiveBarResult
 from transplanter.fivebar.support import SupportDesign
 from transplanter.output_folder import writable_folder
+from transplanter.shafts.keyed_bore import KeyedBore
+from transplanter.trains.planetary import PlanetaryTrain
+from transplanter.trains.toothed_train import ToothedTrain
 
 #: Label height as a fraction of the largest distance between two hinges in pose 1.
 LABEL_FRACTION = 0.02
@@ -133,8 +136,17 @@ def write_tables(result: FiveBarResult, folder: Path) -> list[Path]:
         _write_table(folder / "relative_angle.csv", {
             "carrier_turn_deg": np.degrees(turns), "rho_deg": np.degrees(relative.evaluate(turns)),
             "rho_slope": slope, "total_ratio_i0": 1 / slope})]
-    for gear in gears_on_carrier(result.train, float(mech.carrier_length)):
-        x, y = gear.pitch_curve.T
+    return written + write_pitch_curves(result.train, float(mech.carrier_length), folder)
+
+
+def write_pitch_curves(train: PlanetaryTrain, carrier_length: float, folder: Path, mirrored: bool = False
+                       ) -> list[Path]:
+    """pitch_curve_<gear>.csv per gear of a planetary train: polar angle, radius, x, y in the gear's own frame of
+    ``gears_on_carrier`` (``mirrored``: y -> -y, the parts of a carrier turning counterclockwise)."""
+    flip = np.array([1.0, -1.0 if mirrored else 1.0])
+    written = []
+    for gear in gears_on_carrier(train, carrier_length):
+        x, y = (gear.pitch_curve * flip).T
         written.append(_write_table(folder / f"pitch_curve_{gear.name}.csv", {
             "angle_deg": np.degrees(np.arctan2(y, x)), "radius_mm": np.hypot(x, y), "x_mm": x, "y_mm": y}))
     return written
@@ -160,13 +172,24 @@ def gear_drawings(result: FiveBarResult, outlines: dict[str, np.ndarray]) -> lis
     """The four gears to make: ``outlines`` maps a gear name (sun, first_intermediate, second_intermediate,
     planet) to its tooth outline (N, 2) mm in the frame of ``gears_on_carrier`` (stage 1 mirrored from the gear
     library's); the keyed bore of ``fivebar.shafts``, its keyway on the mark towards the contact point at pose 1."""
-    toothed, bores = result.toothed, result.shafts.bores
+    return toothed_gear_drawings(result.toothed, outlines, result.shafts.bores, result.problem.title)
+
+
+def toothed_gear_drawings(toothed: ToothedTrain, outlines: dict[str, np.ndarray], bores: dict[str, KeyedBore],
+                          title: str, mirrored: bool = False) -> list[GearDrawing]:
+    """The four gears of a toothed train to make, by the names of ``gears_on_carrier``: ``outlines`` (N, 2) mm as
+    ``gear_drawings`` takes them, ``bores`` with their keyways on the marks, the problem's ``title``;
+    ``mirrored`` (y -> -y, the bores' directions negated): the parts of a carrier turning counterclockwise."""
     a1, a2 = toothed.train.center_distances
     teeth = {gear.name.replace(" ", "_"): gear.teeth for gear in toothed.gears}
+    flip = np.array([1.0, -1.0 if mirrored else 1.0])
     drawings = []
-    for gear in gears_on_carrier(result.train, float(result.design.mech.carrier_length)):
-        title = TitleBlock(gear.name.replace("_", " "), 1, result.problem.title, module=toothed.module,
+    for gear in gears_on_carrier(toothed.train, toothed.carrier_length):
+        block = TitleBlock(gear.name.replace("_", " "), 1, title, module=toothed.module,
                            teeth=teeth[gear.name], pressure_angle_deg=float(np.degrees(toothed.pressure_angle)),
                            center_distance_mm=a1 if gear.name in ("sun", "first_intermediate") else a2)
-        drawings.append(GearDrawing(gear.name, outlines[gear.name], gear.pitch_curve, bores[gear.name], title))
+        bore = bores[gear.name]
+        if mirrored:
+            bore = KeyedBore(bore.diameter, bore.key, -bore.direction)
+        drawings.append(GearDrawing(gear.name, outlines[gear.name] * flip, gear.pitch_curve * flip, bore, block))
     return drawings

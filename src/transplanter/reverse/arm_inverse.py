@@ -19,6 +19,7 @@ motion the gear train must produce (total ratio sun : planet = 1 / chi'(c)).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -26,6 +27,7 @@ from transplanter._generated.planetary import two_link_inverse, two_link_rates
 from transplanter.generated import numpy_twin
 from transplanter.geometry.closed_trajectory import ClosedTrajectory, RadialExtreme
 from transplanter.geometry.planar import TWO_PI
+from transplanter.reverse.touch_rates import TouchSegment, touch_segments
 
 _inverse = numpy_twin(two_link_inverse)
 _rates = numpy_twin(two_link_rates)
@@ -33,7 +35,7 @@ _rates = numpy_twin(two_link_rates)
 #: An extreme of |P| within this fraction of the reach s + l of r = s + l or |s - l| touches the
 #: circle (1e-6 mm on the rice path's 254 mm): relative, so a path in metres or micrometres behaves the same.
 TOUCH_TOLERANCE = 4e-9
-#: Within this distance (in x) of a touch, rates are taken as the mean of the two sides.
+#: Within this distance (in x) of a touch, the angles are interpolated between the two sides (rates: ``touch_rates``).
 TOUCH_LIMIT = 1e-5
 #: Offsets (rad of carrier turn) of the extra breaks on either side of a touch.
 TOUCH_GRADING = 1e-4 * 2.0 ** np.arange(11)
@@ -117,26 +119,32 @@ class ArmMotion:
                 -self.direction * (self.gamma_grid[-1] - self.gamma_grid[0]) / TWO_PI)
 
     def path_rates(self, x) -> tuple[np.ndarray, np.ndarray]:
-        """(d^k c / dx^k, d^k chi / dx^k) for k = 1..3, each (3, ...). At a touch the closed form is
-        0 / 0: within TOUCH_LIMIT of one, the mean of the values TOUCH_LIMIT either side (error O(h^2))."""
-        x = np.mod(np.asarray(x, float), TWO_PI)
-        carrier, planet = self._rates(x)
-        for touch, _, near in self._near_touches(x):
-            sides = [self._rates(np.array([touch.parameter + h])) for h in (-TOUCH_LIMIT, TOUCH_LIMIT)]
-            carrier[:, near] = (sides[0][0] + sides[1][0]) / 2
-            planet[:, near] = (sides[0][1] + sides[1][1]) / 2
-        return carrier, planet
+        """(d^k c / dx^k, d^k chi / dx^k) for k = 1..3, each (3, ...); on the spline segments of a touch from
+        ``touch_rates`` (the closed form cancels there)."""
+        return self._rates(np.mod(np.asarray(x, float), TWO_PI))
 
     def total_ratio(self) -> np.ndarray:
         """i0 = 1 / chi'(c), sun to planet in the carrier frame, on the reference grid."""
         (c1, _, _), (h1, _, _) = self.path_rates(self.grid)
         return c1 / h1
 
+    @cached_property
+    def touch_segments(self) -> tuple[TouchSegment, ...]:
+        return touch_segments(self.trajectory, (self.carrier_length, self.arm_length), self.touches,
+                              self.start_branch)
+
     def _rates(self, x):
         theta, psi = self.raw_angles(x)      # exactly at a touch the closed form divides 0 by 0
         path = np.concatenate([np.moveaxis(self.trajectory.evaluate(x, k), -1, 0) for k in (1, 2, 3)])
         with np.errstate(divide="ignore", invalid="ignore"):
             rates = _rates(np.array([theta, psi]), self.lengths[:, None], path)[0]
+        flat = rates.reshape(6, -1)
+        points = x.ravel()
+        for segment in self.touch_segments:
+            inside = (points >= segment.start) & (points < segment.start + segment.width)
+            if inside.any():
+                flat[:, inside] = segment.evaluate(points[inside])
+        rates = flat.reshape(rates.shape)
         theta_k, psi_k = rates[0::2], rates[1::2]
         return self.direction * theta_k, -self.direction * (psi_k - theta_k)
 

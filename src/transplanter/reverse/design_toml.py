@@ -40,6 +40,8 @@ class ReverseDesign:
         mm; None: half the carrier each (a four-gear train) or a three-gear train.
     module : float
         mm.
+    cutter : str
+        ``"rack"`` or ``"shaper"``.
     source : str
         The design file.
     """
@@ -53,6 +55,7 @@ class ReverseDesign:
     peak_to_valley: float
     center_distances: tuple[float, float] | None
     module: float
+    cutter: str
     source: str
 
 
@@ -64,8 +67,10 @@ def design_tables(result: ReverseResult) -> dict[str, dict[str, object]]:
         train["peak_to_valley"] = problem.peak_to_valley
     if problem.topology != "sun-idler-planet":
         halves = (motion.carrier_length / 2, motion.carrier_length / 2)
-        train["center_distances"] = list(problem.center_distances or halves)
+        chosen = result.toothed.train.center_distances if result.toothed else None
+        train["center_distances"] = list(chosen or problem.center_distances or halves)
     train["module"] = problem.module
+    train["cutter"] = problem.cutter
     return {"arm": {"pivot": problem.pivot.tolist(), "carrier_length": motion.carrier_length,
                     "arm_length": motion.arm_length, "direction": DIRECTION_NAMES[problem.direction],
                     "branch": problem.branch},
@@ -90,8 +95,9 @@ def load_design(path: str | Path) -> ReverseDesign:
         read.fail("arm.carrier_length", None, "the carrier and arm lengths of the design (mm)")
     pivot, lengths, direction, branch = read_arm(read, arm)
     assert lengths is not None          # read_arm takes both lengths or neither
-    topology, split, coefficient, centers, module = read_train(read, data.get("train", {}))
-    return ReverseDesign(pivot, lengths, direction, branch, topology, split, coefficient, centers, module, str(path))
+    topology, split, coefficient, centers, module, cutter = read_train(read, data.get("train", {}))
+    return ReverseDesign(pivot, lengths, direction, branch, topology, split, coefficient, centers, module, cutter,
+                         str(path))
 
 
 def evaluate_design(problem: ReverseProblem, design: ReverseDesign, tolerance: bool = True) -> ReverseResult:

@@ -18,7 +18,8 @@ Schema (docs/reverse.md, "Problem files"):
     split = "sqrt"                # or "peak_to_valley" (4 gears), "identical_sun_planet" (3 gears)
     # peak_to_valley = 0.6        # with split = "peak_to_valley" only: its b, in (0, 1)
     center_distances = [46.15, 46.15]      # mm; default s/2 each (collinear carrier)
-    module = 2.5                  # mm, for the tooth counts (default 2.5)
+    module = 2.5                  # mm, of the whole teeth (default 2.5)
+    cutter = "rack"               # or "shaper" (16 teeth): how the four-gear train's teeth are cut
     [tolerances]                  # optional: the built train's tolerances and the analysis (docs/tolerance.md)
     path_accuracy_mm = 2.5        # the built tip within this of the path over the turn (default 1 % of s + l)
 """
@@ -41,6 +42,7 @@ from transplanter.toml_fields import (
     is_sequence,
     read_toml,
 )
+from transplanter.trains.toothed_train import CUTTERS
 
 TOPOLOGIES = {"sun-intermediate-planet": ("sqrt", "peak_to_valley"),
               "pick-up": ("sqrt", "peak_to_valley"),
@@ -79,7 +81,9 @@ class ReverseProblem:
     center_distances : (float, float) or None
         mm; None: half the carrier each.
     module : float
-        mm, for the tooth counts.
+        mm, of the four-gear train's whole teeth.
+    cutter : str
+        ``"rack"`` (a stage with a hollow goes to the shaper) or ``"shaper"`` (``trains.toothed_train.Gearing``).
     source, title : str
         Where the problem came from and its title.
     tolerances : ToleranceSettings
@@ -106,6 +110,7 @@ class ReverseProblem:
     peak_to_valley: float = 0.5
     center_distances: tuple[float, float] | None = None
     module: float = 2.5
+    cutter: str = "rack"
     source: str = "<dict>"
     title: str = ""
     tolerances: ToleranceSettings = field(default_factory=ToleranceSettings)
@@ -132,6 +137,7 @@ class ReverseProblem:
             check.fail("split", (self.topology, self.split), f"a topology and split of {TOPOLOGIES}")
         check.number("peak_to_valley", 1e-12, 1 - 1e-12, "a number in (0, 1)")
         check.positive("module")
+        check.choice("cutter", CUTTERS)
         check.text("source", "title")
         check.positive("path_accuracy_mm", optional=True)
 
@@ -204,8 +210,8 @@ def read_arm(read: FieldReader, table: dict):
 
 
 def read_train(read: FieldReader, table: dict):
-    """[train]: topology, split, peak_to_valley, center distances (mm, or None) and module (mm)."""
-    read.keys(table, {"topology", "split", "peak_to_valley", "center_distances", "module"}, "train")
+    """[train]: topology, split, peak_to_valley, center distances (mm, or None), module (mm) and cutter."""
+    read.keys(table, {"topology", "split", "peak_to_valley", "center_distances", "module", "cutter"}, "train")
     topology = _choice(read, table, "topology", "train", tuple(TOPOLOGIES), "sun-intermediate-planet")
     split = _choice(read, table, "split", "train", TOPOLOGIES[topology], TOPOLOGIES[topology][0])
     if "peak_to_valley" in table and split != "peak_to_valley":
@@ -222,7 +228,8 @@ def read_train(read: FieldReader, table: dict):
             read.fail("train.center_distances", table["center_distances"], "two positive center distances (mm)")
         centers = (float(given[0]), float(given[1]))
     module = read.length(table, "module", "train") if "module" in table else 2.5
-    return topology, split, coefficient, centers, module
+    cutter = _choice(read, table, "cutter", "train", CUTTERS, "rack")
+    return topology, split, coefficient, centers, module, cutter
 
 
 def parse_problem(data: dict, source: str = "<dict>") -> ReverseProblem:
@@ -250,10 +257,10 @@ def parse_problem(data: dict, source: str = "<dict>") -> ReverseProblem:
         read.fail("trajectory", None, "a [trajectory] table with kind and points")
     points, kind = _trajectory_points(read, data["trajectory"])
     pivot, lengths, direction, branch = read_arm(read, data.get("arm", {}))
-    topology, split, coefficient, centers, module = read_train(read, data.get("train", {}))
+    topology, split, coefficient, centers, module, cutter = read_train(read, data.get("train", {}))
     return ReverseProblem(points=points - pivot, kind=kind, pivot=pivot, lengths=lengths, direction=direction,
                           branch=branch, topology=topology, split=split, peak_to_valley=coefficient,
-                          center_distances=centers, module=module, source=source,
+                          center_distances=centers, module=module, cutter=cutter, source=source,
                           title=read.text(data, "title", "", LONGEST_TITLE),
                           tolerances=parse_tolerances(data.get("tolerances", {}), dimension_names(topology), source,
                                                       (PATH_ACCURACY_KEY,)),

@@ -8,17 +8,22 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from transplanter.gears.mesh_check import OVERLAP_MODULES
 from transplanter.geometry.closed_trajectory import TWO_PI
 from transplanter.reverse.arm_inverse import BRANCH_NAMES, DIRECTION_NAMES
 from transplanter.reverse.idler_train import IdlerTrain
+from transplanter.reverse.pitch_corners import pitch_corners
 from transplanter.reverse.ratio_extremes import ratio_range
 from transplanter.reverse.tolerance_model import path_accuracy_mm
 from transplanter.trains.planetary import printed_peak_to_valley_turn
+from transplanter.trains.report import toothed_train_json, worst_mesh
 
 if TYPE_CHECKING:
+    from transplanter.reverse.arm_inverse import ArmMotion
     from transplanter.reverse.monotonicity import Violation
     from transplanter.reverse.result import ReverseResult
     from transplanter.trains.planetary import PlanetaryTrain
+    from transplanter.trains.toothed_train import ToothedTrain
 
 
 @dataclass(frozen=True)
@@ -79,6 +84,38 @@ def _printed_turn_deg(result: ReverseResult) -> float | None:
     return float(np.degrees(printed_peak_to_valley_turn(result.relative, result.problem.peak_to_valley)))
 
 
+def toothed_train_markdown(toothed: ToothedTrain) -> list[str]:
+    """The whole-tooth train: layout, counts, how each gear is cut and why, the mesh check over a turn."""
+    a1, a2 = toothed.train.center_distances
+    worst = worst_mesh(toothed)
+    limit = OVERLAP_MODULES * toothed.module
+    lines = [f"## Toothed train ({toothed.layout} carrier)", "",
+             f"- Module {toothed.module:g} mm, pressure angle {np.degrees(toothed.pressure_angle):g} deg; teeth "
+             f"Z1 = {toothed.counts[0]} (sun, first intermediate), Z2 = {toothed.counts[1]} (second intermediate, "
+             f"planet); centre distances a1 = {a1:.6f} mm, a2 = {a2:.6f} mm; the intermediate shaft "
+             f"{np.degrees(toothed.bend_angle):.4f} deg off the line pivot-planet at O, at ({toothed.shaft[0]:.4f}, "
+             f"{toothed.shaft[1]:.4f}) mm in the carrier frame",
+             f"- Mesh check over a turn ({'passed' if toothed.passed else 'FAILED'}): largest overlap "
+             f"{worst.max_overlap_mm:.5f} mm ({worst.max_overlap_mm / toothed.module:.5f} module; allowed {limit:.4f} "
+             f"mm), smallest clearance {worst.min_clearance_mm:.5f} mm, transmission error "
+             f"{worst.transmission_error_deg:.4f} deg", "",
+             "| gear | teeth | cutter | why |", "| --- | --- | --- | --- |"]
+    lines += [f"| {g.name} | {g.teeth} | {g.cutter} | {g.reason} |" for g in toothed.gears]
+    lines += [f"- {text}" for text in toothed.failures]
+    return lines + [""]
+
+
+def corner_lines(motion: ArmMotion, train: PlanetaryTrain) -> list[str]:
+    """The pitch curves' corners (``pitch_corners``), one line each, under a heading line; none: []."""
+    corners = [c for c in pitch_corners(motion, train) if c.corner]
+    if not corners:
+        return []
+    return ["", "Pitch-curve corners where the path touches a reach circle on a knot of its spline (the tangent's "
+            "turn; a hollow is one no rack cuts):"] + [
+        f"- {c.gear}: {np.degrees(c.tangent_turn):+.4f} deg at carrier turn {np.degrees(c.carrier_turn):.2f} deg"
+        f" ({'hollow' if c.hollow else 'convex'})" for c in corners]
+
+
 def violation_json(violation: Violation) -> dict:
     return {"condition": violation.condition, "u": [violation.u_start, violation.u_end], "worst": violation.worst,
             "message": violation.message}
@@ -115,6 +152,15 @@ def reverse_result_json(result: ReverseResult) -> dict:
         "roundtrip_max_error_mm": verification.max_error_mm,
         "contact_gap_max_mm": max(float(np.abs(g).max()) for g in verification.contact_gaps_mm),
     })
+    if not isinstance(train, IdlerTrain):
+        report["pitch_curve_corners"] = [
+            {"gear": c.gear, "carrier_turn_deg": float(np.degrees(c.carrier_turn)),
+             "tangent_turn_deg": float(np.degrees(c.tangent_turn)), "hollow": c.hollow}
+            for c in pitch_corners(result.motion, train)]
+    if result.toothed is not None:
+        report["toothed_train"] = toothed_train_json(result.toothed)
+    if result.teeth_note:
+        report["teeth_note"] = result.teeth_note
     if result.tolerance is not None:
         report["tolerance"] = {**result.tolerance.to_json(), "path_accuracy_mm": path_accuracy_mm(result)}
     if result.tolerance_note:
@@ -167,10 +213,14 @@ def to_markdown(result: ReverseResult, files: Sequence[str] = ()) -> str:
             lines += ["", f"The rice-transplanter paper's iteration: {train.iterations} iterations, "
                       f"settled: {bool(train.converged)}, eq (5) model residual {train.model_residual:.3e}; the train "
                       f"as built misses the path by {miss:.3f} mm (see docs/reverse.md, 'Published findings')."]
-        elif printed is not None:
+        else:
+            lines += corner_lines(result.motion, train)
+        if printed is not None:
             lines += ["", "The reverse-gear-design paper's split as printed (i1 = i25 bs) would turn the intermediate "
                       f"gear {printed:.3f} deg per cycle (360 closes)."]
-    lines += [""] + (result.tolerance.to_markdown() + [_path_accuracy_line(result), ""] if result.tolerance else [])
+    lines += [""] + (toothed_train_markdown(result.toothed) if result.toothed else [])
+    lines += [f"- Teeth: {result.teeth_note}", ""] if result.teeth_note else []
+    lines += (result.tolerance.to_markdown() + [_path_accuracy_line(result), ""] if result.tolerance else [])
     lines += [f"- Tolerances: {result.tolerance_note}", ""] if result.tolerance_note else []
     lines += [f"![{name}]({name})" for name in files if name.endswith(".png")]
     return "\n".join(lines) + "\n"

@@ -16,6 +16,7 @@ from transplanter.reverse.problem import ReverseProblem
 from transplanter.reverse.verification import CarrierGeometry, ReverseVerification
 from transplanter.tolerance import ToleranceAnalysis, ToleranceModel
 from transplanter.trains.planetary import PlanetaryTrain
+from transplanter.trains.toothed_train import ToothedTrain
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -58,6 +59,11 @@ class ReverseResult(CommandResult):
         path without a train).
     tolerance_note : str
         Why a train has no tolerance analysis (a dimension without a default tolerance), else "".
+    toothed : ToothedTrain or None
+        The four-gear train with whole teeth, cut and mesh-checked (``reverse.whole_teeth``); ``train`` is then its
+        pitch-curve train. None for sun-idler-planet, or when no whole counts fit (``teeth_note`` says why).
+    teeth_note : str
+        Why a four-gear train has no teeth, else "".
     """
 
     problem: ReverseProblem
@@ -73,6 +79,8 @@ class ReverseResult(CommandResult):
     verification: ReverseVerification | None = None
     tolerance: ToleranceAnalysis | None = None
     tolerance_note: str = ""
+    toothed: ToothedTrain | None = None
+    teeth_note: str = ""
 
     @property
     def source(self) -> str:
@@ -96,10 +104,14 @@ class ReverseResult(CommandResult):
         if not self.monotonic or self.verification is None:      # a train, and its verification, need the former
             return ["the path fails the monotonicity criterion: " + "; ".join(v.message for v in self.violations)]
         miss, reach = self.verification.max_error_mm, self.motion.carrier_length + self.motion.arm_length
-        if miss <= ROUNDTRIP_TOLERANCE * reach:
-            return []
-        return [f"the {self.problem.topology} train, rolled from its pitch curves, misses the path by up to "
-                f"{miss:.4g} mm (more than {ROUNDTRIP_TOLERANCE:g} of the reach s + l = {reach:.6g} mm)"]
+        found = [] if miss <= ROUNDTRIP_TOLERANCE * reach else [
+            f"the {self.problem.topology} train, rolled from its pitch curves, misses the path by up to "
+            f"{miss:.4g} mm (more than {ROUNDTRIP_TOLERANCE:g} of the reach s + l = {reach:.6g} mm)"]
+        if self.toothed is None:
+            return found
+        from transplanter.reverse.gear_files import bore_failures
+
+        return found + [f"mesh check: {text}" for text in self.toothed.failures] + bore_failures(self.toothed)
 
     def tolerance_model(self) -> ToleranceModel:
         """The built train and arm as a function of their manufactured dimensions (``reverse.tolerance_model``)."""
@@ -118,10 +130,15 @@ class ReverseResult(CommandResult):
         return to_markdown(self, files)
 
     def write_files(self, folder: Path, animation: bool = True) -> list[Path]:
-        """design.toml (``design_toml``)."""
+        """design.toml (``design_toml``); with whole teeth, the gear sheets and pitch-curve tables
+        (``gear_files``)."""
         from transplanter.reverse.design_toml import write_design
+        from transplanter.reverse.gear_files import write_gear_files
 
-        return [write_design(self, folder)]
+        written = [write_design(self, folder)]
+        if self.toothed is not None:
+            written += write_gear_files(self.toothed, self.problem.direction, self.problem.title, Path(folder))
+        return written
 
     def draw_figures(self) -> dict[str, Figure]:
         from transplanter.reverse.figures import draw_figures

@@ -25,6 +25,7 @@ from transplanter.reverse.monotonicity import fix_hints, violations
 from transplanter.reverse.problem import ReverseProblem
 from transplanter.reverse.result import ReverseResult
 from transplanter.reverse.verification import CarrierGeometry, verify_reverse
+from transplanter.reverse.whole_teeth import cut_train
 from transplanter.tolerance import analyse
 from transplanter.trains.planetary import design_train
 
@@ -112,22 +113,20 @@ def choose_motion(trajectory: ClosedTrajectory, carrier_length: float, arm_lengt
 
 
 def carrier_geometry(problem: ReverseProblem, carrier_length: float) -> CarrierGeometry | None:
-    """None for a straight carrier (sun, intermediate and planet shafts on one line)."""
+    """None for a straight carrier (sun, intermediate and planet shafts on one line): centre distances that add
+    up to the carrier length, or none given, on a train other than pick-up."""
     centers = problem.center_distances
     if centers is not None and min(centers) < SMALLEST_STAGE * carrier_length:
         raise ProblemError(f"{problem.source}: train.center_distances = {list(centers)}: expected each at least "
                            f"{SMALLEST_STAGE:g} of the carrier length s = {carrier_length:.6g} mm "
                            "(a shorter stage's gears would be a thousandth of the train's size)")
-    if problem.topology != "pick-up":
-        if centers is not None and abs(sum(centers) - carrier_length) > 1e-9 * carrier_length:
-            raise ProblemError(f"{problem.source}: train.center_distances = {list(centers)}: expected two distances "
-                               f"adding up to the carrier length {carrier_length:.6g} mm on a straight carrier "
-                               "(or topology \"pick-up\" for a bent one)")
-        if (problem.topology == "sun-idler-planet" and centers is not None
-                and abs(centers[0] - centers[1]) > 1e-9 * carrier_length):
-            raise ProblemError(f"{problem.source}: train.center_distances = {list(centers)}: expected two equal "
-                               "distances for sun-idler-planet (the rice-transplanter paper: the idler then makes "
-                               "the sun and the planet the same curve)")
+    if problem.topology == "sun-idler-planet" and centers is not None \
+            and abs(centers[0] - centers[1]) > 1e-9 * carrier_length:
+        raise ProblemError(f"{problem.source}: train.center_distances = {list(centers)}: expected two equal "
+                           "distances for sun-idler-planet (the rice-transplanter paper: the idler then makes "
+                           "the sun and the planet the same curve)")
+    straight = centers is None or abs(sum(centers) - carrier_length) <= 1e-9 * carrier_length
+    if problem.topology != "pick-up" and straight:
         return None
     first, second = centers if centers is not None else (carrier_length / 2, carrier_length / 2)
     cosine = (carrier_length**2 - first**2 - second**2) / (2 * first * second)
@@ -135,6 +134,14 @@ def carrier_geometry(problem: ReverseProblem, carrier_length: float) -> CarrierG
         raise ProblemError(f"{problem.source}: train.center_distances = {[first, second]}: expected L1, L2 that can "
                            f"place the planet {carrier_length:.6g} mm from the pivot (|L1 - L2| <= s <= L1 + L2)")
     return CarrierGeometry(first, second, float(np.arccos(cosine)))
+
+
+def toothed_side(geometry: CarrierGeometry, direction: int) -> CarrierGeometry:
+    """The bent carrier of a toothed train: its intermediate shaft counterclockwise of pivot -> planet in the
+    frame of a clockwise carrier (``trains.toothed_train``), mirrored for a counterclockwise one. A positive bend
+    puts the shaft clockwise of it (``verification.rebuild_tip``: pivot -> shaft at the carrier angle minus the
+    offset), so the bend takes the sign of the rotation direction."""
+    return dataclasses.replace(geometry, bend=direction * abs(geometry.bend))
 
 
 def synthesize(problem: ReverseProblem, tolerance: bool = True) -> ReverseResult:
@@ -185,12 +192,20 @@ def synthesize(problem: ReverseProblem, tolerance: bool = True) -> ReverseResult
         result = ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, None, idler,
                                verify_idler_train(motion, idler))
         return _analysed(result) if tolerance else result
-    halves = (carrier_length / 2, carrier_length / 2)
-    centers = (geometry.first, geometry.second) if geometry else (problem.center_distances or halves)
     exponent = problem.peak_to_valley if problem.split == "peak_to_valley" else 0.5
-    train = design_train(relative, centers, problem.source, exponent)
+    toothed, teeth_note = cut_train(problem, relative, carrier_length, exponent)
+    if toothed is None:
+        halves = (carrier_length / 2, carrier_length / 2)
+        centers = (geometry.first, geometry.second) if geometry else (problem.center_distances or halves)
+        train = design_train(relative, centers, problem.source, exponent)
+    else:
+        train = toothed.train
+        geometry = carrier_geometry(dataclasses.replace(problem, center_distances=train.center_distances),
+                                    carrier_length)
+        if geometry is not None:      # the shaft on the side the toothed layout puts it (``toothed_side``)
+            geometry = toothed_side(geometry, problem.direction)
     result = ReverseResult(problem, trajectory, extremes, derived, motion, [], [], relative, geometry, train,
-                           verify_reverse(motion, train, geometry))
+                           verify_reverse(motion, train, geometry), toothed=toothed, teeth_note=teeth_note)
     return _analysed(result) if tolerance else result
 
 

@@ -350,9 +350,9 @@ def _gear(name, role, stage_design: GearPairDesign, side: int, count, module, ce
                        None if convex.all() else float(np.abs(rho[~convex]).min()), cutter, reason)
 
 
-def _sizes(relative: RelativeMotion, carrier_length: float, gearing: Gearing, source: str):
+def _sizes(relative: RelativeMotion, carrier_length: float, gearing: Gearing, source: str, exponent: float = 0.5):
     """Stage shapes, whole counts, centre distances and module of the layout (module docstring)."""
-    unit = design_train(relative, (1.0, 1.0), source)
+    unit = design_train(relative, (1.0, 1.0), source, exponent)
     shapes = (stage_shape(unit.stage_one, gearing), stage_shape(unit.stage_two, gearing))
     module = gearing.module
     if gearing.center_distances is not None:
@@ -391,7 +391,7 @@ def train_size(relative: RelativeMotion, carrier_length: float, gearing: Gearing
 
 
 def design_toothed_train(relative: RelativeMotion, carrier_length: float, gearing: Gearing = Gearing(),
-                         source: str = "<train>") -> ToothedTrain:
+                         source: str = "<train>", exponent: float = 0.5) -> ToothedTrain:
     """The planetary train realising ``relative`` with whole teeth on all four gears, cut and mesh-checked.
 
     Parameters
@@ -404,6 +404,9 @@ def design_toothed_train(relative: RelativeMotion, carrier_length: float, gearin
         Module, pressure angle, cutter, layout and optional fixed centre distances.
     source : str
         Named in error messages.
+    exponent : float
+        Stage one carries i0^exponent of the total ratio (``trains.planetary.design_train``; 1/2: Wang et al.
+        2025 eq 11-12).
 
     Raises
     ------
@@ -414,8 +417,8 @@ def design_toothed_train(relative: RelativeMotion, carrier_length: float, gearin
     """
     timings = {}
     start = time.perf_counter()
-    shapes, counts, (a1, a2), module, _ = _sizes(relative, carrier_length, gearing, source)
-    train = design_train(relative, (a1, a2), source)
+    shapes, counts, (a1, a2), module, _ = _sizes(relative, carrier_length, gearing, source, exponent)
+    train = design_train(relative, (a1, a2), source, exponent)
     delta = bend_angle(a1, a2, carrier_length)
     shaft = a1 * np.array([np.cos(delta), np.sin(delta)])
     timings["layout"] = time.perf_counter() - start

@@ -1,0 +1,72 @@
+"""The reverse train with whole teeth, made as the five-bar's: whole counts on a bent carrier, teeth that mesh
+over a turn, the gear sheets and pitch-curve tables in --out; centre distances without whole counts say why."""
+from __future__ import annotations
+
+import dataclasses
+import json
+from pathlib import Path
+
+import ezdxf
+import numpy as np
+import pytest
+
+from transplanter.cli import main
+from transplanter.drawing.sheet import LAYERS
+from transplanter.reverse import synthesize
+from transplanter.reverse.problem import load_problem
+
+RICE = Path(__file__).parents[2] / "examples" / "rice_hoe_reverse.toml"
+GEARS = ("sun", "first_intermediate", "second_intermediate", "planet")
+
+
+@pytest.fixture(scope="module")
+def rice():
+    return synthesize(load_problem(RICE), tolerance=False)
+
+
+def test_rice_train_has_whole_teeth_on_a_bent_carrier_that_mesh(rice):
+    toothed, s = rice.toothed, rice.motion.carrier_length
+    assert rice.failures == [] and toothed.passed
+    a1, a2 = toothed.train.center_distances
+    assert abs(a1 - a2) <= s <= a1 + a2 and a1 + a2 > s * (1 + 1e-6)         # the carrier is bent
+    for stage, count in zip((toothed.train.stage_one, toothed.train.stage_two), toothed.counts, strict=True):
+        for perimeter in stage.perimeters:           # each pitch curve carries the whole count at the module
+            assert perimeter / (np.pi * toothed.module) == pytest.approx(count, rel=1e-9)
+    assert max(check.max_overlap_mm for check in toothed.mesh) < 0.005 * toothed.module
+    shaft = toothed.shaft
+    assert np.hypot(*shaft) == pytest.approx(a1, rel=1e-12)
+    assert np.hypot(shaft[0] - s, shaft[1]) == pytest.approx(a2, rel=1e-12)
+    assert rice.verification.max_error_mm < 1e-8 * (s + rice.motion.arm_length)   # rolled on the chosen centres
+
+
+def test_out_has_gear_sheets_and_pitch_curves_listed_in_the_report(tmp_path, capsys):
+    assert main(["reverse", str(RICE), "--no-tolerance", "--json", "--out", str(tmp_path)]) == 0
+    report = json.loads(capsys.readouterr().out)
+    listed = {name for names in report["files"].values() for name in names}
+    toothed = report["toothed_train"]
+    for name, teeth in zip(GEARS, np.repeat(toothed["teeth"], 2), strict=True):
+        assert {f"{name}.dxf", f"{name}.svg", f"pitch_curve_{name}.csv"} <= listed
+        doc = ezdxf.readfile(tmp_path / f"{name}.dxf")
+        assert {layer.dxf.name for layer in doc.layers} >= set(LAYERS) and doc.header["$INSUNITS"] == 4
+        table = np.loadtxt(tmp_path / f"pitch_curve_{name}.csv", delimiter=",", skiprows=1)
+        closed = np.r_[table[:, 2:], table[:1, 2:]]
+        perimeter = np.linalg.norm(np.diff(closed, axis=0), axis=1).sum()      # the polygon, a hair short
+        assert perimeter / (np.pi * toothed["module"]) == pytest.approx(teeth, rel=1e-4)
+    assert toothed["mesh_check"]["passed"] and toothed["mesh_check"]["max_overlap_mm"] < 0.005 * toothed["module"]
+    design = (tmp_path / "design.toml").read_text()
+    assert f"center_distances = {toothed['center_distances_mm']}".replace("'", "") in design
+
+
+def test_gear_files_are_the_same_bytes_when_written_again(rice, tmp_path):
+    first = rice.write_files(tmp_path / "one")
+    second = rice.write_files(tmp_path / "two")
+    assert [p.name for p in first] == [p.name for p in second]
+    assert all(a.read_bytes() == b.read_bytes() for a, b in zip(first, second, strict=True))
+
+
+def test_centre_distances_without_whole_teeth_keep_the_train_and_say_why():
+    problem = load_problem(RICE)
+    given = dataclasses.replace(problem, center_distances=(46.15, 46.15))
+    result = synthesize(given, tolerance=False)
+    assert result.toothed is None and "teeth at module 1.5; expected whole teeth" in result.teeth_note
+    assert result.train.center_distances == (46.15, 46.15) and result.failures == []
