@@ -45,3 +45,11 @@ def test_options_of_the_wrong_type_are_named(name, problem_file, option, value):
     problem = package.load_problem(EXAMPLES / problem_file)
     with pytest.raises(ProblemError, match=rf"^(--)?{option} = .*: expected "):
         package.synthesize(problem, **{option: value})
+
+
+@pytest.mark.parametrize("value", ["no", None, 0])
+def test_reverse_tolerance_switch_is_named(value):
+    """The reverse train's on/off option is checked at the door as the other commands' are."""
+    problem = reverse.load_problem(EXAMPLES / "rice_hoe_reverse.toml")
+    with pytest.raises(ProblemError, match=r"^(--)?tolerance = .*: expected "):
+        reverse.synthesize(problem, tolerance=value)

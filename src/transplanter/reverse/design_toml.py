@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from transplanter.api_arguments import require_problem
+from transplanter.api_arguments import require_problem, require_switch
 from transplanter.design_file import read_design_file, write_design_file
 from transplanter.errors import ProblemError
 from transplanter.reverse.arm_inverse import DIRECTION_NAMES
@@ -104,6 +104,7 @@ def evaluate_design(problem: ReverseProblem, design: ReverseDesign, tolerance: b
     """The train for ``problem``'s path with ``design``'s arm and train (``synthesize``, with the tolerance analysis
     unless ``tolerance`` is False)."""
     require_problem(problem, ReverseProblem, "reverse")
+    require_switch("tolerance", tolerance)
     if not isinstance(design, ReverseDesign):
         raise ProblemError(f"design = {shown(design)!r}: expected a ReverseDesign (from "
                            "transplanter.reverse.load_design(path))")

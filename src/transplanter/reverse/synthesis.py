@@ -13,7 +13,7 @@ import dataclasses
 import numpy as np
 
 from transplanter._generated.planetary import arm_lengths_from_extremes
-from transplanter.api_arguments import require_problem
+from transplanter.api_arguments import require_problem, require_switch
 from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.generated import numpy_twin
 from transplanter.geometry.closed_trajectory import ClosedTrajectory, fitted_polygon
@@ -87,7 +87,9 @@ def _unreachable(problem: ReverseProblem, trajectory: ClosedTrajectory, carrier_
             raise InfeasibleError(
                 f"{problem.source}: trajectory points from u = {first / TWO_PI:.4f} ({p[0, 0]:.6g}, {p[0, 1]:.6g}) to "
                 f"u = {last / TWO_PI:.4f} ({p[1, 0]:.6g}, {p[1, 1]:.6g}) lie {what}, by up to {excess[worst]:.4g} mm "
-                f"at ({p[2, 0]:.6g}, {p[2, 1]:.6g}); carrier_length = {carrier_length:g}, arm_length = {arm_length:g}")
+                f"at ({p[2, 0]:.6g}, {p[2, 1]:.6g}); carrier_length = {carrier_length:g}, arm_length = {arm_length:g}; "
+                f"lengths with s + l >= {radius.max():.4f} mm and |s - l| <= {radius.min():.4f} mm reach every "
+                "point (leave both out for the path's own)")
 
 
 def _lengths_from(extremes: tuple[float, float]) -> tuple[float, float]:
@@ -168,6 +170,7 @@ def synthesize(problem: ReverseProblem, tolerance: bool = True) -> ReverseResult
         For a path that stops, points out of reach, or impossible center distances.
     """
     require_problem(problem, ReverseProblem, "reverse")
+    require_switch("tolerance", tolerance)
     trajectory = build_trajectory(problem)
     radii = [e.radius for e in trajectory.radial_extremes()]
     extremes = (max(radii), min(radii))
