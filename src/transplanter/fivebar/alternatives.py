@@ -365,7 +365,7 @@ def refine_all(problem: FiveBarProblem, solver: DesignSolver, candidates: list[C
 
     if progress:
         progress("refinement", 0, len(candidates))
-    refine_in_lanes(len(candidates), refine, solver, solver.twin, finished)
+    refine_in_lanes(len(candidates), refine, solver, lambda: solver.twin(), finished)   # asked only without a fork
     found = [outcome for outcome in outcomes if isinstance(outcome, Alternative)]
     failed = [outcome for outcome in outcomes if isinstance(outcome, Failure)]
     if not found:       # the failures are the whole answer: each held one says what its curves are unheld
