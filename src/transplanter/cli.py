@@ -15,6 +15,7 @@ report.json is always valid JSON (``output_folder.report_json``).
 from __future__ import annotations
 
 import argparse
+import atexit
 import contextlib
 import io
 import os
@@ -422,9 +423,11 @@ def _interrupt(signum, frame):
 def console() -> NoReturn:
     """The ``transplanter`` program: ``main()``, then exit with its code. An interrupt after the run (its
     output complete) ends it with 130 and says so in one line; one after that is ignored: the run's ending is
-    already decided. The program ends with ``os._exit`` once its output is flushed: the interpreter's shutdown
-    (destroying CasADi objects a solve left when it was interrupted) killed it with SIGINT after its last line,
-    in 2 of 14 runs of the pick-up interrupted near its end."""
+    already decided. The program ends with ``os._exit`` once its output is flushed and the exit functions have run
+    (multiprocessing's among them, which release a study's worker queues: skipped, the resource tracker reports
+    leaked semaphores on stderr): the interpreter's shutdown (destroying CasADi objects a solve left when it was
+    interrupted) killed it with SIGINT after its last line, in 2 of 14 runs of the pick-up interrupted near its
+    end."""
     late = threading.Event()
     for number in INTERRUPTS:
         signal.signal(number, lambda signum, frame: late.set())
@@ -435,6 +438,7 @@ def console() -> NoReturn:
         if late.is_set() and code != 130:
             print("transplanter: interrupted after the run; its output is complete", file=sys.stderr)
             code = 130
+    atexit._run_exitfuncs()     # the public atexit has no other way to run them before os._exit
     for stream in (sys.stdout, sys.stderr):
         with contextlib.suppress(OSError):
             stream.flush()
