@@ -75,10 +75,12 @@ def arm_path(count: int, carrier: float = 90.0, arm: float = 160.0, noise: float
     return tip + noise * np.random.default_rng(seed).standard_normal(tip.shape)
 
 
-def _reverse(points, lengths=None):
+def _reverse(points, lengths=None, scale: float = 1.0):
+    """The reverse train of a path of samples, its module scaled with the path (a module fixed in mm would give the
+    path scaled by 1000 thousands of teeth to cut), without the tolerance analysis."""
     arm = {"direction": "clockwise", **({"carrier_length": lengths[0], "arm_length": lengths[1]} if lengths else {})}
     return reverse.synthesize(reverse.parse_problem({"trajectory": {"kind": "samples", "points": points.tolist()},
-                                                     "arm": arm}))
+                                                     "arm": arm, "train": {"module": 2.5 * scale}}), tolerance=False)
 
 
 @pytest.mark.parametrize("scale", SCALES)
@@ -86,7 +88,7 @@ def test_reverse_from_samples_closes_at_every_scale(scale):
     """50 exact samples with the arm's lengths given: the fitted curve is brought onto the reach circles
     it comes within its fit's miss of, the arm straightens and folds there, and the train's round trip
     meets the tolerance relative to the reach."""
-    result = _reverse(arm_path(50) * scale, (90.0 * scale, 160.0 * scale))
+    result = _reverse(arm_path(50) * scale, (90.0 * scale, 160.0 * scale), scale)
     report = result.to_json()
     assert result.monotonic and sorted(t["circle"] for t in report["touches"]) == ["inner", "outer"]
     assert report["roundtrip_max_error_mm"] <= ROUNDTRIP_TOLERANCE * 250.0 * scale

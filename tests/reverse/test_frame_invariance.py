@@ -19,6 +19,7 @@ from hypothesis import strategies as st
 from transplanter import reverse
 from transplanter.reverse.arm_inverse import TOUCH_LIMIT
 from transplanter.toml_fields import read_toml
+from transplanter.trains.toothed_train import MODULE_RANGE
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "rice_hoe_reverse.toml"
 #: The rounding error of the rates at TOUCH_LIMIT from a touch, relative to their size (module docstring).
@@ -56,9 +57,14 @@ def example():
     return data, _train(data)
 
 
+#: Scales that keep the example's module among the modules teeth are cut at (``trains.toothed_train.MODULE_RANGE``):
+#: beyond them the module is refused, the train keeps its pitch curves on a straight carrier, another design.
+SCALES = tuple(limit / read_toml(EXAMPLE)["train"]["module"] for limit in MODULE_RANGE)
+
+
 @settings(max_examples=3, deadline=None, phases=[Phase.explicit, Phase.generate])
 @given(angle=st.floats(-np.pi, np.pi), shift=st.tuples(st.floats(-1e4, 1e4), st.floats(-1e4, 1e4)),
-       scale=st.floats(1e-2, 1e2))
+       scale=st.floats(*SCALES))
 def test_the_train_moves_with_its_path(example, angle, shift, scale):
     data, (arm, gears) = example
     moved_arm, moved_gears = _train(_moved(data, angle, shift, scale), scale)
