@@ -3,7 +3,8 @@
     python bench/bench_reverse.py
 
 Both start from the 19 control points of examples/rice_hoe_reverse.toml and end with
-verified pitch curves of the four-gear train (square-root split with correction factor).
+verified pitch curves of the four-gear train (square-root split with correction factor); the package also
+cuts the train's whole teeth and checks their mesh (the baseline does not), without the tolerance analysis.
 
 - Package: ``synthesize`` (closed-form inverse kinematics with branch switches, rates to
   third order from the generated derivation, panel polynomials, gear pairs, rolling check).
@@ -15,7 +16,8 @@ verified pitch curves of the four-gear train (square-root split with correction 
   interpolation. (The rice-transplanter paper's point-by-point Newton has the Jacobian determinant s l sin(gamma),
   zero where the arm straightens or folds, which these paths must do: both use the closed form.)
 
-The target is under 2 s for the package. The baseline is run at three sample counts:
+The target is under 2 s for the package's pitch curves (before teeth were cut: today it is over, see
+docs/reverse.md). The baseline is run at three sample counts:
 its time, and how far its round trip stays from the path, against the package's.
 """
 from __future__ import annotations
@@ -79,11 +81,12 @@ def baseline(control: np.ndarray, carrier: float, arm: float, direction: int, st
 
 def main():
     problem = load_problem(EXAMPLE)
-    synthesize(problem)                                        # warm: casadi/numpy imports, generated code
+    synthesize(problem, tolerance=False)                       # warm: casadi/numpy imports, generated code
     start = time.perf_counter()
-    result = synthesize(problem)
+    result = synthesize(problem, tolerance=False)
     package = time.perf_counter() - start
-    print(f"package  synthesize: {package:.3f} s; round trip {result.verification.max_error_mm:.2e} mm, "
+    print(f"package  synthesize (whole teeth cut and mesh-checked too, no tolerance analysis): {package:.3f} s; "
+          f"round trip {result.verification.max_error_mm:.2e} mm, "
           f"closure errors {result.train.stage_one.closure_error:.1e}, {result.train.stage_two.closure_error:.1e} rad")
 
     for samples in (3600, 36000, 360000):
