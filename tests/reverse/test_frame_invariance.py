@@ -1,11 +1,10 @@
 """The reverse train moves with its path: the path turned about the carrier axis, the pivot and the path moved
 together, and every length scaled (the path, the module) give the same arm, touches and total ratio range to 1e-9
-relative. The total ratio's range is the extreme of the function, not of a grid (``reverse.ratio_extremes``):
-sampled, its value at a touch carried the rates' rounding there (4e-6 relative between frames).
-
-The gears are compared to ``TOUCH_ROUNDING``: next to a touch their pitch curves are built from the rates averaged
-``arm_inverse.TOUCH_LIMIT`` either side of it, where the rates' 0 / 0 leaves a rounding error of eps / TOUCH_LIMIT^2
-of their size (measured: 4e-9 of the perimeters, 1e-6 of the least and greatest radii)."""
+relative, and the same gears (radius ranges, perimeters, teeth) to 1e-9 relative: next to a touch the pitch curves
+take the arm's rates from the factored elbow (``reverse.touch_rates``), which has no 0 / 0 (with the rates averaged
+``arm_inverse.TOUCH_LIMIT`` either side of a touch, the radii moved by 1e-6 between frames). The total ratio's range
+is the extreme of the function, not of a grid (``reverse.ratio_extremes``): sampled, its value at a touch carried
+the rates' rounding there (4e-6 relative between frames), ``TOUCH_ROUNDING``."""
 from __future__ import annotations
 
 import json
@@ -22,7 +21,7 @@ from transplanter.toml_fields import read_toml
 from transplanter.trains.toothed_train import MODULE_RANGE
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "rice_hoe_reverse.toml"
-#: The rounding error of the rates at TOUCH_LIMIT from a touch, relative to their size (module docstring).
+#: The rounding error of the rates sampled TOUCH_LIMIT from a touch, relative to their size.
 TOUCH_ROUNDING = np.finfo(float).eps / TOUCH_LIMIT**2
 
 
@@ -69,7 +68,7 @@ def test_the_train_moves_with_its_path(example, angle, shift, scale):
     data, (arm, gears) = example
     moved_arm, moved_gears = _train(_moved(data, angle, shift, scale), scale)
     np.testing.assert_allclose(moved_arm, arm, rtol=1e-9, atol=1e-12)   # atol: a zero
-    np.testing.assert_allclose(moved_gears, gears, rtol=TOUCH_ROUNDING)
+    np.testing.assert_allclose(moved_gears, gears, rtol=1e-9)
 
 
 def test_the_ratio_range_bounds_the_sampled_ratio():
