@@ -43,6 +43,8 @@ def test_table_sets_tolerances_and_settings():
     ({"pose_angle_deg": -1.0}, "tolerances.pose_angle_deg = -1.0"),
     ({"distribution": "triangular"}, "tolerances.distribution = 'triangular'"),
     ({"samples": 10}, "tolerances.samples = 10"),
+    ({"samples": 50_001}, "tolerances.samples = 50001: expected a whole number of Monte Carlo samples from 100 to "
+                          "50000"),
 ])
 def test_bad_entry_names_its_field(table, fragment):
     with pytest.raises(ProblemError) as error:

@@ -25,7 +25,9 @@ DISTRIBUTIONS = {"uniform": 1 / np.sqrt(3), "normal": 1 / 3}
 ALLOCATION_RANGE = (0.1, 10.0)
 #: Monte Carlo samples and seed unless ``[tolerances]`` says otherwise.
 SAMPLES, SEED = 10_000, 20261127
-SAMPLES_RANGE = (100, 1_000_000)
+#: The samples' states are kept for the bands and conditions: 1,000,000 samples of the rice hoe's reverse train
+#: peaked at 13.5 GB; at 50,000 the whole run peaks at 0.77 GB (reverse) and 0.98 GB (the five-bar example).
+SAMPLES_RANGE = (100, 50_000)
 #: Accuracy the seedlings need at the key poses unless ``[tolerances]`` says otherwise: P within 1 mm and the
 #: plate within 1 deg (3 sigma), the order of a seedling's stem in a hole.
 POSE_POSITION_MM, POSE_ANGLE_DEG = 1.0, 1.0
