@@ -45,3 +45,29 @@ def test_worker_processes_give_the_vectorised_search(problem, in_process):
 def test_something_that_is_no_executor_is_refused_by_name(problem):
     with pytest.raises(ProblemError, match="executor = list: expected a concurrent.futures.Executor"):
         nsga2(problem, executor=[])
+
+
+def test_synthesis_scores_its_search_on_the_executor_it_is_given(problem):
+    """``synthesize(executor=)`` hands the executor to its search: the same design as in this process."""
+    from transplanter.parallelogram import synthesize
+
+    class CountingPool(ThreadPoolExecutor):
+        submitted = 0
+
+        def submit(self, *args, **kwargs):
+            CountingPool.submitted += 1
+            return super().submit(*args, **kwargs)
+
+    alone = synthesize(problem, polish_nlp=False, tolerance=False)
+    with CountingPool(2) as executor:
+        shared = synthesize(problem, polish_nlp=False, tolerance=False, executor=executor)
+    assert CountingPool.submitted >= 2 * problem.generations     # two slices for each generation's population
+    assert same_search(shared.search, alone.search)
+    assert shared.chosen == pytest.approx(alone.chosen, rel=1e-9, abs=1e-9)
+
+
+def test_synthesis_refuses_something_that_is_no_executor_by_name(problem):
+    from transplanter.parallelogram import synthesize
+
+    with pytest.raises(ProblemError, match="executor = dict: expected a concurrent.futures.Executor"):
+        synthesize(problem, tolerance=False, executor={})

@@ -4,6 +4,7 @@ from __future__ import annotations
 import dataclasses
 import time
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
@@ -96,11 +97,13 @@ def _polish(problem: ParallelogramProblem, chosen: dict, evaluation: Evaluation)
 
 def synthesize(problem: ParallelogramProblem, pick: int | None = None,
                progress: Callable[[str, int, int], None] | None = None, polish_nlp: bool = True,
-               tolerance: bool = True) -> ParallelogramResult:
+               tolerance: bool = True, executor: Any = None) -> ParallelogramResult:
     """NSGA-II over the bounded variables, the design ranked ``pick`` (1, the knee, by default)
     evaluated again on a fine grid, polished by an NLP (Vx(t_E) = 0, H at its target, f3 minimised),
     the final design's gear pair from the gear library and, unless ``tolerance`` is False, how precise
     the built mechanism will be (``tolerance.analyse`` with the problem's ``[tolerances]``).
+    ``executor`` (a ``concurrent.futures.Executor`` or a ``distributed.Client``): where NSGA-II scores its
+    populations, in slices (``search.nsga2``); the search is the same as in this process.
 
     Raises
     ------
@@ -119,7 +122,7 @@ def synthesize(problem: ParallelogramProblem, pick: int | None = None,
                            "m11, b, l, l1, alpha_deg")
     timings = {}
     start = time.perf_counter()
-    search = nsga2(problem, progress)
+    search = nsga2(problem, progress, executor=executor)
     timings["nsga2"] = time.perf_counter() - start
     if rank > len(search.designs):
         raise ProblemError(f"{problem.source}: --pick {pick}: expected a rank from 1 to {len(search.designs)} "
