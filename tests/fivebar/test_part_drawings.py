@@ -6,6 +6,7 @@ from dataclasses import replace
 import ezdxf
 import numpy as np
 import pytest
+import shapely
 
 from transplanter.drawing.sheet import LAYERS
 from transplanter.fivebar.drawings import write_drawings
@@ -57,6 +58,20 @@ def test_part_dimensions_are_the_reports_lengths(example_result, folders):
         measured_holes = sorted(d.get_measurement() for d in space.query("DIMENSION") if d.dimtype == 3)
         assert np.abs(np.array(measured_holes) - sorted(holes[name])).max() < 1e-9, name
         assert sorted(2 * c.dxf.radius for c in space.query("CIRCLE[layer=='BORE']")) == sorted(holes[name])
+
+
+def test_every_dimension_line_stands_clear_of_its_part(folders):
+    """Each centre distance is drawn outside the plate, not across it (read back: the dimension line, from the
+    DIMENSION's definition points, against the OUTLINE polygon)."""
+    for name in PARTS:
+        space = ezdxf.readfile(folders[0] / f"{name}.dxf").modelspace()
+        outline = shapely.Polygon(space.query("LWPOLYLINE[layer=='OUTLINE']")[0].get_points("xy"))
+        for dimension in (d for d in space.query("DIMENSION") if d.dimtype == 0):
+            first, second, at = (np.array(dimension.dxf.get(point))[:2]
+                                 for point in ("defpoint2", "defpoint3", "defpoint"))
+            shift = at - second
+            line = shapely.LineString([first + shift, second + shift])
+            assert line.distance(outline) > 0, (name, dimension.get_measurement())
 
 
 def test_every_five_bar_sheet_has_the_conventions_layers(folders):

@@ -67,6 +67,20 @@ class PlatePart:
         return motion
 
 
+def outside_offset(outline: np.ndarray, first, second, margin: float) -> float:
+    """The offset (mm, positive to the left of ``first`` -> ``second``) that puts the dimension line of that
+    distance ``margin`` mm clear of the ``outline`` (N, 2), on the side away from the plate's centroid (the
+    left one when the centroid is on the line, as for a two-hole link)."""
+    first = np.asarray(first, float)
+    along = np.asarray(second, float) - first
+    left = np.array([-along[1], along[0]]) / np.hypot(*along)
+    reach = (outline - first) @ left
+    centroid_side = float((shapely.get_coordinates(shapely.Polygon(outline).centroid)[0] - first) @ left)
+    if centroid_side > 1e-9 * float(np.ptp(reach)):
+        return float(reach.min()) - margin
+    return float(reach.max()) + margin
+
+
 def plate_sheet(part: PlatePart) -> Sheet:
     """Outline, holes, centre crosses and lines, labels, centre distances and hole diameters, the title block."""
     sheet = Sheet()
@@ -76,10 +90,12 @@ def plate_sheet(part: PlatePart) -> Sheet:
         if hole.diameter:
             sheet.circle(hole.center, hole.diameter / 2, "BORE")
         sheet.center_cross(hole.center, 2 * hole.boss_radius)
-    offset = 2 * max(hole.boss_radius for hole in part.holes)
+    outline = part.outline()
+    margin = max(hole.boss_radius for hole in part.holes)
     for first, second in part.dimensioned:
         sheet.line(centers[first], centers[second], "CENTERLINES")
-        sheet.aligned_dimension(centers[first], centers[second], offset)
+        sheet.aligned_dimension(centers[first], centers[second],
+                                outside_offset(outline, centers[first], centers[second], margin))
     for hole in part.holes:
         sheet.text(hole.label, hole.center + hole.boss_radius)
         if hole.diameter:

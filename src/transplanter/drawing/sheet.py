@@ -108,10 +108,15 @@ class Sheet:
             self.line(center - size / 2 * axis, center + size / 2 * axis, "CENTERLINES")
 
     def aligned_dimension(self, p1, p2, offset: float) -> None:
-        """The distance p1-p2, drawn ``offset`` mm to the left of p1 -> p2."""
-        self.space.add_aligned_dim(p1=np.asarray(p1, float).tolist(), p2=np.asarray(p2, float).tolist(),
-                                   distance=offset, override=self._dimension_style(),
+        """The distance p1-p2, drawn ``offset`` mm to the left of p1 -> p2; the sheet's extent takes in its line
+        and text, so the title block stays below them."""
+        p1, p2 = np.asarray(p1, float), np.asarray(p2, float)
+        style = self._dimension_style()
+        self.space.add_aligned_dim(p1=p1.tolist(), p2=p2.tolist(), distance=offset, override=style,
                                    dxfattribs={"layer": "DIMENSIONS"}).render()
+        left = np.array([p1[1] - p2[1], p2[0] - p1[0]]) / np.hypot(*(p2 - p1))
+        reach = offset + np.copysign(2 * style["dimtxt"], offset)
+        self._widen([p1 + reach * left, p2 + reach * left])
 
     def linear_dimension(self, p1, p2, base, angle_deg: float) -> None:
         """The distance p1-p2 measured along ``angle_deg`` (0: horizontal), its line through ``base``."""
