@@ -97,6 +97,48 @@ class PitchTable:
         normal = (self.orientation * np.stack([along_y, -along_x], -1)).reshape(shape)
         return point, tangent, normal
 
+    def normal_coordinates(self, points: np.ndarray, start: np.ndarray, tolerance: float,
+                           most_steps: int = 50) -> tuple[np.ndarray, np.ndarray]:
+        """Arc length s in [0, perimeter) of the foot of each point's normal on the curve (as ``at`` gives it:
+        (p - C(s)) . T(s) = 0) and the height h = (p - C(s)) . N(s), by Newton's method from ``start`` (mm,
+        one per point) on the interpolant itself (its tangent's turn included), until no step exceeds
+        ``tolerance`` (mm). A point stays on its sample interval while its steps keep it there (the cubic
+        continues smoothly past the ends) and is looked up again when it leaves.
+
+        Raises
+        ------
+        ArithmeticError
+            If the steps have not settled after ``most_steps`` (a point at a centre of curvature of the curve).
+        """
+        px, py = points[:, 0], points[:, 1]
+        s = np.mod(start, self.perimeter)
+        piece = self._pieces.take(self._interval(s), axis=1)
+        for _ in range(most_steps):
+            t = (s - piece[12]) * piece[13]
+            dx = px - (((piece[6] * t + piece[4]) * t + piece[2]) * t + piece[0])
+            dy = py - (((piece[7] * t + piece[5]) * t + piece[3]) * t + piece[1])
+            along_x, along_y = piece[8] + t * piece[10], piece[9] + t * piece[11]
+            length = np.sqrt(along_x * along_x + along_y * along_y)
+            along_x /= length
+            along_y /= length
+            # d/ds of the position, and of the unit tangent: the blend's change less its part along the tangent
+            speed_x = ((3 * piece[6] * t + 2 * piece[4]) * t + piece[2]) * piece[13]
+            speed_y = ((3 * piece[7] * t + 2 * piece[5]) * t + piece[3]) * piece[13]
+            turn = (along_x * piece[10] + along_y * piece[11])
+            bend_x = (piece[10] - turn * along_x) * piece[13] / length
+            bend_y = (piece[11] - turn * along_y) * piece[13] / length
+            along = dx * along_x + dy * along_y
+            step = along / (speed_x * along_x + speed_y * along_y - dx * bend_x - dy * bend_y)
+            s = s + step
+            if np.abs(step).max(initial=0.0) <= tolerance:
+                height = self.orientation * (dx * along_y - dy * along_x)
+                return np.mod(s, self.perimeter), height
+            moved = (t + step * piece[13] < 0) | (t + step * piece[13] > 1)
+            if moved.any():
+                s = np.mod(s, self.perimeter)
+                piece[:, moved] = self._pieces.take(self._interval(s[moved]), axis=1)
+        raise ArithmeticError(f"the normal's foot on the pitch curve did not settle in {most_steps} Newton steps")
+
 
 def orientation(points: np.ndarray) -> float:
     """+1 for a closed polyline around the origin running counterclockwise (positive area), else -1."""

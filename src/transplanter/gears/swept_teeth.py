@@ -12,6 +12,8 @@ the lean, losing contact once per tooth there (0.04 mm of transmission error on 
 pair). Heights are taken on the segments that bound the swept region (the cutter's edges at each
 position and its vertices' chords between positions), at their ends and wherever they cross a
 bin's edge, so positions can be a tenth of a module apart and no bin is missed between them.
+Each point's (s, h) is the foot of its normal on the pitch curve, converged by Newton's method
+(``PitchTable.normal_coordinates``) from where the ray through the gear's centre meets the curve.
 
 Two uses:
 - a shaper cutter (an involute pinion with a 1.25-module addendum, ``pinion_cutter``) whose pitch
@@ -23,7 +25,6 @@ from __future__ import annotations
 
 import numpy as np
 import shapely
-from scipy.spatial import cKDTree
 
 from transplanter.gears.pair import GearPairDesign, driven_angle
 from transplanter.gears.pinion_cutter import shaper_cutter
@@ -41,6 +42,8 @@ MARGIN_MODULES = 0.1
 SIMPLIFY_MODULES = 1e-4
 #: Most a straight cutter edge may bow (modules) in the normal coordinates of the gear it cuts.
 BOW_MODULES = 1e-4
+#: The foot of a point's normal on the pitch curve is found to this many modules of arc.
+CONVERGED_MODULES = 1e-12
 
 
 def _polar(points: np.ndarray):
@@ -90,17 +93,16 @@ def _dot(first: np.ndarray, second: np.ndarray) -> np.ndarray:
     return first[:, 0] * second[:, 0] + first[:, 1] * second[:, 1]
 
 
-def _normal_coordinates(table: PitchTable, samples: cKDTree, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Arc length s of the foot of each point's normal on the pitch curve, and its height h along that
-    normal (outward positive): from the nearest table sample (``samples``, its points), two Newton steps."""
-    _, nearest = samples.query(points, workers=1)
-    offset = points - table.points[nearest]
-    s = table.arc[nearest] + _dot(offset, table.tangents[nearest])
-    for _ in range(2):
-        foot, tangent, normal = table.at(s)
-        offset = points - foot
-        s = s + _dot(offset, tangent)
-    return np.mod(s, table.perimeter), _dot(offset, normal)
+def _radial_arc(table: PitchTable):
+    """Arc length on the pitch curve of a polar angle (rad): where the ray at that angle meets the curve (a pitch
+    curve turns about its centre, so each ray meets it once). Near the curve this is close to the foot of a
+    point's normal, a start for ``PitchTable.normal_coordinates``."""
+    angle = table.orientation * np.unwrap(np.arctan2(table.points[:, 1], table.points[:, 0]))
+
+    def arc(polar_angle: np.ndarray) -> np.ndarray:
+        return np.interp(angle[0] + np.mod(table.orientation * polar_angle - angle[0], 2 * np.pi), angle, table.arc)
+
+    return arc
 
 
 def _cut(at_edge: np.ndarray, width: float, perimeter: float, ends: tuple[np.ndarray, ...]):
@@ -133,7 +135,7 @@ def _lower_envelope(table: PitchTable, tip_height: float, module: float, positio
     count = int(np.ceil(perimeter / (BIN_MODULES * module)))
     width = perimeter / count
     height, at_edge = np.full(count, tip_height), np.full(count, tip_height)
-    samples = cKDTree(table.points[:-1])
+    radial_arc, tolerance = _radial_arc(table), CONVERGED_MODULES * module
     # polar radius of the blank's tip, a little grown: points beyond it cut nothing
     tip = table.points + (tip_height + MARGIN_MODULES * module) * table.normals
     tip_angle, tip_squared = _polar(tip)
@@ -149,7 +151,7 @@ def _lower_envelope(table: PitchTable, tip_height: float, module: float, positio
         grown[:-1] |= chord
         grown[1:] |= chord
         s, h = np.zeros(near.shape), np.full(near.shape, np.inf)
-        s[grown], h[grown] = _normal_coordinates(table, samples, cloud[grown])
+        s[grown], h[grown] = table.normal_coordinates(cloud[grown], radial_arc(angle[grown]), tolerance)
         keep = h < tip_height
         np.minimum.at(height, np.minimum((s[keep] / width).astype(int), count - 1), h[keep])
         # a segment with an end never projected (outside the grown tip by the polar test, though made
