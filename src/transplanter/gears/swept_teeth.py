@@ -44,6 +44,8 @@ SIMPLIFY_MODULES = 1e-4
 BOW_MODULES = 1e-4
 #: The foot of a point's normal on the pitch curve is found to this many modules of arc.
 CONVERGED_MODULES = 1e-12
+#: Segments cut a block at a time (the block's arrays stay in cache).
+SEGMENT_BLOCK = 16384
 
 
 def _polar(points: np.ndarray):
@@ -105,21 +107,42 @@ def _radial_arc(table: PitchTable):
     return arc
 
 
-def _cut(at_edge: np.ndarray, width: float, perimeter: float, ends: tuple[np.ndarray, ...]):
+def _run_maxima(values: np.ndarray) -> np.ndarray:
+    """Row k: the largest of each run of 2^k values starting at every index (to the end of the values, rows past
+    it left at +inf), k = 0 .. log2(len(values))."""
+    runs = np.full((int(np.log2(len(values))) + 1, len(values)), np.inf)
+    runs[0] = values
+    for k in range(1, len(runs)):
+        half = 2 ** (k - 1)
+        runs[k, :-half] = np.maximum(runs[k - 1, :-half], runs[k - 1, half:])
+    return runs
+
+
+def _cut(at_edge: np.ndarray, lowest: np.ndarray, width: float, perimeter: float, ends: np.ndarray):
     """Lower ``at_edge``, the lowest height met on each bin edge (edge k at arc k ``width`` round a pitch curve
-    of ``perimeter``), to the segments with ends (s, h) = ``ends`` = (s_a, h_a, s_b, h_b) where they cross it."""
-    s_a, h_a, s_b, h_b = ends
-    run = np.mod(s_b - s_a + perimeter / 2, perimeter) - perimeter / 2
-    back = run < 0
-    s_a, h_a, h_b, run = np.where(back, s_b, s_a), np.where(back, h_b, h_a), np.where(back, h_a, h_b), np.abs(run)
-    first = np.floor(s_a / width).astype(int)
-    crossed = np.floor((s_a + run) / width).astype(int) - first           # bin edges crossed
-    some = np.flatnonzero(crossed)
-    slope = (h_b[some] - h_a[some]) / run[some]                            # run > 0 where an edge is crossed
-    s_a, h_a, first, crossed = s_a[some], h_a[some], first[some], crossed[some]
-    segment = np.repeat(np.arange(len(some)), crossed)
-    edge = np.arange(crossed.sum()) + np.repeat(first + 1 - (np.cumsum(crossed) - crossed), crossed)
-    np.minimum.at(at_edge, edge % len(at_edge), h_a[segment] + (edge * width - s_a[segment]) * slope[segment])
+    of ``perimeter``), to the segments with ends (s, h) = ``ends`` = (s_a, h_a, s_b, h_b) (rows) where they cross
+    it. A segment that stays at or above ``lowest``, a height each bin already reaches (bin k between edges k and
+    k + 1), over every bin its crossed edges bound lowers none of them and is passed over: ``lowest``'s run
+    maxima (``_run_maxima``, over two turns) give the largest over those bins from two overlapping runs."""
+    count = len(lowest)
+    runs = _run_maxima(np.r_[lowest, lowest])
+    for block in range(0, ends.shape[1], SEGMENT_BLOCK):
+        s_a, h_a, s_b, h_b = ends[:, block:block + SEGMENT_BLOCK]
+        run = np.mod(s_b - s_a + perimeter / 2, perimeter) - perimeter / 2
+        back = run < 0
+        s_a, h_a, h_b = np.where(back, s_b, s_a), np.where(back, h_b, h_a), np.where(back, h_a, h_b)
+        run = np.abs(run)
+        first = np.floor(s_a / width).astype(int)
+        crossed = np.floor((s_a + run) / width).astype(int) - first       # bin edges crossed
+        low = np.mod(first, count)                                         # bins low to low + crossed
+        level = np.log2(np.clip(crossed, 1, count - 1) + 1).astype(int)
+        some = np.flatnonzero((crossed > 0) & (np.minimum(h_a, h_b) < np.maximum(
+            runs[level, low], runs[level, low + np.minimum(crossed, count - 1) - 2 ** level + 1])))
+        slope = (h_b[some] - h_a[some]) / run[some]                        # run > 0 where an edge is crossed
+        s_a, h_a, first, crossed = s_a[some], h_a[some], first[some], crossed[some]
+        segment = np.repeat(np.arange(len(some)), crossed)
+        edge = np.arange(crossed.sum()) + np.repeat(first + 1 - (np.cumsum(crossed) - crossed), crossed)
+        np.minimum.at(at_edge, edge % count, h_a[segment] + (edge * width - s_a[segment]) * slope[segment])
 
 
 def _lower_envelope(table: PitchTable, tip_height: float, module: float, positions) -> np.ndarray:
@@ -140,6 +163,7 @@ def _lower_envelope(table: PitchTable, tip_height: float, module: float, positio
     tip = table.points + (tip_height + MARGIN_MODULES * module) * table.normals
     tip_angle, tip_squared = _polar(tip)
     order = np.argsort(tip_angle)
+    edges, chords = [], []
     for cloud, at, after, edged in positions:
         angle, squared = _polar(cloud)
         near = squared < np.interp(angle, tip_angle[order], tip_squared[order], period=2 * np.pi)
@@ -157,11 +181,16 @@ def _lower_envelope(table: PitchTable, tip_height: float, module: float, positio
         # a segment with an end never projected (outside the grown tip by the polar test, though made
         # near by another segment of its other end) cuts only at that other end, recorded above
         cuts = (keep[:edged, at] | keep[:edged, after]) & grown[:edged, at] & grown[:edged, after]
-        _cut(at_edge, width, perimeter, (s[:edged, at][cuts], h[:edged, at][cuts],
-                                         s[:edged, after][cuts], h[:edged, after][cuts]))
+        edges.append(np.stack([s[:edged, at][cuts], h[:edged, at][cuts], s[:edged, after][cuts],
+                               h[:edged, after][cuts]]))
         cuts = (keep[:-1] | keep[1:]) & grown[:-1] & grown[1:]
-        _cut(at_edge, width, perimeter, (s[:-1][cuts], h[:-1][cuts], s[1:][cuts], h[1:][cuts]))
-    height = np.minimum(height, np.minimum(at_edge, np.roll(at_edge, -1)))     # a bin meets both its edges
+        chords.append(np.stack([s[:-1][cuts], h[:-1][cuts], s[1:][cuts], h[1:][cuts]]))
+    # the chords against the heights the vertices reach, then the edges against those and the chords' (most
+    # edges lie inside the swept region and cut nothing)
+    for segments in (chords, edges):
+        lowest = np.minimum(height, np.minimum(at_edge, np.roll(at_edge, -1)))      # a bin meets both its edges
+        _cut(at_edge, lowest, width, perimeter, np.concatenate(segments, axis=1))
+    height = np.minimum(height, np.minimum(at_edge, np.roll(at_edge, -1)))
     point, _, normal = table.at((np.arange(count) + 0.5) * width)
     return point + height[:, None] * normal
 
