@@ -46,6 +46,8 @@ BOW_MODULES = 1e-4
 CONVERGED_MODULES = 1e-12
 #: Segments cut a block at a time (the block's arrays stay in cache).
 SEGMENT_BLOCK = 16384
+#: Levels of run maxima that decide whether a segment can cut (runs of up to 2^(levels - 1) bins).
+RUN_LEVELS = 11
 
 
 def _polar(points: np.ndarray):
@@ -107,14 +109,15 @@ def _radial_arc(table: PitchTable):
     return arc
 
 
-def _run_maxima(values: np.ndarray) -> np.ndarray:
-    """Row k: the largest of each run of 2^k values starting at every index (to the end of the values, rows past
-    it left at +inf), k = 0 .. log2(len(values))."""
-    runs = np.full((int(np.log2(len(values))) + 1, len(values)), np.inf)
+def _run_maxima(values: np.ndarray, levels: int) -> np.ndarray:
+    """Row k: the largest of each run of 2^k values starting at every index (where the run passes the end of the
+    values, +inf), k = 0 .. ``levels`` - 1."""
+    runs = np.empty((levels, len(values)))
     runs[0] = values
-    for k in range(1, len(runs)):
+    for k in range(1, levels):
         half = 2 ** (k - 1)
-        runs[k, :-half] = np.maximum(runs[k - 1, :-half], runs[k - 1, half:])
+        np.maximum(runs[k - 1, :-half], runs[k - 1, half:], out=runs[k, :-half])
+        runs[k, -half:] = np.inf
     return runs
 
 
@@ -123,9 +126,10 @@ def _cut(at_edge: np.ndarray, lowest: np.ndarray, width: float, perimeter: float
     of ``perimeter``), to the segments with ends (s, h) = ``ends`` = (s_a, h_a, s_b, h_b) (rows) where they cross
     it. A segment that stays at or above ``lowest``, a height each bin already reaches (bin k between edges k and
     k + 1), over every bin its crossed edges bound lowers none of them and is passed over: ``lowest``'s run
-    maxima (``_run_maxima``, over two turns) give the largest over those bins from two overlapping runs."""
+    maxima (``_run_maxima``) give the largest over those bins from two overlapping runs, for segments over fewer
+    than ``2 ** RUN_LEVELS`` bins that do not pass the end of the curve (the rest are all cut)."""
     count = len(lowest)
-    runs = _run_maxima(np.r_[lowest, lowest])
+    runs = _run_maxima(lowest, RUN_LEVELS)
     for block in range(0, ends.shape[1], SEGMENT_BLOCK):
         s_a, h_a, s_b, h_b = ends[:, block:block + SEGMENT_BLOCK]
         run = np.mod(s_b - s_a + perimeter / 2, perimeter) - perimeter / 2
@@ -135,9 +139,10 @@ def _cut(at_edge: np.ndarray, lowest: np.ndarray, width: float, perimeter: float
         first = np.floor(s_a / width).astype(int)
         crossed = np.floor((s_a + run) / width).astype(int) - first       # bin edges crossed
         low = np.mod(first, count)                                         # bins low to low + crossed
-        level = np.log2(np.clip(crossed, 1, count - 1) + 1).astype(int)
-        some = np.flatnonzero((crossed > 0) & (np.minimum(h_a, h_b) < np.maximum(
-            runs[level, low], runs[level, low + np.minimum(crossed, count - 1) - 2 ** level + 1])))
+        level = np.minimum(np.log2(crossed + 1).astype(int), RUN_LEVELS - 1)
+        high = np.minimum(low + crossed - 2 ** level + 1, count - 1)       # inf where the run passes the end
+        reached = np.maximum(runs[level, low], runs[level, high])
+        some = np.flatnonzero((crossed > 0) & ((crossed >= 2 ** RUN_LEVELS - 1) | (np.minimum(h_a, h_b) < reached)))
         slope = (h_b[some] - h_a[some]) / run[some]                        # run > 0 where an edge is crossed
         s_a, h_a, first, crossed = s_a[some], h_a[some], first[some], crossed[some]
         segment = np.repeat(np.arange(len(some)), crossed)
