@@ -45,13 +45,15 @@ def bisected_normal_coordinates(table: PitchTable, points: np.ndarray) -> tuple[
 @pytest.mark.parametrize("gear", [0, 1])
 def test_normal_coordinates_equal_bisection(gear):
     """Points from 2.5 modules below to 1.5 above both pitch curves of a 20-tooth ellipse pair, started up to half a
-    module off their foot: s and h equal bisection's to 1e-9 mm, and the point is the foot plus h normals."""
+    module off their foot (and some over the curve's start, started just short of its end): s and h equal
+    bisection's to 1e-9 mm, and the point is the foot plus h normals."""
     table = (driver_table, driven_table)[gear](_ellipse_pair())
     generator = np.random.default_rng(3)
-    s = generator.uniform(0, table.perimeter, 20000)
+    s = np.r_[generator.uniform(0, table.perimeter, 20000), np.zeros(50)]
     foot, _, normal = table.at(s)
     points = foot + generator.uniform(-2.5 * MODULE, 1.5 * MODULE, (len(s), 1)) * normal
-    start = s + generator.uniform(-0.5 * MODULE, 0.5 * MODULE, len(s))
+    start = np.r_[s[:-50] + generator.uniform(-0.5 * MODULE, 0.5 * MODULE, 20000),
+                  np.full(50, np.nextafter(table.perimeter, 0))]
     arc, height = table.normal_coordinates(points, start, 1e-12 * MODULE)
     expected_arc, expected_height = bisected_normal_coordinates(table, points)
     wrapped = np.mod(arc - expected_arc + table.perimeter / 2, table.perimeter) - table.perimeter / 2

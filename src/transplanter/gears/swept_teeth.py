@@ -92,11 +92,6 @@ def _short_edges(outline: np.ndarray, table: PitchTable, module: float) -> np.nd
     return shapely.get_coordinates(ring)[:-1]
 
 
-def _dot(first: np.ndarray, second: np.ndarray) -> np.ndarray:
-    """Row-wise dot products of two (N, 2) arrays."""
-    return first[:, 0] * second[:, 0] + first[:, 1] * second[:, 1]
-
-
 def _radial_arc(table: PitchTable):
     """Arc length on the pitch curve of a polar angle (rad): where the ray at that angle meets the curve (a pitch
     curve turns about its centre, so each ray meets it once). Near the curve this is close to the foot of a
