@@ -87,12 +87,7 @@ def former_lower_envelope(table, tip_height, module, positions):
     for cloud, at, after, edged in positions:
         angle, squared = swept_teeth._polar(cloud)
         near = squared < np.interp(angle, tip_angle[order], tip_squared[order], period=2 * np.pi)
-        touching, chord = near[:edged, at] | near[:edged, after], near[:-1] | near[1:]
-        grown = near.copy()
-        grown[:edged, at] |= touching
-        grown[:edged, after] |= touching
-        grown[:-1] |= chord
-        grown[1:] |= chord
+        grown = swept_teeth._with_segment_ends(near, at, after, edged)
         s, h = np.zeros(near.shape), np.full(near.shape, np.inf)
         s[grown], h[grown] = former_normal_coordinates(table, samples, cloud[grown])
         keep = h < tip_height

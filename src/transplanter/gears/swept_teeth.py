@@ -145,6 +145,19 @@ def _cut(at_edge: np.ndarray, lowest: np.ndarray, width: float, perimeter: float
         np.minimum.at(at_edge, edge % count, h_a[segment] + (edge * width - s_a[segment]) * slope[segment])
 
 
+def _with_segment_ends(near: np.ndarray, at: np.ndarray, after: np.ndarray, edged: int) -> np.ndarray:
+    """``near`` (positions x vertices, from ``_positions``) grown by both ends of every segment that may cut: an
+    edge (vertex columns ``at``, ``after``) of the first ``edged`` positions, or a vertex's chord to the next
+    position, with one end near."""
+    touching, chord = near[:edged, at] | near[:edged, after], near[:-1] | near[1:]
+    grown = near.copy()
+    grown[:edged, at] |= touching
+    grown[:edged, after] |= touching
+    grown[:-1] |= chord
+    grown[1:] |= chord
+    return grown
+
+
 def _lower_envelope(table: PitchTable, tip_height: float, module: float, positions) -> np.ndarray:
     """Blank (heights up to ``tip_height`` over the pitch curve) cut down by the region an outline sweeps through
     ``positions`` (``_positions``, in the gear frame), in the pitch curve's normal coordinates (s, h).
@@ -167,13 +180,7 @@ def _lower_envelope(table: PitchTable, tip_height: float, module: float, positio
     for cloud, at, after, edged in positions:
         angle, squared = _polar(cloud)
         near = squared < np.interp(angle, tip_angle[order], tip_squared[order], period=2 * np.pi)
-        # both ends of a segment that may cut
-        touching, chord = near[:edged, at] | near[:edged, after], near[:-1] | near[1:]
-        grown = near.copy()
-        grown[:edged, at] |= touching
-        grown[:edged, after] |= touching
-        grown[:-1] |= chord
-        grown[1:] |= chord
+        grown = _with_segment_ends(near, at, after, edged)
         s, h = np.zeros(near.shape), np.full(near.shape, np.inf)
         s[grown], h[grown] = table.normal_coordinates(cloud[grown], radial_arc(angle[grown]), tolerance)
         keep = h < tip_height
