@@ -1,5 +1,8 @@
 """The foot of a point's normal on a pitch table, converged, against bisection on the normal condition; the swept
 tooth outlines built on it against the same outlines built on bisection."""
+import dataclasses
+from pathlib import Path
+
 import numpy as np
 import pytest
 from scipy.spatial import cKDTree
@@ -7,7 +10,9 @@ from scipy.spatial import cKDTree
 from transplanter.gears import swept_teeth
 from transplanter.gears.pair import design_pair
 from transplanter.gears.pitch_curves import ellipse
+from transplanter.gears.problem import load_problem
 from transplanter.gears.rack_teeth import PitchTable
+from transplanter.gears.synthesis import synthesize
 from transplanter.gears.teeth import driven_table, driver_table
 
 MODULE, ALPHA, CUTTER_TEETH = 2.0, np.radians(20), 16
@@ -80,3 +85,24 @@ def test_swept_outlines_equal_those_on_bisection(gear, monkeypatch):
     monkeypatch.setattr(PitchTable, "normal_coordinates",
                         lambda table, points, start, tolerance: bisected_normal_coordinates(table, points))
     assert np.abs(converged - outline()).max() < 1e-9
+
+
+def test_points_by_a_corner_get_a_foot_on_their_side_of_the_gear():
+    """By the corners of the cusp example's composite driver (its pitch table turns by 23 deg within one sample
+    interval there), points from 2.5 modules below to 1.5 above the curve, started where the ray through the
+    centre meets it: each lies on its foot's normal to 1e-9 mm (inside a corner that may be either side's) and
+    nearer it than the curve comes to its centre (a foot across the gear lies farther)."""
+    problem = load_problem(Path(__file__).resolve().parents[2] / "examples" / "gear_cusp_composite.toml")
+    table = driver_table(synthesize(dataclasses.replace(problem, module=None, teeth=None)).design)
+    module = problem.module
+    turn = np.abs(np.diff(np.unwrap(np.arctan2(table.tangents[:, 1], table.tangents[:, 0]))))
+    corners = table.arc[np.flatnonzero(turn > np.radians(10))]
+    generator = np.random.default_rng(7)
+    s = np.repeat(corners, 4000) + generator.uniform(-module, module, 4000 * len(corners))
+    foot, _, normal = table.at(s)
+    points = foot + generator.uniform(-2.5 * module, 1.5 * module, (len(s), 1)) * normal
+    start = swept_teeth._radial_arc(table)(np.arctan2(points[:, 1], points[:, 0]))
+    arc, height = table.normal_coordinates(points, start, 1e-12 * module)
+    foot, _, normal = table.at(arc)
+    assert np.abs(foot + height[:, None] * normal - points).max() < 1e-9
+    assert (np.abs(height) < np.hypot(table.points[:, 0], table.points[:, 1]).min()).all()
