@@ -118,8 +118,11 @@ def both_stages(stages, module, alpha, cutters, cutter_teeth):
 
 
 def change(first, second) -> float:
-    """Largest distance (mm) between two outlines cut on the same bins (vertex by vertex)."""
-    return float(np.abs(np.asarray(first) - np.asarray(second)).max())
+    """Largest distance (mm) between two outlines: vertex by vertex where they are cut on the same bins, else
+    from each one's vertices to the other's nearest vertex (a thinned outline's vertices differ)."""
+    if first.shape == second.shape:
+        return float(np.abs(first - second).max())
+    return float(max(cKDTree(second).query(first)[0].max(), cKDTree(first).query(second)[0].max()))
 
 
 def main():
