@@ -15,10 +15,7 @@ module / 80 with the driver unthinned) and the library's mesh check of each pair
 stages under 4 s in all, outlines at least as near the converged ones as the baseline's, the
 mesh check passing.
 
-A second line per stage times the same two calls against the former per-position envelope (kept below
-too): segments as index pairs into one flat cloud of each chunk's points, each crossing's level scattered
-into both bins by its edge, and the pitch table's Hermite evaluated apart from its tangents; the
-package's outlines must equal its to 1e-9 mm. Target: the main job's two stages under 1 s.
+The package's cut against its own former envelope and projection is ``bench_teeth.py``.
 """
 from __future__ import annotations
 
@@ -28,7 +25,6 @@ from pathlib import Path
 from unittest import mock
 
 import numpy as np
-from best_time import best_time
 from scipy.spatial import cKDTree
 
 from transplanter import fivebar
@@ -39,7 +35,6 @@ from transplanter.gears.pinion_cutter import shaper_cutter
 from transplanter.gears.rack_teeth import ADDENDUM, DEDENDUM, PitchTable, orientation
 from transplanter.gears.swept_teeth import mate_profile, shaper_profile
 from transplanter.gears.teeth import driven_table, driver_table
-from transplanter.geometry.hermite import hermite
 from transplanter.geometry.poses import rotate_about
 from transplanter.trains.toothed_train import design_toothed_train
 
@@ -132,85 +127,6 @@ def cloud_mate_profile(design: GearPairDesign, driver_outline, driven: PitchTabl
     return _binned_envelope(driven.points, tip, _swept(outline, outline_angle, phi1, reach, place))
 
 
-# --- the former envelope (flat index pairs, chunk by chunk), the baseline of the array passes ---
-
-def former_at(self, s):
-    s = np.mod(np.asarray(s, float), self.perimeter)
-    point = hermite(self.arc, self.points, self.tangents[:-1], self.tangents[1:], s)
-    k = np.clip(np.searchsorted(self.arc, s, side="right") - 1, 0, len(self.arc) - 2)
-    t = ((s - self.arc[k]) / (self.arc[k + 1] - self.arc[k]))[..., None]
-    tangent = self.tangents[k] * (1 - t) + self.tangents[k + 1] * t
-    tangent /= np.linalg.norm(tangent, axis=-1, keepdims=True)
-    normal = np.stack([tangent[..., 1], -tangent[..., 0]], -1) * self.orientation
-    return point, tangent, normal
-
-
-def former_segments(points, facing, reach, place, chunk=24):
-    angle, _ = swept_teeth._polar(points)
-    last = len(facing) - 1
-    for first in range(0, last, chunk):
-        rows = np.arange(first, min(first + chunk, last) + 1)
-        middle = (facing[rows].max() + facing[rows].min()) / 2
-        half = (facing[rows].max() - facing[rows].min()) / 2 + reach
-        near = np.abs(np.mod(angle - middle + np.pi, 2 * np.pi) - np.pi) <= half
-        index = np.flatnonzero(near)
-        edge = np.flatnonzero(near & np.roll(near, -1))
-        cloud = place(points[index], rows)
-        width = len(index)
-        row = width * np.arange(len(rows) - (rows[-1] != last))[:, None]
-        at = np.searchsorted(index, edge)
-        after = np.searchsorted(index, (edge + 1) % len(points))
-        still = np.arange(width * (len(rows) - 1))
-        yield cloud.reshape(-1, 2), np.r_[(row + at).ravel(), still], np.r_[(row + after).ravel(), still + width]
-
-
-def former_lower_envelope(table, tip_height, module, segments):
-    perimeter = table.perimeter
-    count = int(np.ceil(perimeter / (swept_teeth.BIN_MODULES * module)))
-    width = perimeter / count
-    height = np.full(count, tip_height)
-    samples = cKDTree(table.points[:-1])
-    tip = table.points + (tip_height + swept_teeth.MARGIN_MODULES * module) * table.normals
-    tip_angle, tip_squared = swept_teeth._polar(tip)
-    order = np.argsort(tip_angle)
-    for points_at, a, b in segments:
-        angle, squared = swept_teeth._polar(points_at)
-        near = squared < np.interp(angle, tip_angle[order], tip_squared[order], period=2 * np.pi)
-        touching = near[a] | near[b]
-        near[a[touching]], near[b[touching]] = True, True
-        s, h = np.zeros(len(points_at)), np.full(len(points_at), np.inf)
-        s[near], h[near] = swept_teeth._normal_coordinates(table, samples, points_at[near])
-        keep = h < tip_height
-        low = np.flatnonzero(keep)
-        np.minimum.at(height, np.minimum((s[low] / width).astype(int), count - 1), h[low])
-        cuts = (keep[a] | keep[b]) & near[a] & near[b]
-        a, b = a[cuts], b[cuts]
-        run = np.mod(s[b] - s[a] + perimeter / 2, perimeter) - perimeter / 2
-        a, b, run = np.where(run < 0, b, a), np.where(run < 0, a, b), np.abs(run)
-        first = np.floor(s[a] / width).astype(int)
-        crossed = np.floor((s[a] + run) / width).astype(int) - first
-        segment = np.repeat(np.arange(len(a)), crossed)
-        edge = first[segment] + 1 + np.arange(crossed.sum()) - np.repeat(np.cumsum(crossed) - crossed, crossed)
-        share = (edge * width - s[a][segment]) / np.where(run[segment] > 0, run[segment], 1.0)
-        level = h[a][segment] + share * (h[b][segment] - h[a][segment])
-        np.minimum.at(height, np.r_[edge % count, (edge - 1) % count], np.r_[level, level])
-    point, _, normal = table.at((np.arange(count) + 0.5) * width)
-    return point + height[:, None] * normal
-
-
-def package_pair(tables, design, module, alpha, cutter_teeth):
-    driver = shaper_profile(tables[0], module, alpha, cutter_teeth)
-    return driver, mate_profile(design, driver, tables[1], module)
-
-
-def former_pair(tables, design, module, alpha, cutter_teeth):
-    """Both outlines by the package's profiles with the former envelope and table interpolation patched in."""
-    with mock.patch.object(swept_teeth, "_positions", former_segments), \
-            mock.patch.object(swept_teeth, "_lower_envelope", former_lower_envelope), \
-            mock.patch.object(PitchTable, "at", former_at):
-        return package_pair(tables, design, module, alpha, cutter_teeth)
-
-
 # --- the comparison ---
 
 def distance(first, second, spacing=1e-4):
@@ -230,7 +146,7 @@ def main():
     gearing = result.problem.gearing
     toothed = design_toothed_train(result.design.relative_angle, result.design.mech.carrier_length, gearing, "bench")
     module, alpha, cutter_teeth = toothed.module, toothed.pressure_angle, gearing.shaper_teeth
-    totals, arrays = np.zeros(2), np.zeros(2)
+    totals = np.zeros(2)
     for name, design, teeth in zip(("stage 1", "stage 2"), (toothed.train.stage_one, toothed.train.stage_two),
                                    toothed.teeth, strict=True):
         if teeth.cutter != "shaper":
@@ -253,12 +169,6 @@ def main():
               f"{distance(mate, converged_mate):.4f} mm; baseline {distance(old_driver, converged):.4f}, "
               f"{distance(old_mate, converged_mate):.4f} mm; ours from baseline {distance(driver, old_driver):.4f}, "
               f"{distance(mate, old_mate):.4f} mm")
-        passes_s, _ = best_time(partial(package_pair, tables, design, module, alpha, cutter_teeth), 3)
-        former_s, former = best_time(partial(former_pair, tables, design, module, alpha, cutter_teeth), 3)
-        arrays += passes_s, former_s
-        change = max(np.abs(driver - former[0]).max(), np.abs(mate - former[1]).max())
-        print(f"  array passes against the former envelope (best of 3): {passes_s:.2f} s against {former_s:.2f} s, "
-              f"ratio {former_s / passes_s:.2f}x; outlines differ by {change:.1e} mm")
         for label, pair in (("ours", (driver, mate)), ("baseline", (old_driver, old_mate))):
             check = check_mesh(design, pair, module)
             print(f"  mesh check, {label}: overlap {check.max_overlap_mm:.4f} mm, contact gap "
@@ -266,8 +176,6 @@ def main():
                   f" -> {'passes' if check.passed else '; '.join(check.failures)}")
     print(f"both stages: {totals[0]:.2f} s against {totals[1]:.2f} s, ratio {totals[1] / totals[0]:.1f}x; "
           f"target under 4 s")
-    print(f"both stages, array passes against the former envelope: {arrays[0]:.2f} s against {arrays[1]:.2f} s, "
-          f"ratio {arrays[1] / arrays[0]:.2f}x; target under 1 s")
 
 
 if __name__ == "__main__":

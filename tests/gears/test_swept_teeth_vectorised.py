@@ -2,7 +2,6 @@
 the positions one by one over the whole outline; the pitch table's interpolation against the Hermite helper."""
 import numpy as np
 import pytest
-from scipy.spatial import cKDTree
 
 from transplanter.gears import swept_teeth
 from transplanter.gears.pair import design_pair
@@ -44,12 +43,12 @@ def _per_position_heights(table, tip_height, outline, place, positions):
     the segments are the outline's edges and each vertex's chord to position k + 1 (the last position: its
     edges only). A segment cuts where it crosses a bin edge if one end lies below the tip and both ends were
     projected; a vertex is projected when inside the grown tip or on a segment with an end there. The projection
-    itself is the package's (``_normal_coordinates``); what is checked is which segments cut which bins."""
+    itself is the package's (``PitchTable.normal_coordinates``); what is checked is which segments cut which bins."""
     perimeter = table.perimeter
     count = int(np.ceil(perimeter / (swept_teeth.BIN_MODULES * MODULE)))
     width = perimeter / count
     height = np.full(count, tip_height)
-    samples = cKDTree(table.points[:-1])
+    radial_arc = swept_teeth._radial_arc(table)
     tip = table.points + (tip_height + swept_teeth.MARGIN_MODULES * MODULE) * table.normals
     tip_angle = np.arctan2(tip[:, 1], tip[:, 0])
     order = np.argsort(tip_angle)
@@ -66,7 +65,8 @@ def _per_position_heights(table, tip_height, outline, place, positions):
         for end in (0, 1):
             projected[pairs[:, end][inside[pairs].any(axis=1)]] = True
         s, h = np.zeros(len(points)), np.full(len(points), np.inf)
-        s[projected], h[projected] = swept_teeth._normal_coordinates(table, samples, points[projected])
+        s[projected], h[projected] = table.normal_coordinates(points[projected], radial_arc(angle[projected]),
+                                                              swept_teeth.CONVERGED_MODULES * MODULE)
         below = h < tip_height
         for j in np.flatnonzero(below):
             bin_ = min(int(s[j] / width), count - 1)

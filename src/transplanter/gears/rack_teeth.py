@@ -24,6 +24,7 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from transplanter._generated.cusp import variable_involute
 from transplanter.generated import numpy_twin
@@ -96,6 +97,87 @@ class PitchTable:
         tangent = np.stack([along_x, along_y], -1).reshape(shape)
         normal = (self.orientation * np.stack([along_y, -along_x], -1)).reshape(shape)
         return point, tangent, normal
+
+    @cached_property
+    def _samples(self) -> cKDTree:
+        return cKDTree(self.points[:-1])
+
+    def normal_coordinates(self, points: np.ndarray, start: np.ndarray, tolerance: float,
+                           newton_steps: int = 12) -> tuple[np.ndarray, np.ndarray]:
+        """Arc length s in [0, perimeter) of the foot of each point's normal on the curve (as ``at`` gives it:
+        (p - C(s)) . T(s) = 0) and the height h = (p - C(s)) . N(s), to ``tolerance`` (mm of arc).
+
+        Newton's method from ``start`` (mm, one per point) on the interpolant itself (its tangent's turn
+        included, the slope bounded below as said there); a point stays on its sample interval while its steps
+        keep it there (the cubic continues smoothly past the ends) and is looked up again when it leaves. Points
+        whose steps have not settled after ``newton_steps`` (near a corner of the curve, where the normals of its
+        two sides cross) take the foot nearest to them by bisection (``_nearest_foot``).
+        """
+        px, py = points[:, 0], points[:, 1]
+        s = np.mod(start, self.perimeter)
+        piece = self._pieces.take(self._interval(s), axis=1)
+        for _ in range(newton_steps):
+            t = (s - piece[12]) * piece[13]
+            dx = px - (((piece[6] * t + piece[4]) * t + piece[2]) * t + piece[0])
+            dy = py - (((piece[7] * t + piece[5]) * t + piece[3]) * t + piece[1])
+            along_x, along_y = piece[8] + t * piece[10], piece[9] + t * piece[11]
+            length = np.sqrt(along_x * along_x + along_y * along_y)
+            along_x /= length
+            along_y /= length
+            # d/ds of the position, and of the unit tangent: the blend's change less its part along the tangent
+            speed_x = ((3 * piece[6] * t + 2 * piece[4]) * t + piece[2]) * piece[13]
+            speed_y = ((3 * piece[7] * t + 2 * piece[5]) * t + piece[3]) * piece[13]
+            turn = (along_x * piece[10] + along_y * piece[11])
+            bend_x = (piece[10] - turn * along_x) * piece[13] / length
+            bend_y = (piece[11] - turn * along_y) * piece[13] / length
+            along = dx * along_x + dy * along_y
+            # -d/ds of the offset's part along the tangent: 1 - h kappa on a smooth curve, kept from falling below 1/2
+            # (beyond half the radius of curvature, on the inner side of a tight bend or corner) so that the step
+            # stays toward the nearer foot and at most twice that part
+            step = along / np.maximum(speed_x * along_x + speed_y * along_y - dx * bend_x - dy * bend_y, 0.5)
+            s = s + step
+            moving = ~(np.abs(step) <= tolerance)
+            if not moving.any():
+                break
+            moved = (t + step * piece[13] < 0) | (t + step * piece[13] > 1)
+            if moved.any():
+                s[moved] = np.mod(s[moved], self.perimeter)
+                piece[:, moved] = self._pieces.take(self._interval(s[moved]), axis=1)
+        height = self.orientation * (dx * along_y - dy * along_x)
+        s = np.mod(s, self.perimeter)
+        if moving.any():
+            s[moving], height[moving] = self._nearest_foot(points[moving], tolerance)
+        return s, height
+
+    def _nearest_foot(self, points: np.ndarray, tolerance: float) -> tuple[np.ndarray, np.ndarray]:
+        """(s, h) of the foot of the normal nearest to each point: (p - C(s)) . T(s) is evaluated on a fine grid over
+        the three sample intervals either side of the nearest sample; of the grid steps where it falls through
+        zero, the one nearest the point is bisected."""
+        _, nearest = self._samples.query(points)
+        samples = len(self.arc) - 1
+        index = np.asarray(nearest)[:, None] + np.arange(-3, 4)
+        knots = self.arc[index % samples] + self.perimeter * (index // samples)
+        fine = knots[:, :-1, None] + np.linspace(0, 1, 8, endpoint=False) * np.diff(knots, axis=1)[:, :, None]
+        grid = np.concatenate([fine.reshape(len(points), -1), knots[:, -1:]], axis=1)
+
+        def along(s):
+            foot, tangent, _ = self.at(s)
+            return np.sum((points[:, None] - foot) * tangent, axis=-1), np.sum((points[:, None] - foot) ** 2, axis=-1)
+
+        value, distance = along(grid)
+        falls = (value[:, :-1] >= 0) & (value[:, 1:] < 0)
+        if not falls.any(axis=1).all():
+            raise ArithmeticError("no foot of a normal on the pitch curve within three samples of a point's nearest")
+        step = np.argmin(np.where(falls, distance[:, :-1], np.inf), axis=1)
+        rows = np.arange(len(points))
+        low, high = grid[rows, step], grid[rows, step + 1]
+        while (high - low > tolerance).any():
+            middle = (low + high) / 2
+            ahead = along(middle[:, None])[0][:, 0] > 0
+            low, high = np.where(ahead, middle, low), np.where(ahead, high, middle)
+        s = (low + high) / 2
+        foot, _, normal = self.at(s)
+        return np.mod(s, self.perimeter), np.sum((points - foot) * normal, axis=1)
 
 
 def orientation(points: np.ndarray) -> float:

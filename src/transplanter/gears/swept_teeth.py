@@ -12,6 +12,8 @@ the lean, losing contact once per tooth there (0.04 mm of transmission error on 
 pair). Heights are taken on the segments that bound the swept region (the cutter's edges at each
 position and its vertices' chords between positions), at their ends and wherever they cross a
 bin's edge, so positions can be a tenth of a module apart and no bin is missed between them.
+Each point's (s, h) is the foot of its normal on the pitch curve, converged by Newton's method
+(``PitchTable.normal_coordinates``) from where the ray through the gear's centre meets the curve.
 
 Two uses:
 - a shaper cutter (an involute pinion with a 1.25-module addendum, ``pinion_cutter``) whose pitch
@@ -23,7 +25,6 @@ from __future__ import annotations
 
 import numpy as np
 import shapely
-from scipy.spatial import cKDTree
 
 from transplanter.gears.pair import GearPairDesign, driven_angle
 from transplanter.gears.pinion_cutter import shaper_cutter
@@ -41,6 +42,12 @@ MARGIN_MODULES = 0.1
 SIMPLIFY_MODULES = 1e-4
 #: Most a straight cutter edge may bow (modules) in the normal coordinates of the gear it cuts.
 BOW_MODULES = 1e-4
+#: The foot of a point's normal on the pitch curve is found to this many modules of arc.
+CONVERGED_MODULES = 1e-12
+#: Segments cut a block at a time (the block's arrays stay in cache).
+SEGMENT_BLOCK = 16384
+#: Levels of run maxima that decide whether a segment can cut (runs of up to 2^(levels - 1) bins).
+RUN_LEVELS = 11
 
 
 def _polar(points: np.ndarray):
@@ -85,39 +92,70 @@ def _short_edges(outline: np.ndarray, table: PitchTable, module: float) -> np.nd
     return shapely.get_coordinates(ring)[:-1]
 
 
-def _dot(first: np.ndarray, second: np.ndarray) -> np.ndarray:
-    """Row-wise dot products of two (N, 2) arrays."""
-    return first[:, 0] * second[:, 0] + first[:, 1] * second[:, 1]
+def _radial_arc(table: PitchTable):
+    """Arc length on the pitch curve of a polar angle (rad): where the ray at that angle meets the curve (a pitch
+    curve turns about its centre, so each ray meets it once). Near the curve this is close to the foot of a
+    point's normal, a start for ``PitchTable.normal_coordinates``."""
+    angle = table.orientation * np.unwrap(np.arctan2(table.points[:, 1], table.points[:, 0]))
+
+    def arc(polar_angle: np.ndarray) -> np.ndarray:
+        return np.interp(angle[0] + np.mod(table.orientation * polar_angle - angle[0], 2 * np.pi), angle, table.arc)
+
+    return arc
 
 
-def _normal_coordinates(table: PitchTable, samples: cKDTree, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Arc length s of the foot of each point's normal on the pitch curve, and its height h along that
-    normal (outward positive): from the nearest table sample (``samples``, its points), two Newton steps."""
-    _, nearest = samples.query(points, workers=1)
-    offset = points - table.points[nearest]
-    s = table.arc[nearest] + _dot(offset, table.tangents[nearest])
-    for _ in range(2):
-        foot, tangent, normal = table.at(s)
-        offset = points - foot
-        s = s + _dot(offset, tangent)
-    return np.mod(s, table.perimeter), _dot(offset, normal)
+def _run_maxima(values: np.ndarray, levels: int) -> np.ndarray:
+    """Row k: the largest of each run of 2^k values starting at every index (where the run passes the end of the
+    values, +inf), k = 0 .. ``levels`` - 1."""
+    runs = np.empty((levels, len(values)))
+    runs[0] = values
+    for k in range(1, levels):
+        half = 2 ** (k - 1)
+        np.maximum(runs[k - 1, :-half], runs[k - 1, half:], out=runs[k, :-half])
+        runs[k, -half:] = np.inf
+    return runs
 
 
-def _cut(at_edge: np.ndarray, width: float, perimeter: float, ends: tuple[np.ndarray, ...]):
+def _cut(at_edge: np.ndarray, lowest: np.ndarray, width: float, perimeter: float, ends: np.ndarray):
     """Lower ``at_edge``, the lowest height met on each bin edge (edge k at arc k ``width`` round a pitch curve
-    of ``perimeter``), to the segments with ends (s, h) = ``ends`` = (s_a, h_a, s_b, h_b) where they cross it."""
-    s_a, h_a, s_b, h_b = ends
-    run = np.mod(s_b - s_a + perimeter / 2, perimeter) - perimeter / 2
-    back = run < 0
-    s_a, h_a, h_b, run = np.where(back, s_b, s_a), np.where(back, h_b, h_a), np.where(back, h_a, h_b), np.abs(run)
-    first = np.floor(s_a / width).astype(int)
-    crossed = np.floor((s_a + run) / width).astype(int) - first           # bin edges crossed
-    some = np.flatnonzero(crossed)
-    slope = (h_b[some] - h_a[some]) / run[some]                            # run > 0 where an edge is crossed
-    s_a, h_a, first, crossed = s_a[some], h_a[some], first[some], crossed[some]
-    segment = np.repeat(np.arange(len(some)), crossed)
-    edge = np.arange(crossed.sum()) + np.repeat(first + 1 - (np.cumsum(crossed) - crossed), crossed)
-    np.minimum.at(at_edge, edge % len(at_edge), h_a[segment] + (edge * width - s_a[segment]) * slope[segment])
+    of ``perimeter``), to the segments with ends (s, h) = ``ends`` = (s_a, h_a, s_b, h_b) (rows) where they cross
+    it. A segment that stays at or above ``lowest``, a height each bin already reaches (bin k between edges k and
+    k + 1), over every bin its crossed edges bound lowers none of them and is passed over: ``lowest``'s run
+    maxima (``_run_maxima``) give the largest over those bins from two overlapping runs, for segments over fewer
+    than ``2 ** RUN_LEVELS`` bins that do not pass the end of the curve (the rest are all cut)."""
+    count = len(lowest)
+    runs = _run_maxima(lowest, RUN_LEVELS)
+    for block in range(0, ends.shape[1], SEGMENT_BLOCK):
+        s_a, h_a, s_b, h_b = ends[:, block:block + SEGMENT_BLOCK]
+        run = np.mod(s_b - s_a + perimeter / 2, perimeter) - perimeter / 2
+        back = run < 0
+        s_a, h_a, h_b = np.where(back, s_b, s_a), np.where(back, h_b, h_a), np.where(back, h_a, h_b)
+        run = np.abs(run)
+        first = np.floor(s_a / width).astype(int)
+        crossed = np.floor((s_a + run) / width).astype(int) - first       # bin edges crossed
+        low = np.mod(first, count)                                         # bins low to low + crossed
+        level = np.minimum(np.log2(crossed + 1).astype(int), RUN_LEVELS - 1)
+        high = np.minimum(low + crossed - 2 ** level + 1, count - 1)       # inf where the run passes the end
+        reached = np.maximum(runs[level, low], runs[level, high])
+        some = np.flatnonzero((crossed > 0) & ((crossed >= 2 ** RUN_LEVELS - 1) | (np.minimum(h_a, h_b) < reached)))
+        slope = (h_b[some] - h_a[some]) / run[some]                        # run > 0 where an edge is crossed
+        s_a, h_a, first, crossed = s_a[some], h_a[some], first[some], crossed[some]
+        segment = np.repeat(np.arange(len(some)), crossed)
+        edge = np.arange(crossed.sum()) + np.repeat(first + 1 - (np.cumsum(crossed) - crossed), crossed)
+        np.minimum.at(at_edge, edge % count, h_a[segment] + (edge * width - s_a[segment]) * slope[segment])
+
+
+def _with_segment_ends(near: np.ndarray, at: np.ndarray, after: np.ndarray, edged: int) -> np.ndarray:
+    """``near`` (positions x vertices, from ``_positions``) grown by both ends of every segment that may cut: an
+    edge (vertex columns ``at``, ``after``) of the first ``edged`` positions, or a vertex's chord to the next
+    position, with one end near."""
+    touching, chord = near[:edged, at] | near[:edged, after], near[:-1] | near[1:]
+    grown = near.copy()
+    grown[:edged, at] |= touching
+    grown[:edged, after] |= touching
+    grown[:-1] |= chord
+    grown[1:] |= chord
+    return grown
 
 
 def _lower_envelope(table: PitchTable, tip_height: float, module: float, positions) -> np.ndarray:
@@ -133,33 +171,33 @@ def _lower_envelope(table: PitchTable, tip_height: float, module: float, positio
     count = int(np.ceil(perimeter / (BIN_MODULES * module)))
     width = perimeter / count
     height, at_edge = np.full(count, tip_height), np.full(count, tip_height)
-    samples = cKDTree(table.points[:-1])
+    radial_arc, tolerance = _radial_arc(table), CONVERGED_MODULES * module
     # polar radius of the blank's tip, a little grown: points beyond it cut nothing
     tip = table.points + (tip_height + MARGIN_MODULES * module) * table.normals
     tip_angle, tip_squared = _polar(tip)
     order = np.argsort(tip_angle)
+    edges, chords = [], []
     for cloud, at, after, edged in positions:
         angle, squared = _polar(cloud)
         near = squared < np.interp(angle, tip_angle[order], tip_squared[order], period=2 * np.pi)
-        # both ends of a segment that may cut
-        touching, chord = near[:edged, at] | near[:edged, after], near[:-1] | near[1:]
-        grown = near.copy()
-        grown[:edged, at] |= touching
-        grown[:edged, after] |= touching
-        grown[:-1] |= chord
-        grown[1:] |= chord
+        grown = _with_segment_ends(near, at, after, edged)
         s, h = np.zeros(near.shape), np.full(near.shape, np.inf)
-        s[grown], h[grown] = _normal_coordinates(table, samples, cloud[grown])
+        s[grown], h[grown] = table.normal_coordinates(cloud[grown], radial_arc(angle[grown]), tolerance)
         keep = h < tip_height
         np.minimum.at(height, np.minimum((s[keep] / width).astype(int), count - 1), h[keep])
         # a segment with an end never projected (outside the grown tip by the polar test, though made
         # near by another segment of its other end) cuts only at that other end, recorded above
         cuts = (keep[:edged, at] | keep[:edged, after]) & grown[:edged, at] & grown[:edged, after]
-        _cut(at_edge, width, perimeter, (s[:edged, at][cuts], h[:edged, at][cuts],
-                                         s[:edged, after][cuts], h[:edged, after][cuts]))
+        edges.append(np.stack([s[:edged, at][cuts], h[:edged, at][cuts], s[:edged, after][cuts],
+                               h[:edged, after][cuts]]))
         cuts = (keep[:-1] | keep[1:]) & grown[:-1] & grown[1:]
-        _cut(at_edge, width, perimeter, (s[:-1][cuts], h[:-1][cuts], s[1:][cuts], h[1:][cuts]))
-    height = np.minimum(height, np.minimum(at_edge, np.roll(at_edge, -1)))     # a bin meets both its edges
+        chords.append(np.stack([s[:-1][cuts], h[:-1][cuts], s[1:][cuts], h[1:][cuts]]))
+    # the chords against the heights the vertices reach, then the edges against those and the chords' (most
+    # edges lie inside the swept region and cut nothing)
+    for segments in (chords, edges):
+        lowest = np.minimum(height, np.minimum(at_edge, np.roll(at_edge, -1)))      # a bin meets both its edges
+        _cut(at_edge, lowest, width, perimeter, np.concatenate(segments, axis=1))
+    height = np.minimum(height, np.minimum(at_edge, np.roll(at_edge, -1)))
     point, _, normal = table.at((np.arange(count) + 0.5) * width)
     return point + height[:, None] * normal
 
