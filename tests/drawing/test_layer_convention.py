@@ -14,7 +14,8 @@ ROOT = Path(__file__).resolve().parents[2]
 STANDARD = {"0", "Defpoints"}
 COMMANDS = {"gear": ["gear", str(ROOT / "examples/gear_ellipse.toml")],
             "cam": ["cam", str(ROOT / "examples/cam_flat_faced.toml")],
-            "parallelogram": ["parallelogram", str(ROOT / "examples/onion_transplanter.toml"), "--no-animation"]}
+            "parallelogram": ["parallelogram", str(ROOT / "examples/onion_transplanter.toml"), "--no-animation",
+                              "--no-tolerance"]}
 
 
 @pytest.fixture(scope="module")
