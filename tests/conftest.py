@@ -1,3 +1,4 @@
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -55,6 +56,32 @@ def example_result_from_synthesize(monkeypatch, example_result):
         return example_result if same else synthesize(problem, pick=pick, progress=progress, tolerance=tolerance)
     monkeypatch.setattr(fivebar, "synthesize", once)
 
+
+
+@pytest.fixture(scope="session")
+def example_result_drawings(example_result, tmp_path_factory):
+    """The files ``fivebar.drawings.write_drawings`` writes of ``example_result`` (sheets, drawings.pdf, tables;
+    about 4 s of CPU), written once per test process into one folder that the tests only read."""
+    from transplanter.fivebar.drawings import write_drawings
+
+    return write_drawings(example_result, tmp_path_factory.mktemp("example_drawings"))
+
+
+@pytest.fixture
+def example_result_drawings_copied(monkeypatch, example_result, example_result_drawings):
+    """The five-bar's file writer (``fivebar.output_files``) given ``example_result`` copies
+    ``example_result_drawings`` (the same files, in the order written) instead of drawing them again; any other
+    result is drawn as it is."""
+    from transplanter.fivebar import output_files
+
+    write_drawings = output_files.write_drawings
+
+    def copied(result, folder):
+        if result is not example_result:
+            return write_drawings(result, folder)
+        Path(folder).mkdir(parents=True, exist_ok=True)
+        return [Path(shutil.copy2(path, Path(folder) / path.name)) for path in example_result_drawings]
+    monkeypatch.setattr(output_files, "write_drawings", copied)
 
 def pytest_xdist_make_scheduler(config, log):
     """``--dist loadfile``, with every file that reads ``example_result`` (or a fixture named after it) in one

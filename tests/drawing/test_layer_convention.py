@@ -7,24 +7,23 @@ import pytest
 
 from transplanter.cli import main
 from transplanter.drawing.sheet import LAYERS
-from transplanter.fivebar.drawings import write_drawings
 
 ROOT = Path(__file__).resolve().parents[2]
 #: Layers every DXF file has besides the convention's: AutoCAD's own "0" and "Defpoints" (dimensions' points).
 STANDARD = {"0", "Defpoints"}
 COMMANDS = {"gear": ["gear", str(ROOT / "examples/gear_ellipse.toml")],
             "cam": ["cam", str(ROOT / "examples/cam_flat_faced.toml")],
-            "parallelogram": ["parallelogram", str(ROOT / "examples/onion_transplanter.toml"), "--no-animation"]}
+            "parallelogram": ["parallelogram", str(ROOT / "examples/onion_transplanter.toml"), "--no-animation",
+                              "--no-tolerance"]}
 
 
 @pytest.fixture(scope="module")
-def folders(example_result, tmp_path_factory) -> dict[str, Path]:
+def folders(example_result_drawings, tmp_path_factory) -> dict[str, Path]:
     out = {}
     for name, arguments in COMMANDS.items():
         out[name] = tmp_path_factory.mktemp(name) / "out"
         assert main([*arguments, "--out", str(out[name])]) in (0, 1)
-    out["fivebar"] = tmp_path_factory.mktemp("fivebar")
-    write_drawings(example_result, out["fivebar"])
+    out["fivebar"] = example_result_drawings[0].parent
     return out
 
 

@@ -17,7 +17,7 @@ from transplanter.cli import main
 from transplanter.drawing.gear_sheet import GearDrawing, write_gear_sheets
 from transplanter.drawing.sheet import LAYERS, TitleBlock
 from transplanter.fivebar.animation import FRAMES, render_frames, write_animation
-from transplanter.fivebar.drawings import LABEL_FRACTION, gear_drawings, write_drawings
+from transplanter.fivebar.drawings import LABEL_FRACTION, gear_drawings
 from transplanter.fivebar.gears_on_carrier import (
     DRAWN_WITHIN_MODULES,
     carrier_to_world,
@@ -40,10 +40,8 @@ def result(example_result):
 
 
 @pytest.fixture(scope="module")
-def folder(result, tmp_path_factory):
-    out = tmp_path_factory.mktemp("fivebar")
-    write_drawings(result, out)
-    return out
+def folder(example_result_drawings):
+    return example_result_drawings[0].parent
 
 
 def _table(path: Path):
@@ -246,15 +244,15 @@ def test_thinning_keeps_an_outline_simple_where_plain_douglas_peucker_would_cros
     assert shapely.distance(shapely.points(outline), shapely.linearrings(kept)).max() <= 0.05
 
 
-def test_the_design_is_a_command_result(result, tmp_path):
+def test_the_design_is_a_command_result(result, example_result_drawings_copied, tmp_path):
     """What the command runner reads of the five-bar design (``CommandResult``)."""
     check_protocol(result, tmp_path)
 
 
 @pytest.fixture
-def quick_command(example_result_from_synthesize, monkeypatch):
-    """The fivebar command on the module's result with one small figure, a stand-in animation and no solids (all
-    tested above or elsewhere; here only what the command writes and lists)."""
+def quick_command(example_result_from_synthesize, example_result_drawings_copied, monkeypatch):
+    """The fivebar command on the module's result with one small figure, a stand-in animation, the session's
+    drawings copied and no solids (all tested above or elsewhere; here only what the command writes and lists)."""
     from transplanter.fivebar import output_files
     from transplanter.solids import part_files
 

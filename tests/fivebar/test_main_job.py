@@ -227,8 +227,8 @@ def test_published_table4_design(problem):
     assert 0.74 < low < 0.79 and 1.38 < high < 1.44       # regression pin (0.77 to 1.41 when written)
 
 
-def test_cli_json_fields(example_result_from_synthesize, tmp_path, capsys):
-    code = main(["fivebar", str(EXAMPLE), "--json", "--out", str(tmp_path)])
+def test_cli_json_fields(example_result_from_synthesize, example_result_drawings_copied, tmp_path, capsys):
+    code = main(["fivebar", str(EXAMPLE), "--json", "--no-animation", "--out", str(tmp_path)])
     report = json.loads(capsys.readouterr().out)
     assert code == 0
     for key in ("key_pose_position_errors_mm", "key_pose_angle_errors_deg", "min_discriminant",

@@ -21,12 +21,11 @@ GEARS = ("sun", "first_intermediate", "second_intermediate", "planet")
 
 
 @pytest.fixture(scope="module")
-def folders(example_result, tmp_path_factory):
-    """The drawings written twice, as two runs of the main job write them."""
-    folders = [tmp_path_factory.mktemp(f"run{run}") for run in (1, 2)]
-    for folder in folders:
-        write_drawings(example_result, folder)
-    return folders
+def folders(example_result, example_result_drawings, tmp_path_factory):
+    """The drawings written twice, as two runs of the main job write them: the session's, and again here."""
+    again = tmp_path_factory.mktemp("run2")
+    write_drawings(example_result, again)
+    return [example_result_drawings[0].parent, again]
 
 
 def test_two_runs_write_the_same_bytes(folders):

@@ -23,7 +23,7 @@ def run(tmp_path_factory):
     path.write_text(PROBLEM.read_text().replace("population = 100", "population = 16")
                     .replace("generations = 100", "generations = 6"))
     out = folder / "out"
-    assert main(["parallelogram", str(path), "--no-animation", "--quiet", "--out", str(out)]) == 0
+    assert main(["parallelogram", str(path), "--no-animation", "--quiet", "--no-tolerance", "--out", str(out)]) == 0
     return path, out
 
 
