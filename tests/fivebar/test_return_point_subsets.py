@@ -15,7 +15,7 @@ import pytest
 from transplanter.errors import TransplanterError
 from transplanter.fivebar.alternatives import Failure, assess
 from transplanter.fivebar.candidate import GRID, evaluate_candidate
-from transplanter.fivebar.design_solver import DesignSolver
+from transplanter.fivebar.design_solver import DesignSolver, HollowError
 from transplanter.fivebar.held_relative_angle import hold_relative_angle
 from transplanter.fivebar.problem import FiveBarProblem
 from transplanter.fivebar.region import solution_region
@@ -106,11 +106,21 @@ def test_a_subset_whose_least_bending_fits_all_fail_holds_the_relative_angle_and
 @pytest.mark.parametrize("dropped", ["P5", "P6", "P7", "P8", "P9"])
 def test_the_example_with_points_dropped_has_a_region_and_a_design(problem, dropped):
     """Each return point dropped in turn: the region has feasible five-bars, and the design NLP refines the first
-    of them into a design that passes its checks (P8 and P9 dropped together: the command line, above)."""
+    of them that does not stall into a design that passes its checks (P8 and P9 dropped together: the command
+    line, above). Which starts stall turns on rounding: IPOPT's path from a hard start is that sensitive."""
     subset = _subset(problem, [k for k, label in enumerate(problem.return_labels) if label != dropped])
     region = solution_region(subset)
     assert region.feasible
-    judged = assess(subset, DesignSolver(subset).refine(region.feasible[0]), 0)
+    solver = DesignSolver(subset)
+    for k, candidate in enumerate(region.feasible):     # in order, as the synthesis takes them
+        try:
+            design = solver.refine(candidate)
+        except HollowError:
+            continue
+        judged = assess(subset, design, k)
+        break
+    else:
+        pytest.fail(f"none of the {len(region.feasible)} five-bars refined")
     assert not isinstance(judged, Failure), judged.reason
 
 

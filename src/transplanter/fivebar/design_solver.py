@@ -30,6 +30,7 @@ from transplanter.fivebar.nlp import (
     build_nlp,
 )
 from transplanter.fivebar.problem import FiveBarProblem
+from transplanter.fivebar.reached_optima import ReachedOptimum, reached
 from transplanter.fivebar.return_stroke import ReturnStroke
 from transplanter.fivebar.whole_turn import CURVES, whole_turn
 from transplanter.solve import Solver, StallRule, exchange, periodic_peaks
@@ -73,10 +74,13 @@ class DesignSolver:
         self.nlp: DesignNLP = build_nlp(self.problem, capacity)
         self.solver = Solver("fivebar_design", self.nlp.layout, stall=STALL)
         self.builds += 1
+        self.reached: tuple[ReachedOptimum, ...] = ()     # this solver's refinements (``refine``)
+        self.repeats = 0                                   # refinements taken from an earlier one
 
     def twin(self) -> DesignSolver:
         """A solver in this one's state that shares its built NLP and IPOPT Functions (no build): what each
-        solve changes, the exchange turns and a rebuild with more room, stays each one's own."""
+        solve changes, the exchange turns, the refinements it finished and a rebuild with more room, stays
+        each one's own."""
         return copy.copy(self)
 
     def solve(self, start: Candidate, added_turns=(), warm: DesignSolution | None = None,
@@ -107,13 +111,32 @@ class DesignSolver:
 
     def refine(self, start: Candidate) -> DesignSolution:
         """The largest smallest transmission angle from ``start`` with every pitch curve a shaper can cut:
-        a kappa >= -``CONCAVITY_LIMIT``; a ``HollowError`` naming IPOPT's end when it fails there."""
+        a kappa >= -``CONCAVITY_LIMIT``; a ``HollowError`` naming IPOPT's end when it fails there. A start
+        whose first solve reaches the optimum of an earlier refinement of this solver, offered the same
+        exchange turns, ends as that one did (``fivebar.reached_optima``)."""
+        turns, branch = self.exchange_turns, float(start.mech.branch)
         try:
-            both = self._exchange(start, -CONCAVITY_LIMIT, closure_in_quality=True)
-            return self._exchange(start, -CONCAVITY_LIMIT, warm=both)
+            first = self.solve(start, turns, curvature_floor=-CONCAVITY_LIMIT, closure_in_quality=True)
         except SolverError as error:
-            raise HollowError(f"IPOPT ended with {error.status} with the pitch curves held to a kappa >= "
-                              f"{-CONCAVITY_LIMIT:g} (hollows a shaper cuts)", error.status) from None
+            raise _hollow(error) from None
+        assert first.solved is not None, "a solve's design carries its solution"
+        known = reached(self.reached, turns, branch, first.solved.x)
+        if known is not None:
+            self.exchange_turns, self.repeats = known.turns_after, self.repeats + 1
+            if isinstance(known.outcome, HollowError):
+                raise HollowError(known.outcome.reason, known.outcome.status)
+            assert isinstance(known.outcome, DesignSolution)
+            return known.outcome
+        outcome: DesignSolution | HollowError
+        try:
+            both = self._exchange(start, -CONCAVITY_LIMIT, closure_in_quality=True, first=first)
+            outcome = self._exchange(start, -CONCAVITY_LIMIT, warm=both)
+        except SolverError as error:
+            outcome = _hollow(error)
+        self.reached = (*self.reached, ReachedOptimum(turns, branch, first.solved.x, outcome, self.exchange_turns))
+        if isinstance(outcome, HollowError):
+            raise HollowError(outcome.reason, outcome.status)
+        return outcome
 
     def without_hold(self, start: Candidate) -> str:
         """What ``start``'s design is without the curvature hold that ``refine`` failed with: the least a kappa
@@ -149,11 +172,12 @@ class DesignSolver:
         return self._exchange(start, -CONCAVITY_LIMIT, warm=warm)
 
     def _exchange(self, start: Candidate, curvature_floor: float | None, warm: DesignSolution | None = None,
-                  iteration_limit: int | None = None, closure_in_quality: bool = False) -> DesignSolution:
+                  iteration_limit: int | None = None, closure_in_quality: bool = False,
+                  first: DesignSolution | None = None) -> DesignSolution:
         """``solve`` with the carrier turns where the fine check finds sin^2 of the transmission angle below t,
         the closure margin below its floor, or rho', a pressure angle or a curvature (below
         ``curvature_floor``) out of bounds,
-        added to its grid (``solve.exchange``)."""
+        added to its grid (``solve.exchange``); ``first``: its first solve, done already."""
         low, high = 1 / self.problem.ratio_bounds[1], 1 / self.problem.ratio_bounds[0]
         floor = self.problem.min_closure_margin
 
@@ -173,10 +197,16 @@ class DesignSolver:
                   (curvature_floor - check["curvature"]) / abs(curvature_floor) - CURVATURE_GAP)])
             return check["turns"][periodic_peaks(shortfall)]
 
-        solution, added = exchange(solve, worst_turns, self.exchange_turns, EXCHANGE_ROUNDS, warm)
+        solution, added = exchange(solve, worst_turns, self.exchange_turns, EXCHANGE_ROUNDS, warm, first)
         self.exchange_turns = added[-(self.nlp.capacity // 2):]     # room left for a new start's own rounds
         # the multipliers serve this exchange's rounds only; a lane's result leaves them (and the NLP) behind
         return dataclasses.replace(solution, solved=None)
+
+
+def _hollow(error: SolverError) -> HollowError:
+    """``refine``'s failure: how IPOPT ended with the pitch curves held to hollows a shaper cuts."""
+    return HollowError(f"IPOPT ended with {error.status} with the pitch curves held to a kappa >= "
+                       f"{-CONCAVITY_LIMIT:g} (hollows a shaper cuts)", error.status)
 
 
 def curvature_text(design: DesignSolution) -> str:

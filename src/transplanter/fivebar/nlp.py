@@ -347,14 +347,18 @@ def build_nlp(problem: FiveBarProblem, capacity: int = ADDED_CAPACITY) -> Design
     points = len(fixed) + capacity
     rows = [ca.vertcat(ca.DM(basis_matrix(fixed, n, order)), added_basis[order].T) for order in range(4)]
     rho_grid = rho1 + grid + ca.mtimes(rows[0], q) - ca.dot(ca.DM(q0), q)
-    slope = 1 + ca.mtimes(rows[1], q)
     theta1_grid = theta11 - grid
-    lengths = ca.vertcat(l1, l2, ca.norm_2(e_local - f_local), l4, ca.norm_2(b))
-    crank = ca.horzcat(theta1_grid, theta1_grid + rho_grid, ca.repmat(ca.atan2(b[1], -b[0]), points, 1)).T
+    # the rows of a grid point depend on the variables through its crank angles and rho', rho'', rho''', the
+    # link lengths and the ground's angle: the Hessian of the Lagrangian goes through them (``NLPBuilder.lifted``)
+    cranks = nlp.lifted("grid_cranks", ca.horzcat(theta1_grid, theta1_grid + rho_grid).T)
+    derivatives = nlp.lifted("grid_derivatives", ca.horzcat(1 + ca.mtimes(rows[1], q), ca.mtimes(rows[2], q),
+                                                            ca.mtimes(rows[3], q)).T)
+    slope = derivatives[0, :].T
+    lengths = nlp.lifted("lengths", ca.vertcat(l1, l2, ca.norm_2(e_local - f_local), l4, ca.norm_2(b)))
+    crank = ca.vertcat(cranks, ca.repmat(nlp.lifted("ground_angle", ca.atan2(b[1], -b[0])), 1, points))
     along_grid = ca.repmat(lengths, 1, points), crank
     margin = casadi_function(fivebar_closure_margin).map(points)(*along_grid).T
     transmission = casadi_function(fivebar_transmission_margin).map(points)(*along_grid).T
-    derivatives = ca.horzcat(slope, ca.mtimes(rows[2], q), ca.mtimes(rows[3], q)).T
     curvature = casadi_function(train_pitch_curvature).map(points)(derivatives, ca.repmat(correction, 1, points))[1]
     low_ratio, high_ratio = problem.ratio_bounds
     nlp.constraints("closure_margin", margin, problem.min_closure_margin, np.inf, problem.min_closure_margin,
@@ -371,7 +375,8 @@ def build_nlp(problem: FiveBarProblem, capacity: int = ADDED_CAPACITY) -> Design
         nlp.constraints(name, pressure[k, :].T, -np.inf, 0.0, 1.0, (None, (PRESSURE_LIMIT, "upper")))
 
     spans = panels(knots(n), count=n, nodes=QUADRATURE_NODES)
-    root_slope = ca.sqrt(1 + ca.mtimes(ca.DM(basis_matrix(spans.nodes.ravel(), n, 1)), q))
+    slopes = nlp.lifted("quadrature_slopes", 1 + ca.mtimes(ca.DM(basis_matrix(spans.nodes.ravel(), n, 1)), q))
+    root_slope = ca.sqrt(slopes)
     nlp.constraints("correction_closure", correction * ca.dot(ca.DM(spans.weights.ravel()), root_slope) - TWO_PI,
                     0.0, 0.0)
     nlp.constraints("return_order", ca.vertcat(ret[0, 0] - key[-1, 3], ca.diff(ret[0, :].T), TWO_PI - ret[0, m - 1]),

@@ -12,12 +12,14 @@ Solved = TypeVar("Solved")
 
 
 def exchange(solve: Callable[[np.ndarray, Solved | None], Solved], worst_points: Callable[[Solved], np.ndarray],
-             points: np.ndarray, rounds: int, warm: Solved | None = None) -> tuple[Solved, np.ndarray]:
+             points: np.ndarray, rounds: int, warm: Solved | None = None,
+             first: Solved | None = None) -> tuple[Solved, np.ndarray]:
     """``solve(points, previous)`` from ``warm``, then again with ``worst_points(solution)`` added to
-    ``points``, until it finds none (or after ``rounds`` solves); the last solution and the points held."""
+    ``points``, until it finds none (or after ``rounds`` solves); the last solution and the points held.
+    ``first``: the first solve's solution, where the caller has it already."""
     solution = warm
-    for _ in range(rounds):
-        solution = solve(points, solution)
+    for round_ in range(rounds):
+        solution = first if round_ == 0 and first is not None else solve(points, solution)
         worst = worst_points(solution)
         if not worst.size:
             break

@@ -96,6 +96,8 @@ class Solver:
 
     def _nlpsol(self, name: str, options: dict) -> ca.Function:
         layout = self.layout
+        if layout.hessian is not None:
+            options = {"hess_lag": layout.hessian, **options}
         return ca.nlpsol(name, "ipopt", {"x": layout.x, "p": layout.p, "f": layout.f, "g": layout.g}, options)
 
     def _warm(self) -> ca.Function:

@@ -12,6 +12,8 @@ from dataclasses import dataclass, field
 import casadi as ca
 import numpy as np
 
+from transplanter.solve.lifted_hessian import lifted_hessian
+
 #: A bound's name in reports and the side of the reported quantity it limits ("lower" or "upper"), or
 #: None for a bound no report names (an equality, a row that only keeps the NLP well posed).
 BoundName = tuple[str, str] | None
@@ -78,6 +80,7 @@ class NLPBuilder:
         self._variables: list[tuple[BoundedBlock, ca.SX]] = []
         self._parameters: list[tuple[Block, ca.SX]] = []
         self._rows: list[tuple[BoundedBlock, ca.SX]] = []
+        self._lifted: list[tuple[ca.SX, ca.SX]] = []
 
     @staticmethod
     def _next(blocks: list) -> int:
@@ -109,6 +112,15 @@ class NLPBuilder:
         self._parameters.append((Block(name, self._next(self._parameters), shape), symbol))
         return symbol
 
+    def lifted(self, name: str, expression) -> ca.SX:
+        """A symbol standing for ``expression`` (of the variables and parameters; any shape) in the
+        expressions that follow: the NLP is the same, and the Hessian of its Lagrangian is formed through
+        these quantities (``solve.lifted_hessian``): worth it where many rows share few of them each."""
+        expression = ca.SX(expression)
+        symbol = ca.SX.sym(name, *expression.shape)
+        self._lifted.append((ca.vec(symbol), ca.vec(expression)))
+        return symbol
+
     def constraints(self, name: str, expression, lower, upper, scale=1.0, names=None) -> None:
         """Rows ``lower <= expression <= upper`` named ``name`` (``expression`` a column); ``scale`` is the
         size a row's distance from its bound is judged against; ``names`` the (lower, upper) bound names,
@@ -121,13 +133,19 @@ class NLPBuilder:
                                         block.flat(scale), _per_entry(names, size)), expression))
 
     def build(self, objective) -> NLPLayout:
+        x = ca.vertcat(*(symbol for _, symbol in self._variables))
+        p = ca.vertcat(*(ca.vec(symbol) for _, symbol in self._parameters))
+        f, g = ca.SX(objective), ca.vertcat(*(expression for _, expression in self._rows))
+        hessian = None
+        if self._lifted:
+            lifted, values = (ca.vertcat(*side) for side in zip(*self._lifted, strict=True))
+            hessian = lifted_hessian(x, p, lifted, values, f, g)
+            f, g = ca.substitute([f, g], [lifted], [values])
         return NLPLayout(
-            x=ca.vertcat(*(symbol for _, symbol in self._variables)),
-            p=ca.vertcat(*(ca.vec(symbol) for _, symbol in self._parameters)),
-            f=ca.SX(objective), g=ca.vertcat(*(expression for _, expression in self._rows)),
+            x=x, p=p, f=f, g=g,
             variables={block.name: block for block, _ in self._variables},
             parameters={block.name: block for block, _ in self._parameters},
-            rows={block.name: block for block, _ in self._rows})
+            rows={block.name: block for block, _ in self._rows}, hessian=hessian)
 
 
 @dataclass(frozen=True)
@@ -141,6 +159,9 @@ class NLPLayout:
     variables: Mapping[str, BoundedBlock]
     parameters: Mapping[str, Block]
     rows: Mapping[str, BoundedBlock]
+    #: The Hessian of the Lagrangian through the lifted quantities (IPOPT's ``hess_lag``), or None
+    #: (CasADi forms it): ``NLPBuilder.lifted``.
+    hessian: ca.Function | None = None
 
     def vector(self, values: Mapping[str, object]) -> np.ndarray:
         """The decision vector from a value for every variable block, by name."""
