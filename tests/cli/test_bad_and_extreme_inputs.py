@@ -194,7 +194,7 @@ def test_gear_with_self_crossing_teeth_exits_1_with_failed_files(tmp_path, capsy
     monkeypatch.setattr(gears.GearResult, "write_files", lambda result, folder, animation=True: [])
     monkeypatch.setattr(gears.GearResult, "draw_figures", lambda result: {"gears": Figure(figsize=(1, 1))})
     out = tmp_path / "out"
-    assert main(["gear", str(EXAMPLES / "gear_ellipse.toml"), "--out", str(out), "--quiet"]) == 1
+    assert main(["gear", str(EXAMPLES / "gear_ellipse.toml"), "--out", str(out), "--quiet", "--no-step"]) == 1
     assert "tooth outlines cross themselves" in capsys.readouterr().err
     assert all(p.name.startswith("FAILED-") for p in out.iterdir())
 

@@ -83,7 +83,7 @@ class CamResult(CommandResult):
 
         return draw_figures(self)
 
-    def write_files(self, folder: Path, animation: bool = True) -> list[Path]:
+    def write_files(self, folder: Path, animation: bool = True, solids: bool = True) -> list[Path]:
         """The profile as CSV, DXF and SVG (``cam.write_drawings``), and design.toml (``design_toml``)."""
         from transplanter.cam.design_toml import write_design
         from transplanter.cam.drawings import write_drawings
