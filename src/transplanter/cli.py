@@ -268,7 +268,7 @@ COMMANDS = (
             "angle, curvature, undercut, the smallest base circle", "cam problem file (TOML, mm and degrees)",
             "cam_profile.csv, cam.dxf, cam.svg, design.toml and the figures", cam, run=_given_or_made,
             flags=(Flag(("--design",), {"metavar": "DESIGN.toml", "help": "make the cam on this design's base circle "
-                                        "(a run's design.toml) instead of the file's or the smallest"}),)),
+                                        "(a run's design.toml) instead of the file's or the smallest"}), NO_STEP)),
     Command("parallelogram", "onion transplanter: parallelogram planting mechanism driven by denatured Pascal limacon "
             "gears, NSGA-II and NLP polish", "parallelogram problem file (TOML, mm and degrees)",
             "figures, pareto.csv, trajectory.csv, gear drawings and animation.gif", parallelogram, run=_parallelogram,

@@ -35,6 +35,13 @@ def test_the_gear_commands_solids_are_its_drawings_extruded(tmp_path):
     assert result.to_json()["solids"] == f"STEP solids: gears {width:g} mm wide"
 
 
+def test_no_step_writes_no_solid(tmp_path):
+    out = tmp_path / "out"
+    assert main(["gear", str(ROOT / "examples/gear_ellipse.toml"), "--quiet", "--no-step", "--out", str(out)]) == 0
+    assert "solid" not in json.loads((out / "report.json").read_text())["files"]
+    assert not list(out.glob("*.step"))
+
+
 def test_the_onion_transplanters_gears_take_its_own_face_width(tmp_path):
     """A small search through the parallelogram command with [gear] face_width_mm: its cut pair's solids that
     wide, listed in report.json."""
