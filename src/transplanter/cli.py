@@ -114,7 +114,8 @@ def _run_command(command: Command, args) -> int:
             if args.folder:
                 files = _save_figures(figures, args.folder, dpi=command.dpi)
     if args.folder:
-        written = result.write_files(args.folder, animation=not getattr(args, "no_animation", False))
+        written = result.write_files(args.folder, animation=not getattr(args, "no_animation", False),
+                                     solids=not getattr(args, "no_step", False))
         files += [path.name for path in written]
     return _publish(args, result, files)
 
@@ -236,6 +237,9 @@ class Command:
 #: The design commands that analyse their built mechanism's tolerances take this flag.
 NO_TOLERANCE = Flag(("--no-tolerance",), {"action": "store_true", "help": "skip the tolerance analysis of the built "
                                           "mechanism (report section and figures)"})
+#: The design commands that write STEP solids of their parts take this flag.
+NO_STEP = Flag(("--no-step",), {"action": "store_true", "help": "with --out: skip the parts' STEP solids (they need "
+                                "the optional extra transplanter[cad] and take seconds a part)"})
 
 #: The design commands, in the order ``--help`` lists them.
 COMMANDS = (
@@ -243,7 +247,7 @@ COMMANDS = (
             "the figure", burmester, plot="burmester", dpi=130,
             flags=(Flag(("--plot",), {"metavar": "PNG", "help": "write the figure to this file"}),)),
     Command("gear", "a pair of non-circular gears: pitch curves, closure, teeth, drawings",
-            "gear problem file (TOML, mm and degrees)", "CSV/SVG/DXF drawings and figures", gears),
+            "gear problem file (TOML, mm and degrees)", "CSV/SVG/DXF drawings and figures", gears, flags=(NO_STEP,)),
     Command("fivebar", "five-bar seedling pushing mechanism with its planetary gear train (Wang et al. 2025): region, "
             "precise design, gears, verification", "five-bar problem file (TOML, mm and degrees)",
             "the figures, part and assembly drawings (DXF, PDF, parts.csv), CSV tables and animation.gif", fivebar,
@@ -252,19 +256,19 @@ COMMANDS = (
                                         "help": "evaluate this given design instead of designing one"}, exclusive=True),
                    Flag(("--pick",), {"metavar": "N", "type": int, "help": "build alternative N of the ranked "
                                       "alternatives (default 1, the best; report.md lists them)"}, exclusive=True),
-                   NO_TOLERANCE)),
+                   NO_TOLERANCE, NO_STEP)),
     Command("reverse", "planetary non-circular gear train that makes the arm tip follow a closed path (the "
             "rice-transplanter, reverse-gear-design and cusp-pitch-curve papers): inverse kinematics, monotonicity, "
             "gears, round trip", "reverse-design problem file (TOML, mm and degrees)", "the figures and design.toml",
             reverse, run=_reverse,
             flags=(Flag(("--design",), {"metavar": "DESIGN.toml", "help": "make the train with this design's arm and "
                                         "train (a run's design.toml) instead of the file's"}),
-                   NO_TOLERANCE)),
+                   NO_TOLERANCE, NO_STEP)),
     Command("cam", "a disc cam with a roller follower (translating or oscillating): motion laws, profile, pressure "
             "angle, curvature, undercut, the smallest base circle", "cam problem file (TOML, mm and degrees)",
             "cam_profile.csv, cam.dxf, cam.svg, design.toml and the figures", cam, run=_given_or_made,
             flags=(Flag(("--design",), {"metavar": "DESIGN.toml", "help": "make the cam on this design's base circle "
-                                        "(a run's design.toml) instead of the file's or the smallest"}),)),
+                                        "(a run's design.toml) instead of the file's or the smallest"}), NO_STEP)),
     Command("parallelogram", "onion transplanter: parallelogram planting mechanism driven by denatured Pascal limacon "
             "gears, NSGA-II and NLP polish", "parallelogram problem file (TOML, mm and degrees)",
             "figures, pareto.csv, trajectory.csv, gear drawings and animation.gif", parallelogram, run=_parallelogram,
@@ -273,7 +277,7 @@ COMMANDS = (
                                         "examples/onion_published.toml) instead of searching"}, exclusive=True),
                    Flag(("--pick",), {"metavar": "N", "type": int, "help": "build the N-th Pareto design, ranked by "
                                       "distance to the ideal point (default 1, the knee)"}, exclusive=True),
-                   NO_TOLERANCE)),
+                   NO_TOLERANCE, NO_STEP)),
     Command("pickup", "the seedling pick-up mechanism of the cusp-pitch-curve paper (eq 15), forward: tip path, "
             "picking and pushing angles, tip speed, animation", "pick-up problem file (TOML, mm and degrees)",
             "the figures and pickup.gif", pickup, step="kinematics", animation="pickup.gif"),

@@ -58,7 +58,8 @@ class CommandResult(ABC):
         """The report's figures (matplotlib) by file stem; none unless the result draws some."""
         return {}
 
-    def write_files(self, folder: Path, animation: bool = True) -> list[Path]:
-        """Write the files beyond the report and the figures into ``folder`` (drawings, tables and, unless
-        ``animation`` is False, the animation); the paths written, none unless the result has such files."""
+    def write_files(self, folder: Path, animation: bool = True, solids: bool = True) -> list[Path]:
+        """Write the files beyond the report and the figures into ``folder`` (drawings, tables, the STEP solids
+        unless ``solids`` is False, and the animation unless ``animation`` is False); the paths written, none
+        unless the result has such files."""
         return []

@@ -32,7 +32,7 @@ def _strict_json(text):
 
 
 def test_json_fields_and_drawings(tmp_path, run):
-    code, stdout, stderr = run(EXAMPLE, "--json", "--out", tmp_path / "out")
+    code, stdout, stderr = run(EXAMPLE, "--json", "--no-step", "--out", tmp_path / "out")
     assert code == 0, stderr
     report = _strict_json(stdout)
     assert set(report["max_pressure_angle_deg"]) >= {"rise", "return", "at_deg"}

@@ -191,10 +191,10 @@ def test_gear_with_self_crossing_teeth_exits_1_with_failed_files(tmp_path, capsy
     assert "driver 4, driven 4 crossings" in crossing_failures[0]
     monkeypatch.setattr(gears, "synthesize", lambda problem: real)
     monkeypatch.setattr(gears.GearResult, "failures", property(lambda self: crossing_failures))
-    monkeypatch.setattr(gears.GearResult, "write_files", lambda result, folder, animation=True: [])
+    monkeypatch.setattr(gears.GearResult, "write_files", lambda result, folder, animation=True, solids=True: [])
     monkeypatch.setattr(gears.GearResult, "draw_figures", lambda result: {"gears": Figure(figsize=(1, 1))})
     out = tmp_path / "out"
-    assert main(["gear", str(EXAMPLES / "gear_ellipse.toml"), "--out", str(out), "--quiet"]) == 1
+    assert main(["gear", str(EXAMPLES / "gear_ellipse.toml"), "--out", str(out), "--quiet", "--no-step"]) == 1
     assert "tooth outlines cross themselves" in capsys.readouterr().err
     assert all(p.name.startswith("FAILED-") for p in out.iterdir())
 

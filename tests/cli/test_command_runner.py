@@ -36,7 +36,7 @@ class _Made(CommandResult):
     def draw_figures(self):
         return {"made": Figure(figsize=(1, 1))}
 
-    def write_files(self, folder, animation=True):
+    def write_files(self, folder, animation=True, solids=True):
         (folder / "made.csv").write_text("a\n")
         return [folder / "made.csv"]
 

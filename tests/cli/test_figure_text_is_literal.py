@@ -19,7 +19,7 @@ def _with_title(text: str, title: str) -> str:
 
 
 @pytest.mark.parametrize("command, example, edit, extra", [
-    ("gear", "gear_ellipse.toml", lambda t: _with_title(t, UNBALANCED), []),
+    ("gear", "gear_ellipse.toml", lambda t: _with_title(t, UNBALANCED), ["--no-step"]),
     ("pickup", "pickup_forward.toml", lambda t: _with_title(t, UNBALANCED), ["--no-animation"]),
     ("burmester", "burmester_4poses.toml",
      lambda t: _with_title(t, UNBALANCED).replace('label = "P1"', f"label = '{UNBALANCED}'"), []),

@@ -11,10 +11,10 @@ from transplanter.drawing.sheet import LAYERS
 ROOT = Path(__file__).resolve().parents[2]
 #: Layers every DXF file has besides the convention's: AutoCAD's own "0" and "Defpoints" (dimensions' points).
 STANDARD = {"0", "Defpoints"}
-COMMANDS = {"gear": ["gear", str(ROOT / "examples/gear_ellipse.toml")],
-            "cam": ["cam", str(ROOT / "examples/cam_flat_faced.toml")],
+COMMANDS = {"gear": ["gear", str(ROOT / "examples/gear_ellipse.toml"), "--no-step"],
+            "cam": ["cam", str(ROOT / "examples/cam_flat_faced.toml"), "--no-step"],
             "parallelogram": ["parallelogram", str(ROOT / "examples/onion_transplanter.toml"), "--no-animation",
-                              "--no-tolerance"]}
+                              "--no-tolerance", "--no-step"]}
 
 
 @pytest.fixture(scope="module")

@@ -34,7 +34,7 @@ def run(example_result, tmp_path_factory, monkeypatch_module):
     monkeypatch_module.setattr(fivebar, "synthesize", lambda problem, **options: example_result)
     monkeypatch_module.setattr(fivebar.FiveBarResult, "draw_figures", lambda result: {"plain": Figure((1, 1))})
     out = tmp_path_factory.mktemp("run") / "out"
-    assert main(["fivebar", str(EXAMPLE), "--out", str(out), "--no-animation", "--quiet"]) == 0
+    assert main(["fivebar", str(EXAMPLE), "--out", str(out), "--no-animation", "--no-step", "--quiet"]) == 0
     return out
 
 

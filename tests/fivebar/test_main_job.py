@@ -237,7 +237,7 @@ def test_published_table4_design(problem):
 
 
 def test_cli_json_fields(example_result_from_synthesize, example_result_drawings_copied, tmp_path, capsys):
-    code = main(["fivebar", str(EXAMPLE), "--json", "--no-animation", "--out", str(tmp_path)])
+    code = main(["fivebar", str(EXAMPLE), "--json", "--no-animation", "--no-step", "--out", str(tmp_path)])
     report = json.loads(capsys.readouterr().out)
     assert code == 0
     for key in ("key_pose_position_errors_mm", "key_pose_angle_errors_deg", "min_discriminant",

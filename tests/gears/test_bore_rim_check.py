@@ -32,7 +32,7 @@ def _small_pair_failures(root: float) -> str:
 def test_a_bore_near_the_teeth_fails_the_gear_command_with_the_numbers(tmp_path):
     problem, out = tmp_path / "small.toml", tmp_path / "out"
     problem.write_text(SMALL_PAIR)
-    run = subprocess.run([sys.executable, "-m", "transplanter", "gear", str(problem), "--out", str(out)],
+    run = subprocess.run([sys.executable, "-m", "transplanter", "gear", str(problem), "--no-step", "--out", str(out)],
                          capture_output=True, text=True, cwd=ROOT)
     assert run.returncode == 1 and run.stderr.count("\n") == 1 and "driver bore" in run.stderr
     assert all(path.name.startswith("FAILED-") for path in out.iterdir())

@@ -35,7 +35,7 @@ def test_one_example_per_family():
 
 
 def test_json_fields_and_drawings(tmp_path):
-    run = _run(ROOT / "examples/gear_ellipse.toml", "--json", "--out", tmp_path)
+    run = _run(ROOT / "examples/gear_ellipse.toml", "--json", "--no-step", "--out", tmp_path)
     assert run.returncode == 0, run.stderr
     report = json.loads(run.stdout)
     for key in ("center_distance", "orders", "ratio_range", "perimeters", "convex", "min_curvature_radius",

@@ -64,7 +64,7 @@ def test_design_json_and_figures(tmp_path, capsys):
     The published optimum's depth under the file's conventions (24.996 mm) is below the band [25, 30] mm, so
     the run is FAILED (exit 1) and says so in one line naming the depth."""
     out = tmp_path / "out"
-    code = main(["parallelogram", str(PROBLEM), "--design", str(PUBLISHED), "--json", "--out", str(out)])
+    code = main(["parallelogram", str(PROBLEM), "--design", str(PUBLISHED), "--json", "--no-step", "--out", str(out)])
     err = capsys.readouterr().err.strip()
     assert code == 1
     report = json.loads((out / "FAILED-report.json").read_text())
@@ -86,8 +86,8 @@ def test_design_json_and_figures(tmp_path, capsys):
     assert 0.5 < report["tolerance"]["violation_fraction"]["depth band"] < 1
     assert "## Tolerances (the built mechanism)" in (out / "FAILED-report.md").read_text()
     skipped = tmp_path / "skipped"
-    assert main(["parallelogram", str(PROBLEM), "--design", str(PUBLISHED), "--quiet", "--no-tolerance", "--out",
-                 str(skipped)]) == 1
+    assert main(["parallelogram", str(PROBLEM), "--design", str(PUBLISHED), "--quiet", "--no-tolerance", "--no-step",
+                 "--out", str(skipped)]) == 1
     assert "tolerance" not in json.loads((skipped / "FAILED-report.json").read_text())
     assert not (skipped / "FAILED-tolerance_band.png").exists()
 

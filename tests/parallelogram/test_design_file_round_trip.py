@@ -23,7 +23,8 @@ def run(tmp_path_factory):
     path.write_text(PROBLEM.read_text().replace("population = 100", "population = 16")
                     .replace("generations = 100", "generations = 6"))
     out = folder / "out"
-    assert main(["parallelogram", str(path), "--no-animation", "--quiet", "--no-tolerance", "--out", str(out)]) == 0
+    assert main(["parallelogram", str(path), "--no-animation", "--no-step", "--quiet", "--no-tolerance", "--out",
+                 str(out)]) == 0
     return path, out
 
 
@@ -34,7 +35,7 @@ def test_design_file_is_written_listed_and_read_back(run, tmp_path):
     assert set(tomllib.loads((out / "design.toml").read_text())["design"]) == set(report["design"])
     given = tmp_path / "given"
     assert main(["parallelogram", str(path), "--design", str(out / "design.toml"), "--quiet", "--no-tolerance",
-                 "--out", str(given)]) == 0
+                 "--no-step", "--out", str(given)]) == 0
     assert_round_trip(report, read_report(given), ("design", "trajectory"))
 
 

@@ -79,7 +79,8 @@ def test_design_command_json_and_files(tmp_path):
     path = tmp_path / "small.toml"
     path.write_text(text)
     out = tmp_path / "out"
-    assert main(["parallelogram", str(path), "--json", "--no-animation", "--no-tolerance", "--out", str(out)]) in (0, 1)
+    assert main(["parallelogram", str(path), "--json", "--no-animation", "--no-tolerance", "--no-step", "--out",
+                 str(out)]) in (0, 1)
     report = json.loads((out / "report.json").read_text()) if (out / "report.json").exists() else \
         json.loads((out / "FAILED-report.json").read_text())
     assert {"pareto", "knee", "gear", "trajectory", "timings_s", "polished"} <= set(report)

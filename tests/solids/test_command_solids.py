@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import shapely
 
-from tests.solids.step_checks import bd, check_solid, keyed_hole_area
+from tests.solids.step_checks import check_solid, keyed_hole_area, read_step
 from transplanter import gears
 from transplanter.cli import main
 from transplanter.gears.drawings import gear_drawings
@@ -31,8 +31,15 @@ def test_the_gear_commands_solids_are_its_drawings_extruded(tmp_path):
         # the volume against the drawn outline, the box against the one the solid was made from
         area = shapely.Polygon(gear.outline).area - keyed_hole_area(gear.bore)
         made_from = thinned(gear.outline, DRAWN_WITHIN_MODULES * problem.module)
-        check_solid(bd.import_step(str(path)), made_from, area, width, 1)
+        check_solid(read_step(path), made_from, area, width, 1)
     assert result.to_json()["solids"] == f"STEP solids: gears {width:g} mm wide"
+
+
+def test_no_step_writes_no_solid(tmp_path):
+    out = tmp_path / "out"
+    assert main(["gear", str(ROOT / "examples/gear_ellipse.toml"), "--quiet", "--no-step", "--out", str(out)]) == 0
+    assert "solid" not in json.loads((out / "report.json").read_text())["files"]
+    assert not list(out.glob("*.step"))
 
 
 def test_the_onion_transplanters_gears_take_its_own_face_width(tmp_path):
@@ -51,5 +58,5 @@ def test_the_onion_transplanters_gears_take_its_own_face_width(tmp_path):
         # the bore by the documented rule: the largest standard diameter within 0.8 of the root radius
         bore = KeyedBore.for_shaft(diameter_for_gear(float(np.linalg.norm(outline, axis=1).min())))
         area = shapely.Polygon(outline).area - keyed_hole_area(bore)
-        check_solid(bd.import_step(str(out / f"{name}.step")), thinned(outline, DRAWN_WITHIN_MODULES * 2.0), area,
+        check_solid(read_step(out / f"{name}.step"), thinned(outline, DRAWN_WITHIN_MODULES * 2.0), area,
                     18.0, 1)

@@ -5,7 +5,7 @@ from dataclasses import replace
 import numpy as np
 import shapely
 
-from tests.solids.step_checks import bd, check_solid, keyed_hole_area
+from tests.solids.step_checks import check_solid, keyed_hole_area, read_step
 from transplanter.fivebar.drawings import gear_drawings, parts
 from transplanter.fivebar.gears_on_carrier import tooth_outlines
 from transplanter.fivebar.solid_files import write_solids
@@ -21,7 +21,7 @@ def test_every_plate_and_gear_is_its_drawing_extruded(example_result, tmp_path):
     for part in plates:
         holes = [hole for hole in part.holes if hole.diameter]
         area = shapely.Polygon(part.outline()).area - sum(np.pi * (hole.diameter / 2) ** 2 for hole in holes)
-        check_solid(bd.import_step(str(tmp_path / f"{part.name}.step")), part.outline(), area, 5.0, len(holes))
+        check_solid(read_step(tmp_path / f"{part.name}.step"), part.outline(), area, 5.0, len(holes))
     for gear in gears:
         area = shapely.Polygon(gear.outline).area - keyed_hole_area(gear.bore)
-        check_solid(bd.import_step(str(tmp_path / f"{gear.name}.step")), gear.outline, area, 14.0, 1)
+        check_solid(read_step(tmp_path / f"{gear.name}.step"), gear.outline, area, 14.0, 1)

@@ -1,6 +1,6 @@
 """The solids' sizes from the problem files: ``face_width_mm`` in the table that holds the module (fivebar [gears],
 parallelogram [gear], gear [pair]), the five-bar's ``[plates] thickness_mm``; the default rules; bad values refused
-in one line naming the field; no build123d, no files and a one-line note."""
+in one line naming the field (the reverse problem's in [train]); no build123d, no files and a one-line note."""
 import subprocess
 import sys
 import tomllib
@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from transplanter import fivebar, gears, parallelogram
+from transplanter import fivebar, gears, parallelogram, reverse
 from transplanter.errors import ProblemError
 from transplanter.solids import part_files
 from transplanter.solids.sizes import FACE_WIDTH_MODULES, PLATE_THICKNESS_PIN_DIAMETERS, SolidSizes
@@ -18,7 +18,8 @@ ROOT = Path(__file__).resolve().parents[2]
 #: command -> its example, its parser and the table that holds the module
 COMMANDS = {"fivebar": ("vegetable_planting.toml", fivebar.parse_problem, "gears"),
             "gear": ("gear_ellipse.toml", gears.parse_problem, "pair"),
-            "parallelogram": ("onion_transplanter.toml", parallelogram.parse_problem, "gear")}
+            "parallelogram": ("onion_transplanter.toml", parallelogram.parse_problem, "gear"),
+            "reverse": ("rice_hoe_reverse.toml", reverse.parse_problem, "train")}
 
 
 def _data(command: str, table: str, **fields) -> dict:

@@ -8,6 +8,7 @@ Schema (docs/cam.md):
     direction = "counterclockwise"  # the cam's rotation, or "clockwise"
     samples = 3600                  # cam angles per turn at which everything is evaluated
     bore_radius = 8.0               # mm, for the drawings (default 0.4 of the profile's smallest radius)
+    thickness_mm = 12.0             # of the disc's STEP solid (default solids.sizes' plate rule on the bore)
     [follower]
     kind = "oscillating"            # or "translating" (along +y at x = offset), or "flat_faced"
                                     # (translating along +y, its face square to the motion; no roller)
@@ -31,12 +32,13 @@ Schema (docs/cam.md):
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from transplanter.solids.sizes import SolidSizes
 from transplanter.toml_fields import (
     LONGEST_TITLE,
     MAGNITUDE_LIMIT,
@@ -61,7 +63,7 @@ TURN_TOLERANCE_DEG = 1e-6
 LARGEST_SEGMENT_COUNT = 2000
 _TOO_MANY_SEGMENTS = f"at most {LARGEST_SEGMENT_COUNT} segments"
 _TOP_KEYS = {"title", "description", "cam", "follower", "segments", "limits", "design"}
-_CAM_KEYS = {"base_radius", "direction", "samples", "bore_radius"}
+_CAM_KEYS = {"base_radius", "direction", "samples", "bore_radius", "thickness_mm"}
 _FOLLOWER_KEYS = {"translating": {"kind", "roller_radius", "offset"}, "flat_faced": {"kind"},
                   "oscillating": {"kind", "roller_radius", "pivot", "arm_length", "roller_side"}}
 _SEGMENT_KEYS = {"kind", "angle_deg", "law", "lift", "swing_deg"}
@@ -138,6 +140,9 @@ class CamProblem:
     max_base_radius : float or None
         Design mode: the largest base circle to try (mm); None: analyse ``base_radius``.
     source, title : str
+    solid_sizes : SolidSizes
+        The disc's thickness for its STEP solid (``cam.thickness_mm``); None: the plate rule of ``solids.sizes`` on
+        the bore's diameter.
     """
 
     base_radius: float | None
@@ -151,9 +156,12 @@ class CamProblem:
     max_base_radius: float | None = None
     source: str = "<dict>"
     title: str = ""
+    solid_sizes: SolidSizes = field(default_factory=SolidSizes)
 
     def __post_init__(self):
         check = ClassFields(self)
+        if not isinstance(self.solid_sizes, SolidSizes):
+            check.fail("solid_sizes", self.solid_sizes, "a solids.sizes.SolidSizes")
         if (self.base_radius is None) == (self.max_base_radius is None):
             check.fail("base_radius", self.base_radius, "a positive number, or None with max_base_radius (design mode)")
         check.positive("base_radius", optional=True)
@@ -373,6 +381,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> CamProblem:
         max_base_radius=max_base,
         source=source,
         title=read.text(data, "title", "", LONGEST_TITLE),
+        solid_sizes=SolidSizes(thickness_mm=read.length(cam, "thickness_mm", "cam") if "thickness_mm" in cam else None),
     )
     if base is not None:
         check_base_radius(problem.follower, base, read.fail)

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from transplanter.cam.checks import Extreme, Stretch
+from transplanter.cam.solid_files import solids_note
 
 if TYPE_CHECKING:
     from transplanter.cam.result import CamResult
@@ -78,6 +79,7 @@ def cam_result_json(result: CamResult) -> dict:
         "direction": "counterclockwise" if problem.direction > 0 else "clockwise",
         "base_radius_mm": result.base_radius,
         "bore_radius_mm": problem.bore_radius,
+        "solids": solids_note(result),
         "nearest_profile_mm": {"distance": result.nearest_profile.value, "at_deg": _at(result.nearest_profile)},
         "designed_base_radius": result.designed,
         "cams_evaluated": result.cams_evaluated,
@@ -181,6 +183,7 @@ def to_markdown(result: CamResult, files: Sequence[str] = ()) -> str:
                          f"{'deg/rad^2' if swing else 'mm/rad^2'}" for j in checks.acceleration_jumps))
     else:
         lines.append("- acceleration continuous between segments")
+    lines.append(f"- {solids_note(result)}")
     drawings = [name for name in files if not name.endswith(".png")]
     if drawings:
         lines += ["", "Drawings: " + ", ".join(drawings)]

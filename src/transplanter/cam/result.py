@@ -83,10 +83,16 @@ class CamResult(CommandResult):
 
         return draw_figures(self)
 
-    def write_files(self, folder: Path, animation: bool = True) -> list[Path]:
-        """The profile as CSV, DXF and SVG (``cam.write_drawings``), and design.toml (``design_toml``)."""
+    def write_files(self, folder: Path, animation: bool = True, solids: bool = True) -> list[Path]:
+        """The profile as CSV, DXF and SVG (``cam.write_drawings``), design.toml (``design_toml``) and, unless
+        ``solids`` is False, the disc's STEP solid with the extra transplanter[cad] (``cam.solid_files``)."""
         from transplanter.cam.design_toml import write_design
         from transplanter.cam.drawings import write_drawings
+        from transplanter.cam.solid_files import write_solids
 
         with progress.step("drawings"):
-            return [*write_drawings(self, folder), write_design(self, folder)]
+            written = [*write_drawings(self, folder), write_design(self, folder)]
+        if not solids:
+            return written
+        with progress.step("solids"):
+            return written + write_solids(self, Path(folder))

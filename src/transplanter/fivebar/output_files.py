@@ -15,17 +15,19 @@ from transplanter.fivebar.result import FiveBarResult
 from transplanter.fivebar.solid_files import write_solids
 
 
-def write_files(result: FiveBarResult, folder: str | Path, animation: bool = True) -> list[Path]:
+def write_files(result: FiveBarResult, folder: str | Path, animation: bool = True, solids: bool = True
+                ) -> list[Path]:
     """The assembly (linkage.dxf), part and gear sheets, drawings.pdf, parts.csv, the CSV tables, the support cam's
-    files, design.toml (``design_toml``), STEP solids with the extra transplanter[cad] and, unless ``animation`` is
-    False, animation.gif (and .mp4 where ffmpeg exists) with the teeth turning on the carrier, in ``folder`` (made
-    if missing); the files written."""
+    files, design.toml (``design_toml``), STEP solids with the extra transplanter[cad] unless ``solids`` is False
+    and, unless ``animation`` is False, animation.gif (and .mp4 where ffmpeg exists) with the teeth turning on the
+    carrier, in ``folder`` (made if missing); the files written."""
     require_result(result, FiveBarResult, "fivebar")
     with progress.step("drawings"):
         written = write_drawings(result, folder)
     written.append(write_design(result, folder))
-    with progress.step("solids"):
-        written += write_solids(result, Path(folder))
+    if solids:
+        with progress.step("solids"):
+            written += write_solids(result, Path(folder))
     if animation:
         with progress.step("animation"):
             teeth = teeth_on_carrier(result.toothed, float(result.design.mech.carrier_length))

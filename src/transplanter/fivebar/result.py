@@ -135,8 +135,9 @@ class FiveBarResult(CommandResult):
 
         return draw_figures(self)
 
-    def write_files(self, folder: Path, animation: bool = True) -> list[Path]:
-        """``fivebar.write_files``: drawings, tables and, unless ``animation`` is False, the animation."""
+    def write_files(self, folder: Path, animation: bool = True, solids: bool = True) -> list[Path]:
+        """``fivebar.write_files``: drawings, tables, the STEP solids unless ``solids`` is False and, unless
+        ``animation`` is False, the animation."""
         from transplanter.fivebar.output_files import write_files
 
-        return write_files(self, folder, animation=animation)
+        return write_files(self, folder, animation=animation, solids=solids)

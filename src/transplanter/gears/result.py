@@ -139,13 +139,15 @@ class GearResult(CommandResult):
 
         return draw_figures(self)
 
-    def write_files(self, folder: Path, animation: bool = True) -> list[Path]:
+    def write_files(self, folder: Path, animation: bool = True, solids: bool = True) -> list[Path]:
         """The pitch curves and tooth outlines as CSV, SVG and DXF (``gears.write_drawings``), and the cut gears'
-        STEP solids with the extra transplanter[cad] (``gears.solid_files``)."""
+        STEP solids with the extra transplanter[cad] (``gears.solid_files``) unless ``solids`` is False."""
         from transplanter.gears.drawings import write_drawings
         from transplanter.gears.solid_files import write_solids
 
         with progress.step("drawings"):
             written = write_drawings(self, folder)
+        if not solids:
+            return written
         with progress.step("solids"):
             return written + write_solids(self, Path(folder), self.problem.solid_sizes)

@@ -15,9 +15,11 @@ from transplanter.parallelogram.result import ParallelogramResult
 from transplanter.parallelogram.tables import write_tables
 
 
-def write_files(result: ParallelogramResult, folder: str | Path, animation: bool = True) -> list[Path]:
-    """pareto.csv and trajectory.csv, the gears' CSV, SVG, DXF and STEP (with teeth), design.toml (``design_toml``)
-    and, unless ``animation`` is False, animation.gif, in ``folder`` (made if missing); the files written."""
+def write_files(result: ParallelogramResult, folder: str | Path, animation: bool = True, solids: bool = True
+                ) -> list[Path]:
+    """pareto.csv and trajectory.csv, the gears' CSV, SVG, DXF and STEP (with teeth; STEP unless ``solids`` is
+    False), design.toml (``design_toml``) and, unless ``animation`` is False, animation.gif, in ``folder`` (made if
+    missing); the files written."""
     require_result(result, ParallelogramResult, "parallelogram")
     with progress.step("tables"):
         written = write_tables(result, folder)
@@ -25,8 +27,9 @@ def write_files(result: ParallelogramResult, folder: str | Path, animation: bool
     if result.gear.teeth is not None:
         with progress.step("drawings"):
             written += write_drawings(result.gear, folder)
-        with progress.step("solids"):
-            written += write_solids(result.gear, Path(folder), result.problem.solid_sizes)
+        if solids:
+            with progress.step("solids"):
+                written += write_solids(result.gear, Path(folder), result.problem.solid_sizes)
     if animation:
         with progress.step("animation"):
             written.append(write_animation(result, folder))

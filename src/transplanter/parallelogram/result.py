@@ -177,9 +177,9 @@ class ParallelogramResult(CommandResult):
 
         return draw_figures(self)
 
-    def write_files(self, folder: Path, animation: bool = True) -> list[Path]:
-        """``parallelogram.write_files``: the tables, the gear drawings and, unless ``animation`` is False, the
-        animation."""
+    def write_files(self, folder: Path, animation: bool = True, solids: bool = True) -> list[Path]:
+        """``parallelogram.write_files``: the tables, the gear drawings, their STEP solids unless ``solids`` is False
+        and, unless ``animation`` is False, the animation."""
         from transplanter.parallelogram.output_files import write_files
 
-        return write_files(self, folder, animation=animation)
+        return write_files(self, folder, animation=animation, solids=solids)

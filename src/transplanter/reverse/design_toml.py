@@ -1,7 +1,8 @@
 """The design of a reverse run in a file: [arm] (pivot, carrier_length, arm_length, direction, branch) and
-[train] (topology, split, peak_to_valley, center_distances, module), under the names the problem file and the
-report use. ``write_design`` writes a run's as design.toml; ``load_design`` reads one; ``evaluate_design``
-makes the train for a problem's path with a design's arm and train, which reproduces the run that wrote it."""
+[train] (topology, split, peak_to_valley, center_distances, module, cutter, face_width_mm), under the names the
+problem file and the report use. ``write_design`` writes a run's as design.toml; ``load_design`` reads one;
+``evaluate_design`` makes the train for a problem's path with a design's arm and train, which reproduces the run
+that wrote it."""
 from __future__ import annotations
 
 import dataclasses
@@ -17,6 +18,7 @@ from transplanter.reverse.arm_inverse import DIRECTION_NAMES
 from transplanter.reverse.problem import ReverseProblem, read_arm, read_train
 from transplanter.reverse.result import ReverseResult
 from transplanter.reverse.synthesis import synthesize
+from transplanter.solids.sizes import SolidSizes, read_solid_sizes
 from transplanter.toml_fields import shown
 
 
@@ -42,6 +44,8 @@ class ReverseDesign:
         mm.
     cutter : str
         ``"rack"`` or ``"shaper"``.
+    solid_sizes : SolidSizes
+        The gears' face width (mm) for their STEP solids.
     source : str
         The design file.
     """
@@ -56,6 +60,7 @@ class ReverseDesign:
     center_distances: tuple[float, float] | None
     module: float
     cutter: str
+    solid_sizes: SolidSizes
     source: str
 
 
@@ -71,6 +76,7 @@ def design_tables(result: ReverseResult) -> dict[str, dict[str, object]]:
         train["center_distances"] = list(chosen or problem.center_distances or halves)
     train["module"] = problem.module
     train["cutter"] = problem.cutter
+    train["face_width_mm"] = problem.solid_sizes.face_width(problem.module)
     return {"arm": {"pivot": problem.pivot.tolist(), "carrier_length": motion.carrier_length,
                     "arm_length": motion.arm_length, "direction": DIRECTION_NAMES[problem.direction],
                     "branch": problem.branch},
@@ -97,7 +103,7 @@ def load_design(path: str | Path) -> ReverseDesign:
     assert lengths is not None          # read_arm takes both lengths or neither
     topology, split, coefficient, centers, module, cutter = read_train(read, data.get("train", {}))
     return ReverseDesign(pivot, lengths, direction, branch, topology, split, coefficient, centers, module, cutter,
-                         str(path))
+                         read_solid_sizes(read, data.get("train", {}), "train"), str(path))
 
 
 def evaluate_design(problem: ReverseProblem, design: ReverseDesign, tolerance: bool = True) -> ReverseResult:

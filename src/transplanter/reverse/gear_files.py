@@ -2,6 +2,8 @@
 
 - ``<gear>.dxf`` and ``<gear>.svg`` per gear (``drawing.gear_sheet``): the cut tooth outline, the pitch curve, the
   keyed bore and the assembly mark towards the mate at carrier turn 0, the title block.
+- ``drawings.pdf``: the sheets a page each (``drawing.pdf``); ``parts.csv``: a row per gear
+  (``drawing.parts_list``).
 - ``pitch_curve_<gear>.csv`` per gear: polar angle, radius, x, y in the gear's own frame.
 
 Gears are named and placed as ``fivebar.gears_on_carrier`` places them for a carrier turning clockwise; a
@@ -16,7 +18,9 @@ from pathlib import Path
 
 import numpy as np
 
-from transplanter.drawing.gear_sheet import write_gear_sheets
+from transplanter.drawing.gear_sheet import GearDrawing, write_gear_sheets
+from transplanter.drawing.parts_list import write_parts_list
+from transplanter.drawing.pdf import write_pdf
 from transplanter.fivebar.drawings import toothed_gear_drawings, write_pitch_curves
 from transplanter.fivebar.gears_on_carrier import gears_on_carrier, tooth_outlines
 from transplanter.fivebar.shafts import SHAFT_OF_GEAR
@@ -47,9 +51,16 @@ def bore_failures(toothed: ToothedTrain) -> list[str]:
             for text in rim_failures(f"{name.replace('_', ' ')} bore", roots[name], bore, toothed.module)]
 
 
+def gear_drawings(toothed: ToothedTrain, direction: int, title: str) -> list[GearDrawing]:
+    """The four gears to make, mirrored for a carrier turning counterclockwise (``direction`` +1)."""
+    return toothed_gear_drawings(toothed, tooth_outlines(toothed), gear_bores(toothed), title, direction == 1)
+
+
 def write_gear_files(toothed: ToothedTrain, direction: int, title: str, folder: Path) -> list[Path]:
-    """The gear sheets and pitch-curve tables of the module docstring in ``folder``; the files written."""
-    mirrored = direction == 1
-    drawings = toothed_gear_drawings(toothed, tooth_outlines(toothed), gear_bores(toothed), title, mirrored)
-    return write_gear_sheets(drawings, folder) + write_pitch_curves(toothed.train, toothed.carrier_length, folder,
-                                                                    mirrored)
+    """The gear sheets, their PDF, parts.csv and the pitch-curve tables of the module docstring in ``folder``; the
+    files written."""
+    drawings = gear_drawings(toothed, direction, title)
+    sheets = write_gear_sheets(drawings, folder)
+    return [*sheets, write_pdf([path for path in sheets if path.suffix == ".dxf"], folder / "drawings.pdf"),
+            write_parts_list((), drawings, folder / "parts.csv"),
+            *write_pitch_curves(toothed.train, toothed.carrier_length, folder, direction == 1)]

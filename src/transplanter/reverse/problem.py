@@ -20,6 +20,7 @@ Schema (docs/reverse.md, "Problem files"):
     center_distances = [46.15, 46.15]      # mm; default s/2 each (collinear carrier)
     module = 2.5                  # mm, of the whole teeth (default 2.5)
     cutter = "rack"               # or "shaper" (16 teeth): how the four-gear train's teeth are cut
+    face_width_mm = 25.0          # of the gears' STEP solids (default solids.sizes.FACE_WIDTH_MODULES modules)
     [tolerances]                  # optional: the built train's tolerances and the analysis (docs/tolerance.md)
     path_accuracy_mm = 2.5        # the built tip within this of the path over the turn (default 1 % of s + l)
 """
@@ -31,6 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from transplanter.reverse.tolerance_model import PATH_ACCURACY_KEY, dimension_names
+from transplanter.solids.sizes import SolidSizes, read_solid_sizes
 from transplanter.tolerance.dimensions import ToleranceSettings, parse_tolerances
 from transplanter.toml_fields import (
     LONGEST_TITLE,
@@ -86,6 +88,8 @@ class ReverseProblem:
         ``"rack"`` (a stage with a hollow goes to the shaper) or ``"shaper"`` (``trains.toothed_train.Gearing``).
     source, title : str
         Where the problem came from and its title.
+    solid_sizes : SolidSizes
+        The gears' face width for their STEP solids (``train.face_width_mm``); None: the rule of ``solids.sizes``.
     tolerances : ToleranceSettings
         The ``[tolerances]`` table: tolerances of the built train's dimensions (``reverse.tolerance_model``) and
         the analysis settings (``tolerance.dimensions``).
@@ -113,6 +117,7 @@ class ReverseProblem:
     cutter: str = "rack"
     source: str = "<dict>"
     title: str = ""
+    solid_sizes: SolidSizes = field(default_factory=SolidSizes)
     tolerances: ToleranceSettings = field(default_factory=ToleranceSettings)
     path_accuracy_mm: float | None = None
 
@@ -140,6 +145,8 @@ class ReverseProblem:
         check.choice("cutter", CUTTERS)
         check.text("source", "title")
         check.positive("path_accuracy_mm", optional=True)
+        if not isinstance(self.solid_sizes, SolidSizes):
+            check.fail("solid_sizes", self.solid_sizes, "a solids.sizes.SolidSizes")
 
 
 def load_problem(path: str | Path) -> ReverseProblem:
@@ -210,8 +217,10 @@ def read_arm(read: FieldReader, table: dict):
 
 
 def read_train(read: FieldReader, table: dict):
-    """[train]: topology, split, peak_to_valley, center distances (mm, or None), module (mm) and cutter."""
-    read.keys(table, {"topology", "split", "peak_to_valley", "center_distances", "module", "cutter"}, "train")
+    """[train]: topology, split, peak_to_valley, center distances (mm, or None), module (mm) and cutter; its
+    face_width_mm is ``read_solid_sizes``'."""
+    read.keys(table, {"topology", "split", "peak_to_valley", "center_distances", "module", "cutter", "face_width_mm"},
+              "train")
     topology = _choice(read, table, "topology", "train", tuple(TOPOLOGIES), "sun-intermediate-planet")
     split = _choice(read, table, "split", "train", TOPOLOGIES[topology], TOPOLOGIES[topology][0])
     if "peak_to_valley" in table and split != "peak_to_valley":
@@ -262,6 +271,7 @@ def parse_problem(data: dict, source: str = "<dict>") -> ReverseProblem:
                           branch=branch, topology=topology, split=split, peak_to_valley=coefficient,
                           center_distances=centers, module=module, cutter=cutter, source=source,
                           title=read.text(data, "title", "", LONGEST_TITLE),
+                          solid_sizes=read_solid_sizes(read, data.get("train", {}), "train"),
                           tolerances=parse_tolerances(data.get("tolerances", {}), dimension_names(topology), source,
                                                       (PATH_ACCURACY_KEY,)),
                           path_accuracy_mm=read_path_accuracy(read, data.get("tolerances", {})))

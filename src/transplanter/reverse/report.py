@@ -14,6 +14,7 @@ from transplanter.reverse.arm_inverse import BRANCH_NAMES, DIRECTION_NAMES
 from transplanter.reverse.idler_train import IdlerTrain
 from transplanter.reverse.pitch_corners import pitch_corners
 from transplanter.reverse.ratio_extremes import ratio_range
+from transplanter.reverse.solid_files import solids_note
 from transplanter.reverse.tolerance_model import path_accuracy_mm
 from transplanter.trains.planetary import printed_peak_to_valley_turn
 from transplanter.trains.report import toothed_train_json, worst_mesh
@@ -159,6 +160,7 @@ def reverse_result_json(result: ReverseResult) -> dict:
             for c in pitch_corners(result.motion, train)]
     if result.toothed is not None:
         report["toothed_train"] = toothed_train_json(result.toothed)
+        report["solids"] = solids_note(result.toothed, problem)
     if result.teeth_note:
         report["teeth_note"] = result.teeth_note
     if result.tolerance is not None:
@@ -219,6 +221,7 @@ def to_markdown(result: ReverseResult, files: Sequence[str] = ()) -> str:
             lines += ["", "The reverse-gear-design paper's split as printed (i1 = i25 bs) would turn the intermediate "
                       f"gear {printed:.3f} deg per cycle (360 closes)."]
     lines += [""] + (toothed_train_markdown(result.toothed) if result.toothed else [])
+    lines += [f"- {solids_note(result.toothed, problem)}", ""] if result.toothed else []
     lines += [f"- Teeth: {result.teeth_note}", ""] if result.teeth_note else []
     lines += (result.tolerance.to_markdown() + [_path_accuracy_line(result), ""] if result.tolerance else [])
     lines += [f"- Tolerances: {result.tolerance_note}", ""] if result.tolerance_note else []

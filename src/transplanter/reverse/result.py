@@ -6,6 +6,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from transplanter import progress
 from transplanter.command_result import CommandResult
 from transplanter.geometry.closed_trajectory import ClosedTrajectory
 from transplanter.reverse.arm_inverse import ArmMotion
@@ -129,15 +130,22 @@ class ReverseResult(CommandResult):
 
         return to_markdown(self, files)
 
-    def write_files(self, folder: Path, animation: bool = True) -> list[Path]:
-        """design.toml (``design_toml``); with whole teeth, the gear sheets and pitch-curve tables
-        (``gear_files``)."""
+    def write_files(self, folder: Path, animation: bool = True, solids: bool = True) -> list[Path]:
+        """design.toml (``design_toml``); with whole teeth, the gear sheets, drawings.pdf, parts.csv and pitch-curve
+        tables (``gear_files``) and, unless ``solids`` is False, the gears' STEP solids with the extra
+        transplanter[cad] (``solid_files``)."""
         from transplanter.reverse.design_toml import write_design
         from transplanter.reverse.gear_files import write_gear_files
+        from transplanter.reverse.solid_files import write_solids
 
         written = [write_design(self, folder)]
-        if self.toothed is not None:
+        if self.toothed is None:
+            return written
+        with progress.step("drawings"):
             written += write_gear_files(self.toothed, self.problem.direction, self.problem.title, Path(folder))
+        if solids:
+            with progress.step("solids"):
+                written += write_solids(self.toothed, self.problem, Path(folder))
         return written
 
     def draw_figures(self) -> dict[str, Figure]:

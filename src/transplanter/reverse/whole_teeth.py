@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.reverse.problem import ReverseProblem
+from transplanter.trains.gearing_fields import REVERSE_FIELDS
 from transplanter.trains.planetary import RelativeMotion
 from transplanter.trains.toothed_train import WHOLE, Gearing, ToothedTrain, design_toothed_train
 
@@ -19,7 +20,7 @@ def reverse_gearing(problem: ReverseProblem, carrier_length: float) -> Gearing:
     """The problem's module and centre distances as ``Gearing`` (layout in the module docstring)."""
     centers = problem.center_distances
     straight = centers is not None and abs(sum(centers) - carrier_length) <= WHOLE * carrier_length
-    return Gearing(module=problem.module, cutter=problem.cutter, center_distances=centers,
+    return Gearing(module=problem.module, cutter=problem.cutter, center_distances=centers, fields=REVERSE_FIELDS,
                    layout="straight" if straight else "bent")
 
 

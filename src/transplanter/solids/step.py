@@ -1,5 +1,6 @@
 """Parts as STEP solids through build123d (the optional extra ``transplanter[cad]``): a gear's tooth outline
-extruded to its face width, less its keyed bore; a link plate's outline extruded to its thickness, less its holes.
+extruded to its face width, less its keyed bore; a link plate's outline extruded to its thickness, less its holes;
+a cam disc's profile extruded to its thickness, less its bore.
 
 Without build123d nothing is written and ``MISSING_NOTE`` says so. The sizes are ``solids.sizes``'; every command
 writes its parts through ``solids.part_files``.
@@ -8,9 +9,11 @@ from __future__ import annotations
 
 import importlib.util
 import re
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+import shapely
 
 from transplanter.drawing.gear_sheet import GearDrawing
 from transplanter.drawing.plate_sheet import PlatePart
@@ -27,10 +30,21 @@ def cad_installed() -> bool:
     return importlib.util.find_spec("build123d") is not None
 
 
+def valid_outline(outline: np.ndarray) -> np.ndarray:
+    """The outline, or where it crosses itself (a cut tooth outline can close over its seam with a tiny loop) the
+    boundary of the largest region it encloses: a face bounded by a crossing wire is not a valid solid's."""
+    polygon = shapely.Polygon(outline)
+    if polygon.is_valid:
+        return np.asarray(outline, float)
+    regions = [part for part in shapely.get_parts(shapely.get_parts(shapely.make_valid(polygon)))
+               if isinstance(part, shapely.Polygon)]           # make_valid may add the loop's lines or points
+    return shapely.get_coordinates(max(regions, key=lambda part: part.area).exterior)[:-1]
+
+
 def _face(outline: np.ndarray):
     import build123d as bd
 
-    return bd.make_face(bd.Polyline(*map(tuple, np.asarray(outline, float).tolist()), close=True))
+    return bd.make_face(bd.Polyline(*map(tuple, valid_outline(outline).tolist()), close=True))
 
 
 def _keyed_hole(bore: KeyedBore):
@@ -47,6 +61,23 @@ def gear_solid(gear: GearDrawing, face_width: float):
     import build123d as bd
 
     return bd.extrude(_face(gear.outline) - _keyed_hole(gear.bore), amount=face_width)
+
+
+@dataclass(frozen=True)
+class BoredDisc:
+    """A flat part with a plain round bore at its centre (a cam disc): its closed ``outline`` (N, 2) and
+    ``bore_radius`` (mm), in its own frame (the bore's centre at the origin)."""
+
+    name: str
+    outline: np.ndarray
+    bore_radius: float
+
+
+def disc_solid(disc: BoredDisc, thickness: float):
+    """The disc's outline extruded to ``thickness`` mm, less its bore (a build123d Part)."""
+    import build123d as bd
+
+    return bd.extrude(_face(disc.outline) - bd.Circle(disc.bore_radius), amount=thickness)
 
 
 def plate_solid(part: PlatePart, thickness: float):

@@ -48,6 +48,7 @@ from transplanter.gears.problem import MAX_SHAPER_TEETH, MAX_TEETH
 from transplanter.gears.rack_teeth import ADDENDUM
 from transplanter.gears.teeth import PairTeeth, generate_teeth
 from transplanter.toml_fields import ClassFields, is_finite_number
+from transplanter.trains.gearing_fields import GearingFields
 from transplanter.trains.planetary import PlanetaryTrain, RelativeMotion, design_train
 
 CUTTERS, LAYOUTS = ("rack", "shaper"), ("bent", "straight")
@@ -84,6 +85,8 @@ class Gearing:
     max_pressure_angle : float
         rad, above ``pressure_angle`` and below pi / 2: the largest pressure angle a mesh may reach over the
         turn (``trains.pressure_angle``; the push along the motion falls as its cosine).
+    fields : GearingFields
+        The problem-file names error messages give these fields (the five-bar's by default).
     """
 
     module: float = 1.5
@@ -93,6 +96,7 @@ class Gearing:
     layout: str = "bent"
     center_distances: tuple[float, float] | None = None
     max_pressure_angle: float = math.radians(45.0)
+    fields: GearingFields = GearingFields()
 
     def __post_init__(self):
         check = ClassFields(self)
@@ -117,6 +121,8 @@ class Gearing:
         if not is_finite_number(limit) or not self.pressure_angle < limit < np.pi / 2:
             check.fail("max_pressure_angle", limit, f"an angle above pressure_angle ({self.pressure_angle:.6g}) and "
                                                     "below pi / 2, in radians")
+        if not isinstance(self.fields, GearingFields):
+            check.fail("fields", self.fields, "a trains.gearing_fields.GearingFields")
 
 
 @dataclass(frozen=True)
@@ -263,7 +269,8 @@ def _bent_counts(shapes, module: float, length: float) -> tuple[int, int]:
     return min(found)[2:]
 
 
-def _straight_module(shapes, module: float, length: float, source: str) -> tuple[int, int, float]:
+def _straight_module(shapes, module: float, length: float, source: str, fields: GearingFields
+                     ) -> tuple[int, int, float]:
     """Whole counts for a1 + a2 = |OA| at the asked module, the most even pair; else refuse with the nearest."""
     p1, p2 = (s.perimeter for s in shapes)
     z1_min, z2_min = (s.min_teeth for s in shapes)
@@ -285,35 +292,34 @@ def _straight_module(shapes, module: float, length: float, source: str) -> tuple
     below = min((f for f in found if f[3] < module), key=lambda f: (-f[3], *evenness(f)), default=None)
     above = min((f for f in found if f[3] > module), key=lambda f: (f[3], *evenness(f)), default=None)
     offers = "; ".join(f"module = {f[3]:.12g} (Z = {f[1]}, {f[2]})" for f in (below, above) if f)
-    raise ProblemError(f"{source}: gears.module = {module:g} with gears.layout = \"straight\": no whole tooth counts "
+    raise ProblemError(f"{source}: {fields.module} = {module:g} with {fields.straight}: no whole tooth counts "
                        f"without undercut (Z1 >= {z1_min}, Z2 >= {z2_min}) make a1 + a2 = |OA| = {length:.6g} mm; "
-                       f"expected one of the modules that do, nearest: {offers}; or gears.layout = \"bent\"")
+                       f"expected one of the modules that do, nearest: {offers}; or {fields.bent}")
 
 
 def _given_counts(shapes, gearing: Gearing, distances: tuple[float, float], length: float,
                   source: str) -> tuple[int, int]:
     """Whole counts of the given centre ``distances`` (gearing.center_distances), or refuse them."""
-    m = gearing.module
+    m, fields = gearing.module, gearing.fields
     counts = []
-    for j, (a, shape, key) in enumerate(zip(distances, shapes,
-                                            ("first_center_distance", "second_center_distance"), strict=True)):
+    for j, (a, shape, key) in enumerate(zip(distances, shapes, fields.center_distances, strict=True)):
         z = a * shape.perimeter / (np.pi * m)
         step = np.pi * m / shape.perimeter
         if abs(z - round(z)) > WHOLE * z:
             lower, upper = max(math.floor(z), shape.min_teeth), max(math.ceil(z), shape.min_teeth + 1)
-            raise ProblemError(f"{source}: gears.{key} = {a:g}: gives {z:.4f} teeth at module {m:g}; expected whole "
+            raise ProblemError(f"{source}: {key} = {a:g}: gives {z:.4f} teeth at module {m:g}; expected whole "
                                f"teeth: {lower} at {lower * step:.12g} mm or {upper} at {upper * step:.12g} mm")
         if round(z) < shape.min_teeth:
-            raise ProblemError(f"{source}: gears.{key} = {a:g}: {round(z)} teeth of module {m:g} are undercut by the "
+            raise ProblemError(f"{source}: {key} = {a:g}: {round(z)} teeth of module {m:g} are undercut by the "
                                f"{shape.cutter} (stage {j + 1} needs at least {shape.min_teeth}); expected at least "
                                f"{shape.min_teeth * step:.12g} mm")
         counts.append(int(round(z)))
     a1, a2 = distances
     if gearing.layout == "straight" and abs(a1 + a2 - length) > WHOLE * length:
-        raise ProblemError(f"{source}: gears.first_center_distance + second_center_distance = {a1 + a2:g}: expected "
-                           f"|OA| = {length:.12g} mm on a straight carrier (or gears.layout = \"bent\")")
+        raise ProblemError(f"{source}: {' + '.join(fields.center_distances)} = {a1 + a2:g}: expected "
+                           f"|OA| = {length:.12g} mm on a straight carrier (or {fields.bent})")
     if not abs(a1 - a2) <= length * (1 + WHOLE) or not length <= (a1 + a2) * (1 + WHOLE):
-        raise ProblemError(f"{source}: gears center distances [{a1:g}, {a2:g}] mm: expected |a1 - a2| <= |OA| = "
+        raise ProblemError(f"{source}: {fields.both_distances} [{a1:g}, {a2:g}] mm: expected |a1 - a2| <= |OA| = "
                            f"{length:.6g} mm <= a1 + a2, so that the shaft can be placed")
     return counts[0], counts[1]
 
@@ -358,7 +364,7 @@ def _sizes(relative: RelativeMotion, carrier_length: float, gearing: Gearing, so
     if gearing.center_distances is not None:
         counts = _given_counts(shapes, gearing, gearing.center_distances, carrier_length, source)
     elif gearing.layout == "straight":
-        z1, z2, module = _straight_module(shapes, module, carrier_length, source)
+        z1, z2, module = _straight_module(shapes, module, carrier_length, source, gearing.fields)
         counts = (z1, z2)
     else:
         try:
@@ -370,7 +376,7 @@ def _sizes(relative: RelativeMotion, carrier_length: float, gearing: Gearing, so
         if count > most:
             coarser = ("a coarser module" if module < MODULE_RANGE[1] else
                        f"{MODULE_RANGE[1]:g} is the coarsest module taken: the mechanism is too large for it")
-            raise ProblemError(f"{source}: gears.module = {module:g}: gives {count} teeth on the "
+            raise ProblemError(f"{source}: {gearing.fields.module} = {module:g}: gives {count} teeth on the "
                                f"{GEAR_NAMES[2 * stage]} ({shape.cutter}-cut); expected at most {most} (every tooth "
                                f"is cut and checked, in time and memory growing with the count); {coarser}")
     a1, a2 = (z * np.pi * module / s.perimeter for z, s in zip(counts, shapes, strict=True))
