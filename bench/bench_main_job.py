@@ -4,9 +4,9 @@
 
 Each of ``runs`` rounds (default 3) times the main job as the CLI runs it (``transplanter fivebar
 examples/vegetable_planting.toml --out DIR``: region, refinements, gears with their teeth, verification,
-report, figures, drawings and the animation; ``--no-step``: the README's install has no
-``cad`` extra, so its main job writes no STEP, and the test command's install has it) and, right after, a bare fresh process that does
-``import numpy, casadi, matplotlib.pyplot`` and nothing else: the baseline is the least any command of the
+report, figures, drawings and the animation; ``--no-step``: the README's install has no ``cad`` extra, so its
+main job writes no STEP, and the test command's install has it) and, right after, a bare fresh process that
+does ``import numpy, casadi, matplotlib.pyplot`` and nothing else: the baseline is the least any command of the
 package can take. Printed: the ratio main job / bare start-up per round, its min / median / max, the
 absolute times, and the report's own wall times of the steps (target: at most 17x).
 """
