@@ -41,6 +41,7 @@ from transplanter.output_folder import (
     staged,
     staged_file,
 )
+from transplanter.side_process import side_by_side
 
 #: What ``--plot`` may be named (the formats matplotlib writes without extra packages).
 PLOT_SUFFIXES = {".png", ".pdf", ".svg", ".jpg", ".jpeg", ".eps", ".ps", ".tif", ".tiff", ".webp"}
@@ -105,18 +106,26 @@ def _run_command(command: Command, args) -> int:
     problem = command.package.load_problem(args.file)
     result = command.run(command, problem, args)
     files: list[str] = []
-    if plot or args.folder:
-        with progress.step("figures"):
-            figures = result.draw_figures()
-            if plot and command.plot:
-                with staged_file(plot) as partial:
-                    figures[command.plot].savefig(partial, dpi=command.dpi)
-            if args.folder:
-                files = _save_figures(figures, args.folder, dpi=command.dpi)
-    if args.folder:
-        written = result.write_files(args.folder, animation=not getattr(args, "no_animation", False),
-                                     solids=not getattr(args, "no_step", False))
-        files += [path.name for path in written]
+    with staged_file(plot) if plot else contextlib.nullcontext() as partial:
+
+        def figures() -> list[str]:
+            """The figures drawn and saved where this runs (a side process draws its own: no figure of this one's)."""
+            with progress.step("figures"):
+                drawn = result.draw_figures()
+                if partial and command.plot:
+                    drawn[command.plot].savefig(partial, dpi=command.dpi)
+                return _save_figures(drawn, args.folder, dpi=command.dpi) if args.folder else []
+
+        def written() -> list[str]:
+            return [path.name for path in result.write_files(
+                args.folder, animation=not getattr(args, "no_animation", False),
+                solids=not getattr(args, "no_step", False))]
+
+        if args.folder:     # the figures in a side process while the files are written here
+            figure_files, other_files = side_by_side(figures, written)
+            files = figure_files + other_files
+        elif plot:
+            figures()
     return _publish(args, result, files)
 
 

@@ -11,9 +11,10 @@ import numpy as np
 import pytest
 
 from tests.api.test_python_api import EXAMPLES, check_figures
+from transplanter import side_process
 from transplanter.cli import main
 from transplanter.errors import ProblemError, SolverError
-from transplanter.fivebar import alternatives, lanes
+from transplanter.fivebar import alternatives
 from transplanter.fivebar.alternatives import (
     ANGLE_TIE,
     MERGE_TOLERANCE,
@@ -246,7 +247,7 @@ def test_a_start_whose_curves_cannot_be_held_to_shaper_hollows_fails_with_the_un
     hold (here computed again, by its own solve); where a start gave a design, that re-solve is not made."""
     result, _ = run
     problem, start = result.problem, result.region.feasible[0]
-    monkeypatch.setattr(lanes, "FORKS", False)       # every solve in this process, where it is counted
+    monkeypatch.setattr(side_process, "FORKS", False)       # every solve in this process, where it is counted
 
     class HeldFails(DesignSolver):
         unheld_solves = 0

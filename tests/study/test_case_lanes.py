@@ -3,15 +3,13 @@ cores (the workers are the parallelism), the second lane forked when a core is l
 from __future__ import annotations
 
 import dataclasses
-import os
 from concurrent.futures import ThreadPoolExecutor
 
 import pytest
 
 from tests.study.studies import gear_study
-from transplanter import cli
+from transplanter import cli, side_process
 from transplanter.errors import TransplanterError
-from transplanter.fivebar import lanes
 from transplanter.study import run, runner, study_cases
 from transplanter.study.case_run import run_case
 
@@ -21,13 +19,13 @@ def test_a_case_told_not_to_fork_runs_within_lanes_here_and_only_that_case(monke
     gear = next(command for command in cli.COMMANDS if command.name == "gear")
 
     def job(command, problem, args):
-        seen.append(lanes._may_fork.get())
+        seen.append(side_process._may_fork.get())
         raise TransplanterError("seen")
 
     monkeypatch.setattr(cli, "COMMANDS", [dataclasses.replace(gear, run=job)])
     problem = study_cases(gear_study())[0].problem
     outcomes = [run_case("gear", problem, "case", fork_lanes=fork) for fork in (False, True)]
-    assert seen == [False, True] and lanes._may_fork.get()
+    assert seen == [False, True] and side_process._may_fork.get()
     assert [outcome["error"] for outcome in outcomes] == ["seen", "seen"]
 
 
@@ -35,7 +33,7 @@ def test_a_case_told_not_to_fork_runs_within_lanes_here_and_only_that_case(monke
 def test_the_study_forks_lanes_only_with_fewer_cases_at_once_than_cores(monkeypatch, tmp_path, extra, forks):
     """An executor as wide as this machine's cores (``extra`` 0) gets cases told not to fork; a narrower one
     (one fewer, where the machine has more than one core) gets cases told to."""
-    cores = os.cpu_count() or 1
+    cores = side_process.usable_cores()
     if cores + extra < 1:
         pytest.skip("one core: no narrower executor")
     told = []

@@ -1,0 +1,166 @@
+"""Work done in a forked process beside this one, where the machine gives this process a second core.
+
+On Linux, where this process may run on more than one core (``os.sched_getaffinity``: ``taskset``, a
+container's or a scheduler's CPU set), ``start_side_process(work, calls)`` forks one process that runs
+``work(*call)`` for each call and hands back the results, the warnings it raised and its exceptions (raised
+here, as the same class with the same message). Elsewhere, within ``in_this_process()`` (a study with a worker
+per core, where the workers are the parallelism), or where the system refuses the process or its semaphores
+(a sandbox), it gives None and the caller does the work here, in turn. The fork copies this process as it is,
+so ``work`` may be a closure over objects that do not pickle (CasADi Functions); only calls and results cross.
+
+The forked process ignores Ctrl-C (sent to the whole process group): its parent stops it (``SideProcess.stop``)
+and waits until it has ended, so nothing of it outlives the run or writes after the run has cleaned up.
+"""
+from __future__ import annotations
+
+import contextlib
+import multiprocessing
+import os
+import pickle
+import signal
+import sys
+import warnings
+from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures import Future, ProcessPoolExecutor
+from contextvars import ContextVar
+from multiprocessing.reduction import ForkingPickler
+from typing import Any, TypeVar
+
+#: A side process on Linux only (macOS lists fork, but its system libraries are not safe to use in a forked child).
+FORKS = sys.platform.startswith("linux")
+#: Whether a side process may be forked here: ``in_this_process()`` turns it off for the calls within it.
+_may_fork: ContextVar[bool] = ContextVar("may_fork", default=True)
+
+#: One warning raised in the side process: message, category, file name, line number.
+Warned = tuple[Warning | str, type[Warning], str, int]
+
+_work: Callable[..., Any] | None = None     # set in the side process only, by ``_install``
+
+Here = TypeVar("Here")
+There = TypeVar("There")
+
+
+@contextlib.contextmanager
+def in_this_process() -> Iterator[None]:
+    """Within it, ``start_side_process`` forks nothing: the callers do their side's work here, in turn."""
+    token = _may_fork.set(False)
+    try:
+        yield
+    finally:
+        _may_fork.reset(token)
+
+
+def usable_cores() -> int:
+    """The cores this process may run on (its CPU affinity where the system has one, else the machine's)."""
+    if hasattr(os, "sched_getaffinity"):
+        return len(os.sched_getaffinity(0))
+    return os.cpu_count() or 1
+
+
+def may_fork() -> bool:
+    """Whether a side process would run beside this one: Linux, outside ``in_this_process()``, two cores or more."""
+    return FORKS and _may_fork.get() and usable_cores() > 1
+
+
+class SideProcess:
+    """A forked process running one ``work``; its results come back through ``Future``s."""
+
+    def __init__(self, work: Callable[..., Any]):
+        self._pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork"), initializer=_install,
+                                         initargs=(work,))     # a forked child inherits initargs, nothing pickled
+
+    def submit(self, *call: Any) -> Future:
+        """``work(*call)`` in the side process: the Future's result is ``(result, warned)``, or its exception."""
+        return self._pool.submit(_run_work, *call)
+
+    def close(self) -> None:
+        """Wait for the submitted calls, then end the process."""
+        self._pool.shutdown()
+
+    def stop(self) -> None:
+        """End the process now (its queued calls cancelled, the one it is on cut short) and wait until it has."""
+        processes = list(getattr(self._pool, "_processes", {}).values())
+        self._pool.shutdown(wait=False, cancel_futures=True)
+        for process in processes:
+            process.terminate()
+        for process in processes:
+            process.join()
+
+
+def start_side_process(work: Callable[..., Any], calls: Sequence[tuple]) -> tuple[SideProcess, list[Future]] | None:
+    """A side process running ``work(*call)`` for each of ``calls`` (forked at the first) and their Futures, in
+    order; None where no side process may run (``may_fork``) or the system refuses one."""
+    if not calls or not may_fork():
+        return None
+    side = None
+    try:
+        side = SideProcess(work)
+        return side, [side.submit(*call) for call in calls]
+    except OSError:
+        if side is not None:
+            side.stop()
+        return None
+
+
+def reissue(warned: list[Warned]) -> None:
+    """Raise here the warnings the side process raised, as they were (the run prints or records them)."""
+    for message, category, filename, lineno in warned:
+        warnings.warn_explicit(message, category, filename, lineno)
+
+
+def side_by_side(there: Callable[[], There], here: Callable[[], Here]) -> tuple[There, Here]:
+    """``there()`` in a side process while ``here()`` runs in this one; where none may run, ``there()`` and then
+    ``here()`` here. An exception of either is raised here (the side process then stopped)."""
+    started = start_side_process(there, [()])
+    if started is None:
+        return there(), here()
+    side, (future,) = started
+    try:
+        mine = here()
+        result, warned = future.result()
+    except BaseException:
+        side.stop()
+        raise
+    side.close()
+    reissue(warned)
+    return result, mine
+
+
+def _install(work: Callable[..., Any]) -> None:
+    """In the side process: its work, and its signals (Ctrl-C left to the parent, SIGTERM ending it at once)."""
+    global _work
+    _work = work
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+def _run_work(*call: Any) -> tuple[Any, list[Warned]]:
+    """In the side process: one call of the work, with the warnings it raised; an exception made to cross."""
+    assert _work is not None, "installed when the process starts"
+    try:
+        with warnings.catch_warnings(record=True) as log:
+            result = _work(*call)
+    except Exception as error:
+        _let_cross(error)
+        raise
+    return result, [(w.message, w.category, w.filename, w.lineno) for w in log]
+
+
+def _let_cross(error: BaseException) -> None:
+    """Make ``error`` pickle to its own class with its message, even where its ``__init__`` takes other arguments
+    than its ``args`` (``SolverError``): rebuilt from its state instead (in the side process only)."""
+    with contextlib.suppress(Exception):
+        pickle.loads(pickle.dumps(error))
+        return
+    ForkingPickler.register(type(error), _by_state)
+
+
+def _by_state(error: BaseException):
+    return _rebuilt, (type(error), error.args, vars(error))
+
+
+def _rebuilt(kind: type[BaseException], args: tuple, state: dict) -> BaseException:
+    error = kind.__new__(kind, *args)
+    error.args = args
+    vars(error).update(state)
+    return error
