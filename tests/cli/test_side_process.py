@@ -1,0 +1,123 @@
+"""The side process: work beside this process where it may use a second core, in turn here where it may not
+(one core, ``in_this_process``, a system that refuses the process); results, warnings and exceptions come back
+as they were; an interrupt here ends it at once."""
+from __future__ import annotations
+
+import multiprocessing
+import os
+import subprocess
+import sys
+import time
+import warnings
+
+import pytest
+
+from transplanter import side_process
+from transplanter.errors import SolverError
+from transplanter.side_process import in_this_process, side_by_side
+
+
+@pytest.fixture
+def two_cores(monkeypatch):
+    """As on a machine that gives this process two cores, whatever runs the test."""
+    monkeypatch.setattr(side_process, "usable_cores", lambda: 2)
+
+
+def order_of_work():
+    """Two pieces of work that record where and in which order they ran."""
+    log: list[str] = []
+
+    def there():
+        log.append("there")         # in a side process: the side process's copy of the log
+        return os.getpid(), list(log)
+
+    def here():
+        log.append("here")
+        return os.getpid(), list(log)
+
+    return there, here
+
+
+def test_the_side_runs_in_another_process_beside_this_one(two_cores):
+    there, here = order_of_work()
+    (there_pid, there_log), (here_pid, here_log) = side_by_side(there, here)
+    assert here_pid == os.getpid() and there_pid != os.getpid()
+    assert there_log == ["there"] and here_log == ["here"]      # each saw only its own work
+    assert multiprocessing.active_children() == []             # the side process has ended
+
+
+@pytest.mark.parametrize("confined", ["one core", "in this process", "not Linux", "refused"])
+def test_where_no_side_process_may_run_both_run_here_the_side_first(monkeypatch, confined):
+    monkeypatch.setattr(side_process, "usable_cores", lambda: 1 if confined == "one core" else 2)
+    if confined == "not Linux":
+        monkeypatch.setattr(side_process, "FORKS", False)
+    if confined == "refused":       # a sandbox without semaphores or fork
+        def refused(*args, **kwargs):
+            raise OSError(38, "Function not implemented")
+        monkeypatch.setattr(side_process, "ProcessPoolExecutor", refused)
+    there, here = order_of_work()
+    with in_this_process() if confined == "in this process" else warnings.catch_warnings():
+        (there_pid, there_log), (here_pid, here_log) = side_by_side(there, here)
+    assert there_pid == here_pid == os.getpid()
+    assert there_log == ["there"] and here_log == ["there", "here"]
+    assert side_process._may_fork.get()
+
+
+def test_the_cores_are_the_ones_this_process_may_use():
+    """A process confined to one core (as by ``taskset -c 0``) runs the side here, one given two forks it."""
+    cores = sorted(os.sched_getaffinity(0))
+    if len(cores) < 2:
+        pytest.skip("this process has one core: no second to give")
+    script = ("import os, sys\nfrom transplanter.side_process import may_fork, side_by_side\n"
+              "os.sched_setaffinity(0, {int(c) for c in sys.argv[1:]})\n"
+              "there, here = side_by_side(os.getpid, os.getpid)\n"
+              "print(may_fork(), there == here)\n")
+    seen = [subprocess.run([sys.executable, "-c", script, *map(str, given)], capture_output=True, text=True,
+                           check=True).stdout.split() for given in (cores[:1], cores[:2])]
+    assert seen == [["False", "True"], ["True", "False"]]
+
+
+def test_an_exception_of_the_side_is_raised_here_as_itself(two_cores):
+    """Its class, message and state, even where its constructor takes other arguments than its message."""
+    def there():
+        raise SolverError("the design NLP did not converge", "Maximum_Iterations_Exceeded")
+
+    with pytest.raises(SolverError, match="did not converge") as raised:
+        side_by_side(there, lambda: None)
+    assert raised.value.status == "Maximum_Iterations_Exceeded"
+    assert str(raised.value) == "the design NLP did not converge (solver status: Maximum_Iterations_Exceeded)"
+    assert multiprocessing.active_children() == []
+
+
+def test_an_oserror_of_the_side_keeps_its_file_name(two_cores):
+    def there():
+        return open("/nonexistent/folder/figure.png", "wb")
+
+    with pytest.raises(FileNotFoundError) as raised:
+        side_by_side(there, lambda: None)
+    assert raised.value.filename == "/nonexistent/folder/figure.png" and raised.value.strerror
+
+
+def test_warnings_of_the_side_are_raised_here(two_cores):
+    def there():
+        warnings.warn("a figure that cannot be laid out", UserWarning, stacklevel=1)
+        return os.getpid()
+
+    with warnings.catch_warnings(record=True) as log:
+        warnings.simplefilter("always")
+        pid, _ = side_by_side(there, lambda: None)
+    assert pid != os.getpid()
+    assert [(str(w.message), w.category) for w in log] == [("a figure that cannot be laid out", UserWarning)]
+
+
+def test_an_interrupt_here_ends_the_side_at_once(two_cores):
+    """Ctrl-C while this process does its part: the side process (5 s of work here) is ended, not waited for."""
+    def here():
+        time.sleep(0.3)
+        raise KeyboardInterrupt
+
+    start = time.perf_counter()
+    with pytest.raises(KeyboardInterrupt):
+        side_by_side(lambda: time.sleep(5.0), here)
+    assert time.perf_counter() - start < 2.0
+    assert multiprocessing.active_children() == []
