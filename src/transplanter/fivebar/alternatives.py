@@ -372,33 +372,46 @@ def refine_all(problem: FiveBarProblem, solver: DesignSolver, candidates: list[C
         failed = [replace(f, reason=f"{f.reason}; {solver.without_hold(candidates[f.start])}") if f.held else f
                   for f in failed]
     size = reach(problem)
-    merged = merge([_other_strokes(problem, solver, candidates, alternative) for alternative in merge(found, size)],
-                   size)
+    merged = merge(_other_strokes(problem, solver, candidates, merge(found, size)), size)
     merged = [_convex_if_possible(problem, solver, candidates, alternative) for alternative in merged]
     return rank(merge(merged, size), size), failed, seconds
 
 
 def _other_strokes(problem: FiveBarProblem, solver: DesignSolver, candidates: list[Candidate],
-                   alternative: Alternative) -> Alternative:
-    """The alternative, or the best design the solver reaches from it with a return point moved to another
+                   alternatives: list[Alternative]) -> list[Alternative]:
+    """Each alternative, or the best design the solver reaches from it with a return point moved to another
     pass of P by it (``DesignSolver.restroke``) when that ranks above it (a larger smallest transmission angle,
     beyond ``ANGLE_TIE``) and passes its checks. Which pass the NLP holds a return point on is fixed by its
     start, and the max-min can have its better optimum on the other pass (on the bundled example P8 at
-    carrier turn 219 deg instead of 304 deg: 6.74 deg instead of 6.36)."""
-    first, best = alternative.starts[0], alternative
-    for point, turn in other_passes(problem, alternative.design):
+    carrier turn 219 deg instead of 304 deg: 6.74 deg instead of 6.36). The re-solves of all the alternatives
+    run in the lanes of ``fivebar.lanes`` (two at a time), in order, lane 0 on ``solver``."""
+    moves = [(alternative, point, turn) for alternative in alternatives
+             for point, turn in other_passes(problem, alternative.design)]
+    judged: list[Alternative | Failure | None] = [None] * len(moves)
+
+    def restroke(lane_solver: DesignSolver, index: int) -> Alternative | Failure | None:
+        alternative, point, turn = moves[index]
+        first = alternative.starts[0]
         try:
-            judged = assess(problem, solver.restroke(candidates[first], alternative.design, point, turn), first)
+            return assess(problem, lane_solver.restroke(candidates[first], alternative.design, point, turn), first)
         except SolverError:
-            continue
-        if not isinstance(judged, Failure) and judged.transmission_angle > best.transmission_angle * (1 + ANGLE_TIE):
-            moved = (f"{problem.return_labels[point]} moved from its pass at carrier turn "
-                     f"{np.degrees(alternative.design.stroke.carrier_turns[point]):.1f} deg to the one at "
-                     f"{np.degrees(turn):.1f} deg (smallest transmission angle at E "
-                     f"{np.degrees(alternative.transmission_angle):.3f} -> "
-                     f"{np.degrees(judged.transmission_angle):.3f} deg)")
-            best = replace(judged, starts=alternative.starts, restroke=moved)
-    return best
+            return None
+
+    def finished(index: int, outcome: object, wall: float) -> None:
+        assert outcome is None or isinstance(outcome, (Alternative, Failure))
+        judged[index] = outcome
+
+    refine_in_lanes(len(moves), restroke, solver, lambda: solver.twin(), finished)
+    best = {id(alternative): alternative for alternative in alternatives}
+    for (alternative, point, turn), moved in zip(moves, judged, strict=True):
+        if isinstance(moved, Alternative) and \
+                moved.transmission_angle > best[id(alternative)].transmission_angle * (1 + ANGLE_TIE):
+            best[id(alternative)] = replace(moved, starts=alternative.starts, restroke=(
+                f"{problem.return_labels[point]} moved from its pass at carrier turn "
+                f"{np.degrees(alternative.design.stroke.carrier_turns[point]):.1f} deg to the one at "
+                f"{np.degrees(turn):.1f} deg (smallest transmission angle at E "
+                f"{np.degrees(alternative.transmission_angle):.3f} -> {np.degrees(moved.transmission_angle):.3f} deg)"))
+    return [best[id(alternative)] for alternative in alternatives]
 
 
 def _convex_if_possible(problem: FiveBarProblem, solver: DesignSolver, candidates: list[Candidate],

@@ -1,7 +1,8 @@
 """Candidates refined in two fixed lanes: lane k takes candidates k, k + 2, k + 4, ... in order, each
 lane on its own design solver, fresh when the lane starts (``DesignSolver`` carries the exchange
 turns of one candidate to the next, which makes later candidates of a lane about three times
-cheaper than its first).
+cheaper than its first). The return-stroke re-solves of the alternatives run in the same lanes
+(``alternatives._other_strokes``), two at a time.
 
 Lane 1 runs in a side process (``side_process``: forked, on Linux where this process may use a second
 core) beside lane 0 in this one, on the solver this process built, copied unused at the fork. Elsewhere,
