@@ -3,13 +3,13 @@ cores (the workers are the parallelism), the second lane forked when a core is l
 from __future__ import annotations
 
 import dataclasses
-import os
 from concurrent.futures import ThreadPoolExecutor
 
 import pytest
 
 from tests.study.studies import gear_study
 from transplanter import cli
+from transplanter.cores import usable_cores
 from transplanter.errors import TransplanterError
 from transplanter.fivebar import lanes
 from transplanter.study import run, runner, study_cases
@@ -35,7 +35,7 @@ def test_a_case_told_not_to_fork_runs_within_lanes_here_and_only_that_case(monke
 def test_the_study_forks_lanes_only_with_fewer_cases_at_once_than_cores(monkeypatch, tmp_path, extra, forks):
     """An executor as wide as this machine's cores (``extra`` 0) gets cases told not to fork; a narrower one
     (one fewer, where the machine has more than one core) gets cases told to."""
-    cores = os.cpu_count() or 1
+    cores = usable_cores()
     if cores + extra < 1:
         pytest.skip("one core: no narrower executor")
     told = []

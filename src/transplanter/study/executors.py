@@ -10,6 +10,7 @@ from concurrent.futures import Executor, ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
+from transplanter.cores import usable_cores
 from transplanter.errors import ProblemError
 
 #: Seconds to wait for a Dask scheduler before calling it unreachable.
@@ -36,7 +37,7 @@ class LocalWorkers:
     state of the parent."""
 
     def __init__(self, workers: int | None = None):
-        self.workers = workers or os.cpu_count() or 1
+        self.workers = workers or usable_cores()
         self.executor = self._start()
 
     def _start(self) -> ProcessPoolExecutor:
@@ -80,7 +81,7 @@ def as_executor(executor: Any) -> tuple[Executor, int]:
     """``executor`` as a ``concurrent.futures.Executor`` (a ``distributed.Client`` gives its own) and how many
     cases it runs at once (the cluster's threads, the pool's workers, or one per core)."""
     if isinstance(executor, Executor):
-        return executor, getattr(executor, "_max_workers", None) or os.cpu_count() or 1
+        return executor, getattr(executor, "_max_workers", None) or usable_cores()
     if hasattr(executor, "get_executor") and hasattr(executor, "nthreads"):
         return executor.get_executor(pure=False), max(1, sum(executor.nthreads().values()))
     raise ProblemError(f"executor = {type(executor).__name__}: expected a concurrent.futures.Executor or a "

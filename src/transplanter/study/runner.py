@@ -10,7 +10,6 @@ lanes in its worker instead of forking the second (``case_run``): the workers ar
 """
 from __future__ import annotations
 
-import os
 import time
 from collections import deque
 from collections.abc import Callable
@@ -19,6 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from transplanter.cores import usable_cores
 from transplanter.errors import TransplanterError
 from transplanter.output_folder import report_json, staged_file
 from transplanter.study.case_run import CRASHED, ERROR, TIMEOUT, run_case
@@ -100,7 +100,7 @@ class _Study:
 def _loop(study: _Study, todo: deque[Case], executor, window: int, local: LocalWorkers | None):
     """Run the cases of ``todo`` with at most ``window`` at once until each is recorded."""
     spec, limit, timeout = study.spec, study.spec.executor.attempts, study.spec.executor.case_timeout_s
-    fork_lanes = window < (os.cpu_count() or 1)     # fewer workers than cores: a forked lane has a core to use
+    fork_lanes = window < usable_cores()     # fewer workers than cores: a forked lane has a core to use
     suspects: deque[tuple[Case, int]] = deque()
     running: dict[Future, _Running] = {}
 
