@@ -50,6 +50,12 @@ def require_switch(name: str, value):
         raise ProblemError(f"{name} = {_described(value)}: expected True or False")
 
 
+def require_file_switches(animation, solids):
+    """Refuse (ProblemError) ``write_files``'s ``animation`` or ``solids`` when it is not True or False."""
+    require_switch("animation", animation)
+    require_switch("solids", solids)
+
+
 def require_progress(progress):
     """Refuse (ProblemError) a ``progress`` that is neither None nor a callable ``progress(step, done, total)``."""
     if progress is not None and not callable(progress):

@@ -13,6 +13,8 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from transplanter.api_arguments import require_file_switches
+
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
@@ -58,8 +60,13 @@ class CommandResult(ABC):
         """The report's figures (matplotlib) by file stem; none unless the result draws some."""
         return {}
 
-    def write_files(self, folder: Path, animation: bool = True, solids: bool = True) -> list[Path]:
+    def write_files(self, folder: str | Path, animation: bool = True, solids: bool = True) -> list[Path]:
         """Write the files beyond the report and the figures into ``folder`` (drawings, tables, the STEP solids
         unless ``solids`` is False, and the animation unless ``animation`` is False); the paths written, none
-        unless the result has such files."""
+        unless the result has such files. ProblemError when ``animation`` or ``solids`` is not True or False."""
+        require_file_switches(animation, solids)
+        return self._write_files(Path(folder), animation, solids)
+
+    def _write_files(self, folder: Path, animation: bool, solids: bool) -> list[Path]:
+        """The command's own files for ``write_files``: none unless the result has such files."""
         return []

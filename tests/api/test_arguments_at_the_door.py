@@ -53,3 +53,20 @@ def test_reverse_tolerance_switch_is_named(value):
     problem = reverse.load_problem(EXAMPLES / "rice_hoe_reverse.toml")
     with pytest.raises(ProblemError, match=r"^(--)?tolerance = .*: expected "):
         reverse.synthesize(problem, tolerance=value)
+
+
+@pytest.fixture(scope="module")
+def gear_result():
+    return gears.synthesize(gears.load_problem(EXAMPLES / "gear_ellipse.toml"))
+
+
+@pytest.mark.parametrize("writer", ["method", "fivebar", "parallelogram"])
+@pytest.mark.parametrize("switch", ["animation", "solids"])
+@pytest.mark.parametrize("value", ["no", None, 0])
+def test_write_files_switches_are_named(writer, switch, value, gear_result, tmp_path):
+    """A text such as "no" for ``animation`` or ``solids`` would have switched it on; nothing is written."""
+    write = {"method": gear_result.write_files, "fivebar": lambda *a, **k: fivebar.write_files(gear_result, *a, **k),
+             "parallelogram": lambda *a, **k: parallelogram.write_files(gear_result, *a, **k)}[writer]
+    with pytest.raises(ProblemError, match=rf"^{switch} = .*: expected True or False$"):
+        write(tmp_path / "out", **{switch: value})
+    assert not (tmp_path / "out").exists()

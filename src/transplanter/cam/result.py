@@ -83,7 +83,7 @@ class CamResult(CommandResult):
 
         return draw_figures(self)
 
-    def write_files(self, folder: Path, animation: bool = True, solids: bool = True) -> list[Path]:
+    def _write_files(self, folder: Path, animation: bool, solids: bool) -> list[Path]:
         """The profile as CSV, DXF and SVG (``cam.write_drawings``), design.toml (``design_toml``) and, unless
         ``solids`` is False, the disc's STEP solid with the extra transplanter[cad] (``cam.solid_files``)."""
         from transplanter.cam.design_toml import write_design

@@ -176,7 +176,7 @@ class DesignEvaluation(CommandResult):
 
         return evaluation_markdown(self)
 
-    def write_files(self, folder: Path, animation: bool = True, solids: bool = True) -> list[Path]:
+    def _write_files(self, folder: Path, animation: bool, solids: bool) -> list[Path]:
         """The support cam's drawings (``cam.write_drawings``), with ``[support]``."""
         if self.support is None:
             return []

@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from transplanter import progress
-from transplanter.api_arguments import require_result
+from transplanter.api_arguments import require_file_switches, require_result
 from transplanter.fivebar.animation import write_animation
 from transplanter.fivebar.design_toml import write_design
 from transplanter.fivebar.drawings import write_drawings
@@ -21,6 +21,7 @@ def write_files(result: FiveBarResult, folder: str | Path, animation: bool = Tru
     files, design.toml (``design_toml``), STEP solids with the extra transplanter[cad] unless ``solids`` is False
     and, unless ``animation`` is False, animation.gif (and .mp4 where ffmpeg exists) with the teeth turning on the
     carrier, in ``folder`` (made if missing); the files written."""
+    require_file_switches(animation, solids)
     require_result(result, FiveBarResult, "fivebar")
     with progress.step("drawings"):
         written = write_drawings(result, folder)

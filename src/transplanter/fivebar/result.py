@@ -135,7 +135,7 @@ class FiveBarResult(CommandResult):
 
         return draw_figures(self)
 
-    def write_files(self, folder: Path, animation: bool = True, solids: bool = True) -> list[Path]:
+    def _write_files(self, folder: Path, animation: bool, solids: bool) -> list[Path]:
         """``fivebar.write_files``: drawings, tables, the STEP solids unless ``solids`` is False and, unless
         ``animation`` is False, the animation."""
         from transplanter.fivebar.output_files import write_files

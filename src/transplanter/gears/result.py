@@ -139,7 +139,7 @@ class GearResult(CommandResult):
 
         return draw_figures(self)
 
-    def write_files(self, folder: Path, animation: bool = True, solids: bool = True) -> list[Path]:
+    def _write_files(self, folder: Path, animation: bool, solids: bool) -> list[Path]:
         """The pitch curves and tooth outlines as CSV, SVG and DXF (``gears.write_drawings``), and the cut gears'
         STEP solids with the extra transplanter[cad] (``gears.solid_files``) unless ``solids`` is False."""
         from transplanter.gears.drawings import write_drawings

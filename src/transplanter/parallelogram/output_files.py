@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from transplanter import progress
-from transplanter.api_arguments import require_result
+from transplanter.api_arguments import require_file_switches, require_result
 from transplanter.gears.drawings import write_drawings
 from transplanter.gears.solid_files import write_solids
 from transplanter.parallelogram.animation import write_animation
@@ -20,6 +20,7 @@ def write_files(result: ParallelogramResult, folder: str | Path, animation: bool
     """pareto.csv and trajectory.csv, the gears' CSV, SVG, DXF and STEP (with teeth; STEP unless ``solids`` is
     False), design.toml (``design_toml``) and, unless ``animation`` is False, animation.gif, in ``folder`` (made if
     missing); the files written."""
+    require_file_switches(animation, solids)
     require_result(result, ParallelogramResult, "parallelogram")
     with progress.step("tables"):
         written = write_tables(result, folder)

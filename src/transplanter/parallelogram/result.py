@@ -177,7 +177,7 @@ class ParallelogramResult(CommandResult):
 
         return draw_figures(self)
 
-    def write_files(self, folder: Path, animation: bool = True, solids: bool = True) -> list[Path]:
+    def _write_files(self, folder: Path, animation: bool, solids: bool) -> list[Path]:
         """``parallelogram.write_files``: the tables, the gear drawings, their STEP solids unless ``solids`` is False
         and, unless ``animation`` is False, the animation."""
         from transplanter.parallelogram.output_files import write_files

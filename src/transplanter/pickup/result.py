@@ -142,7 +142,7 @@ class PickupResult(CommandResult):
 
         return draw_figures(self)
 
-    def write_files(self, folder: Path, animation: bool = True, solids: bool = True) -> list[Path]:
+    def _write_files(self, folder: Path, animation: bool, solids: bool) -> list[Path]:
         """``pickup.gif``, one carrier turn (``pickup.write_animation``), unless ``animation`` is False."""
         if not animation:
             return []

@@ -130,7 +130,7 @@ class ReverseResult(CommandResult):
 
         return to_markdown(self, files)
 
-    def write_files(self, folder: Path, animation: bool = True, solids: bool = True) -> list[Path]:
+    def _write_files(self, folder: Path, animation: bool, solids: bool) -> list[Path]:
         """design.toml (``design_toml``); with whole teeth, the gear sheets, drawings.pdf, parts.csv and pitch-curve
         tables (``gear_files``) and, unless ``solids`` is False, the gears' STEP solids with the extra
         transplanter[cad] (``solid_files``)."""
