@@ -51,6 +51,25 @@ def test_rice_gears_cut_outlines_that_do_not_cross_themselves(rice):
         assert teeth.self_intersections == (0, 0)
 
 
+def test_a_tooth_outline_that_crosses_itself_fails_the_run(tmp_path, capsys, monkeypatch):
+    from transplanter.trains import toothed_train
+
+    cut = toothed_train.generate_teeth
+
+    def with_a_crossing_driven(*args, **kwargs):        # each stage's driven outline said to cross itself once
+        return dataclasses.replace(cut(*args, **kwargs), self_intersections=(0, 1))
+
+    monkeypatch.setattr(toothed_train, "generate_teeth", with_a_crossing_driven)
+    code = main(["reverse", str(RICE), "--no-tolerance", "--no-step", "--json", "--out", str(tmp_path)])
+    captured = capsys.readouterr()
+    report = json.loads(captured.out)
+    assert code == 1 and report["status"] == "FAILED" and len(captured.err.strip().splitlines()) == 1
+    assert [g["self_intersections"] for g in report["toothed_train"]["gears"]] == [0, 1, 0, 1]
+    assert report["failures"] == ["first intermediate: its tooth outline crosses itself (1 crossings)",
+                                  "planet: its tooth outline crosses itself (1 crossings)"]
+    assert report["toothed_train"]["mesh_check"]["passed"] is True
+
+
 def test_out_has_gear_sheets_and_pitch_curves_listed_in_the_report(tmp_path, capsys):
     assert main(["reverse", str(RICE), "--no-tolerance", "--no-step", "--json", "--out", str(tmp_path)]) == 0
     report = json.loads(capsys.readouterr().out)
