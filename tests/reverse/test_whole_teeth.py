@@ -9,6 +9,7 @@ from pathlib import Path
 import ezdxf
 import numpy as np
 import pytest
+import shapely
 
 from transplanter.cli import main
 from transplanter.drawing.sheet import LAYERS
@@ -37,6 +38,36 @@ def test_rice_train_has_whole_teeth_on_a_bent_carrier_that_mesh(rice):
     assert np.hypot(*shaft) == pytest.approx(a1, rel=1e-12)
     assert np.hypot(shaft[0] - s, shaft[1]) == pytest.approx(a2, rel=1e-12)
     assert rice.verification.max_error_mm < 1e-8 * (s + rice.motion.arm_length)   # rolled on the chosen centres
+
+
+def test_rice_gears_cut_outlines_that_do_not_cross_themselves(rice):
+    """The sun's and second intermediate's pitch curves have hollow corners (the first intermediate's and planet's
+    matching ones bulge), and the planet bends near the rack's undercut limit: the tip and root curves offset
+    from such a curve cross themselves there, and a flank turns back before the root; every outline must still
+    be a simple closed curve."""
+    for teeth in rice.toothed.teeth:
+        for outline in teeth.outlines:
+            assert shapely.is_simple(shapely.linearrings(outline)) and shapely.Polygon(outline).is_valid
+        assert teeth.self_intersections == (0, 0)
+
+
+def test_a_tooth_outline_that_crosses_itself_fails_the_run(tmp_path, capsys, monkeypatch):
+    from transplanter.trains import toothed_train
+
+    cut = toothed_train.generate_teeth
+
+    def with_a_crossing_driven(*args, **kwargs):        # each stage's driven outline said to cross itself once
+        return dataclasses.replace(cut(*args, **kwargs), self_intersections=(0, 1))
+
+    monkeypatch.setattr(toothed_train, "generate_teeth", with_a_crossing_driven)
+    code = main(["reverse", str(RICE), "--no-tolerance", "--no-step", "--json", "--out", str(tmp_path)])
+    captured = capsys.readouterr()
+    report = json.loads(captured.out)
+    assert code == 1 and report["status"] == "FAILED" and len(captured.err.strip().splitlines()) == 1
+    assert [g["self_intersections"] for g in report["toothed_train"]["gears"]] == [0, 1, 0, 1]
+    assert report["failures"] == ["first intermediate: its tooth outline crosses itself (1 crossings)",
+                                  "planet: its tooth outline crosses itself (1 crossings)"]
+    assert report["toothed_train"]["mesh_check"]["passed"] is True
 
 
 def test_out_has_gear_sheets_and_pitch_curves_listed_in_the_report(tmp_path, capsys):

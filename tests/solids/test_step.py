@@ -12,7 +12,7 @@ from transplanter.drawing.plate_sheet import Hole, PlatePart
 from transplanter.drawing.sheet import TitleBlock
 from transplanter.geometry.outline_thinning import thinned
 from transplanter.shafts.keyed_bore import KeyedBore
-from transplanter.solids.step import FIXED_TIME, gear_solid, plate_solid, valid_outline, write_step
+from transplanter.solids.step import FIXED_TIME, gear_solid, plate_solid, write_step
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -46,18 +46,3 @@ def test_the_same_part_gives_the_same_step_bytes(tmp_path):
     second = write_step(plate_solid(part, 5.0), tmp_path / "second.step")
     assert first.read_bytes() == second.read_bytes()
     assert f"'{FIXED_TIME}'" in first.read_text().split("ENDSEC;")[0]
-
-
-def test_an_outline_crossing_itself_gives_the_largest_region_it_encloses(tmp_path):
-    """A 40 x 30 mm outline that crosses itself at its seam, a loop 0.001 mm across (as a cut tooth outline can): the
-    solid is valid, the rectangle less the keyed bore times the width."""
-    outline = np.array([[-20.0, -15.0], [20.0, -15.0], [20.0, 15.0], [-20.0, 15.0], [-19.999, -15.001]])
-    assert not shapely.Polygon(outline).is_valid
-    cleaned = valid_outline(outline)
-    assert shapely.Polygon(cleaned).is_valid
-    assert np.allclose(cleaned.min(axis=0), [-20.0, -15.0]) and np.allclose(cleaned.max(axis=0), [20.0, 15.0])
-    bore = KeyedBore.for_shaft(10.0, 0.0)
-    gear = GearDrawing("block", outline, outline, bore, TitleBlock("block", 1, "t"))
-    solid = gear_solid(gear, 4.0)
-    assert solid.is_valid
-    check_solid(read_back(solid, tmp_path / "block.step"), cleaned, 40.0 * 30.0 - keyed_hole_area(bore), 4.0, 1)

@@ -1,5 +1,6 @@
 """The toothed planetary train: whole counts against hand-computed circles and on a spline, the carrier
 layout, where each gear sits, the rack/shaper choice with its numbers, and bad [gears] input."""
+import dataclasses
 import math
 from pathlib import Path
 
@@ -230,3 +231,15 @@ def test_a_module_that_gives_too_many_teeth_is_refused_before_cutting():
 def test_a_carrier_too_short_at_the_finest_module_says_so():
     with pytest.raises(Exception, match="0.2 is the finest module taken: the mechanism is too small for cut teeth"):
         design_toothed_train(SMOOTH, CARRIER / 1000, Gearing(module=0.2), "test")
+
+
+def test_a_tooth_outline_that_crosses_itself_fails_the_train_and_is_reported(smooth):
+    stage_one, stage_two = smooth.teeth
+    crossed = dataclasses.replace(smooth, teeth=(dataclasses.replace(stage_one, self_intersections=(0, 2)), stage_two))
+    assert smooth.self_intersections == (0, 0, 0, 0) and smooth.passed
+    assert crossed.self_intersections == (0, 2, 0, 0)
+    assert crossed.failures == ["first intermediate: its tooth outline crosses itself (2 crossings)"]
+    assert not crossed.passed and crossed.mesh_failures == []
+    report = toothed_train_json(crossed)
+    assert [g["self_intersections"] for g in report["gears"]] == [0, 2, 0, 0]
+    assert report["mesh_check"]["passed"] is True and report["mesh_check"]["failures"] == []

@@ -272,7 +272,7 @@ def to_markdown(result: FiveBarResult, files: Sequence[str] = ()) -> str:
               f"{g.reason} |" for g in toothed.gears]
     lines += ["", f"Tooth mesh over a turn (teeth turned by the designed motion): largest overlap "
               f"{mesh.max_overlap_mm:.4f} mm, smallest clearance {mesh.min_clearance_mm:.4f} mm, transmission "
-              f"error {mesh.transmission_error_deg:.4f} deg: {'passed' if toothed.passed else 'FAILED'}.", ""]
+              f"error {mesh.transmission_error_deg:.4f} deg: {'FAILED' if toothed.mesh_failures else 'passed'}.", ""]
     lines += _alternatives(result)
     region = result.region
     lines += ["", "## Solution region", "",

@@ -28,6 +28,7 @@ from scipy.spatial import cKDTree
 
 from transplanter._generated.cusp import variable_involute
 from transplanter.generated import numpy_twin
+from transplanter.geometry.self_crossings import without_loops
 
 _VARIABLE_INVOLUTE = numpy_twin(variable_involute)
 ADDENDUM, DEDENDUM = 1.0, 1.25  # in modules
@@ -216,7 +217,10 @@ class _OffsetCurve:
     """An offset of the pitch curve (tip or root) in polar form, for clipping and joining flanks."""
 
     def __init__(self, table: PitchTable, distance: float):
-        self.points = table.points + distance * table.normals
+        # past a corner of the pitch curve, or a bend tighter than the offset, the offset crosses itself: the
+        # blank's edge is cut at the crossing (``without_loops``), so that angle increases along it
+        ring = without_loops(table.points[:-1] + distance * table.normals[:-1])
+        self.points = np.r_[ring, ring[:1]]
         angle = np.unwrap(np.arctan2(self.points[:, 1], self.points[:, 0]))
         self.direction = 1.0 if angle[-1] > angle[0] else -1.0
         self.angle = self.direction * angle            # increases with arc length
@@ -240,9 +244,13 @@ class _OffsetCurve:
 
 
 def _clip(flank, tip: _OffsetCurve, root: _OffsetCurve, near: float):
-    """The part of a flank (ordered root -> tip) between the root and tip curves, ends on the curves."""
-    angle = tip.unwrap(flank, near)
+    """The part of a flank (ordered root -> tip) between the root and tip curves, ends on the curves. On a bend
+    near the rack's undercut limit the flank turns back on itself before the root (its cusp, where the rack's
+    straight flank stops generating it): only the part from its deepest point on bounds the tooth."""
     radius = np.hypot(flank[:, 0], flank[:, 1])
+    deepest = int(np.argmin(radius))
+    flank, radius = flank[deepest:], radius[deepest:]
+    angle = tip.unwrap(flank, near)
     above_root = radius - root.radius_at(angle)
     below_tip = tip.radius_at(angle) - radius
     inside = (above_root >= 0) & (below_tip >= 0)

@@ -4,12 +4,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import shapely
 
 from transplanter.errors import InfeasibleError
 from transplanter.gears.pair import GearPairDesign
 from transplanter.gears.rack_teeth import ADDENDUM, pitch_table, rack_profile
 from transplanter.gears.swept_teeth import mate_profile, shaper_profile
+from transplanter.geometry.self_crossings import crossing_segments
 
 
 def _unit(vectors):
@@ -61,29 +61,10 @@ def local_contact_ratio(rho1, rho2, module: float, alpha: float) -> np.ndarray:
     return (approach(rho1) + approach(rho2)) / (np.pi * module * np.cos(alpha))
 
 
-def _side(p, q, r):
-    """Sign of the turn p -> q -> r: +1 left, -1 right, 0 collinear."""
-    return np.sign((q[..., 0] - p[..., 0]) * (r[..., 1] - p[..., 1])
-                   - (q[..., 1] - p[..., 1]) * (r[..., 0] - p[..., 0]))
-
-
 def self_intersections(outline: np.ndarray) -> int:
-    """Proper crossings between segments of a closed outline (points in mm, the last joined to the first).
-
-    GEOS (through shapely, in C) decides whether the ring is simple; only a ring that is not is
-    split into segments, whose candidate pairs come from an STR-tree of their boxes and are
-    counted where each segment's ends lie strictly on both sides of the other. Touches, shared
-    ends and collinear overlaps are not crossings.
-    """
-    if shapely.is_simple(shapely.linearrings(outline)):
-        return 0
-    a, b = outline, np.roll(outline, -1, axis=0)
-    segments = np.asarray(shapely.linestrings(np.stack([a, b], axis=1)))     # an array of them
-    first, second = shapely.STRtree(segments).query(segments)
-    i, j = first[first < second], second[first < second]
-    crossing = ((_side(a[i], b[i], a[j]) * _side(a[i], b[i], b[j]) < 0)
-                & (_side(a[j], b[j], a[i]) * _side(a[j], b[j], b[i]) < 0))
-    return int(crossing.sum())
+    """Proper crossings between segments of a closed outline (points in mm, the last joined to the first);
+    touches, shared ends and collinear overlaps are not crossings (``geometry.self_crossings``)."""
+    return len(crossing_segments(outline)[0])
 
 
 def _refuse_what_the_cutter_cannot_cut(design: GearPairDesign, module: float, alpha: float, cutter: str,

@@ -96,7 +96,7 @@ def toothed_train_markdown(toothed: ToothedTrain) -> list[str]:
              f"planet); centre distances a1 = {a1:.6f} mm, a2 = {a2:.6f} mm; the intermediate shaft "
              f"{np.degrees(toothed.bend_angle):.4f} deg off the line pivot-planet at O, at ({toothed.shaft[0]:.4f}, "
              f"{toothed.shaft[1]:.4f}) mm in the carrier frame",
-             f"- Mesh check over a turn ({'passed' if toothed.passed else 'FAILED'}): largest overlap "
+             f"- Mesh check over a turn ({'FAILED' if toothed.mesh_failures else 'passed'}): largest overlap "
              f"{worst.max_overlap_mm:.5f} mm ({worst.max_overlap_mm / toothed.module:.5f} module; allowed {limit:.4f} "
              f"mm), smallest clearance {worst.min_clearance_mm:.5f} mm, transmission error "
              f"{worst.transmission_error_deg:.4f} deg", "",

@@ -112,7 +112,8 @@ class ReverseResult(CommandResult):
             return found
         from transplanter.reverse.gear_files import bore_failures
 
-        return found + [f"mesh check: {text}" for text in self.toothed.failures] + bore_failures(self.toothed)
+        return (found + [f"mesh check: {text}" for text in self.toothed.mesh_failures] + self.toothed.crossing_failures
+                + bore_failures(self.toothed))
 
     def tolerance_model(self) -> ToleranceModel:
         """The built train and arm as a function of their manufactured dimensions (``reverse.tolerance_model``)."""

@@ -13,7 +13,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-import shapely
 
 from transplanter.drawing.gear_sheet import GearDrawing
 from transplanter.drawing.plate_sheet import PlatePart
@@ -30,21 +29,10 @@ def cad_installed() -> bool:
     return importlib.util.find_spec("build123d") is not None
 
 
-def valid_outline(outline: np.ndarray) -> np.ndarray:
-    """The outline, or where it crosses itself (a cut tooth outline can close over its seam with a tiny loop) the
-    boundary of the largest region it encloses: a face bounded by a crossing wire is not a valid solid's."""
-    polygon = shapely.Polygon(outline)
-    if polygon.is_valid:
-        return np.asarray(outline, float)
-    regions = [part for part in shapely.get_parts(shapely.get_parts(shapely.make_valid(polygon)))
-               if isinstance(part, shapely.Polygon)]           # make_valid may add the loop's lines or points
-    return shapely.get_coordinates(max(regions, key=lambda part: part.area).exterior)[:-1]
-
-
 def _face(outline: np.ndarray):
     import build123d as bd
 
-    return bd.make_face(bd.Polyline(*map(tuple, valid_outline(outline).tolist()), close=True))
+    return bd.make_face(bd.Polyline(*map(tuple, np.asarray(outline, float).tolist()), close=True))
 
 
 def _keyed_hole(bore: KeyedBore):

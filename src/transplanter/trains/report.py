@@ -46,8 +46,10 @@ def toothed_train_json(toothed: ToothedTrain) -> dict:
         "gears": [{"name": g.name, "role": g.role, "teeth": g.teeth, "module": g.module, "convex": g.convex,
                    "min_curvature_radius_mm": g.min_curvature_radius, "min_concave_radius_mm": g.min_concave_radius,
                    "cutter": g.cutter, "reason": g.reason, "center_mm": g.center.tolist(),
-                   "angle_at_turn_zero_deg": float(np.degrees(g.angle_at_turn_zero))} for g in toothed.gears],
-        "mesh_check": {**worst_mesh(toothed)._asdict(), "passed": toothed.passed, "failures": toothed.failures,
+                   "angle_at_turn_zero_deg": float(np.degrees(g.angle_at_turn_zero)), "self_intersections": crossings}
+                  for g, crossings in zip(toothed.gears, toothed.self_intersections, strict=True)],
+        "mesh_check": {**worst_mesh(toothed)._asdict(), "passed": not toothed.mesh_failures,
+                       "failures": toothed.mesh_failures,
                        "stages": [mesh_check_json(check) for check in toothed.mesh]},
         "timings_s": toothed.timings_s,
     }

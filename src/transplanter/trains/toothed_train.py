@@ -189,9 +189,28 @@ class ToothedTrain:
     timings_s: dict
 
     @property
-    def failures(self) -> list[str]:
+    def mesh_failures(self) -> list[str]:
+        """What the mesh check of either stage finds wrong."""
         pairs = ("sun -> first intermediate", "second intermediate -> planet")
         return [f"{pair}: {text}" for pair, check in zip(pairs, self.mesh, strict=True) for text in check.failures]
+
+    @property
+    def self_intersections(self) -> tuple[int, int, int, int]:
+        """Crossings of each gear's tooth outline with itself (sun, first intermediate, second intermediate,
+        planet): a cut outline must be a simple closed curve."""
+        (sun, first), (second, planet) = (teeth.self_intersections for teeth in self.teeth)
+        return sun, first, second, planet
+
+    @property
+    def crossing_failures(self) -> list[str]:
+        """Each gear whose tooth outline crosses itself."""
+        return [f"{name}: its tooth outline crosses itself ({count} crossings)"
+                for name, count in zip(GEAR_NAMES, self.self_intersections, strict=True) if count]
+
+    @property
+    def failures(self) -> list[str]:
+        """The mesh check's failures, then the crossing tooth outlines."""
+        return [*self.mesh_failures, *self.crossing_failures]
 
     @property
     def passed(self) -> bool:
