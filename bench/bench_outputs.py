@@ -10,8 +10,8 @@ best of three on the same nine sheets and the same design:
   (each sheet's DXF read back and drawn by ezdxf's drawing add-on on matplotlib: texts as filled glyph paths, a
   patch per filled shape, each widening the axes' limits);
 - the animation with the main job's teeth: ``fivebar.animation.write_animation`` against the former frames
-  (each gear's turn evaluated per frame and per artist, the whole clock text redrawn each frame), written by the
-  same GIF writer.
+  (the same figure with the former's per-frame work: each gear's turn evaluated per frame and per artist, the
+  whole clock text redrawn each frame), written by the same GIF writer.
 
 It prints both ratios and the absolute times (target: drawings.pdf under 1 s), and ``write_drawings`` whole.
 """
@@ -20,6 +20,7 @@ from __future__ import annotations
 import tempfile
 from functools import partial
 from pathlib import Path
+from unittest import mock
 
 import ezdxf
 import numpy as np
@@ -32,11 +33,9 @@ from matplotlib.figure import Figure
 
 from transplanter import fivebar
 from transplanter.drawing.pdf import PAGE_INCHES, write_pdf
-from transplanter.figure_conventions import LEGEND_BESIDE
 from transplanter.fivebar import animation
 from transplanter.fivebar.drawings import write_drawings
-from transplanter.fivebar.gears_on_carrier import carrier_to_world, gears_on_carrier, teeth_on_carrier
-from transplanter.fivebar.loop_closure import close_loop
+from transplanter.fivebar.gears_on_carrier import gears_on_carrier, teeth_on_carrier
 from transplanter.geometry.poses import rotation
 from transplanter.moving_picture import blitted_frames, write_gif
 
@@ -63,74 +62,29 @@ def former_write_pdf(sheets, path: Path) -> Path:
     return path
 
 
-def _former_placed(outline, center, angle, c):
-    return center + outline @ rotation(float(np.asarray(angle(np.array([c])))[0])).T
+def former_write_animation(result, folder: Path, teeth) -> Path:
+    """The former frames: the same figure, with the former's per-frame work: each gear's turn evaluated at the
+    frame's carrier turn once per artist that draws it (pitch curve on the carrier, in the ground frame, teeth)
+    and the whole clock text drawn each frame (its words not in the still background); a lower bound: the
+    former also placed each pitch curve twice a frame."""
+    frames = animation.FRAMES
+    turns = np.linspace(0, 2 * np.pi, frames, endpoint=False)
+    angles = [gear.angle for gear in gears_on_carrier(result.train, float(result.design.mech.carrier_length))] * 2
+    angles += [angle for _, _, angle in teeth.values()]
+    with mock.patch.object(animation, "CLOCK_WORDS", ""), \
+            mock.patch.object(animation, "_clock_text", _former_clock_text):
+        figure, draw = animation._draw_frames(result, teeth, frames)
+
+    def former_draw(k):
+        for angle in angles:
+            rotation(float(np.asarray(angle(np.array([turns[k]])))[0]))
+        return draw(k)
+
+    return write_gif(blitted_frames(figure, former_draw, frames), folder / "animation.gif")
 
 
 def _former_clock_text(c):
     return f"carrier turn {np.degrees(c):5.1f} deg (clockwise from pose 1)"
-
-
-def former_draw_frames(result, teeth, frames):
-    """The former figure and frame function (no seedling support: the main job has none)."""
-    mech, problem, check = result.design.mech, result.problem, result.verification
-    turns = np.linspace(0, 2 * np.pi, frames, endpoint=False)
-    state = close_loop(mech, turns, result.design.relative_angle.evaluate(turns))
-    gears = gears_on_carrier(result.train, float(mech.carrier_length))
-    outlines = [(g.pitch_curve, g.center, g.angle, g.name.replace("_", " ")) for g in gears]
-    toothed = [(outline, center, angle, name) for name, (outline, center, angle) in teeth.items()]
-    fig = Figure(figsize=animation.FIGURE_SIZE, layout="constrained")
-    world, carrier = fig.subplots(1, 2, width_ratios=[1, 1.5])
-    world.plot(*check.trajectory.T, color="0.75", lw=1, label="P over a turn")
-    trace, = world.plot([], [], "k-", lw=1.5, label="P so far", animated=True)
-    world.plot(*problem.poses[:, :2].T, "r^", ms=6, label="key poses")
-    for label, pose in zip(problem.labels, problem.poses, strict=True):
-        world.annotate(f" {label}", pose[:2], fontsize=8, color="r", parse_math=False)
-    chain, = world.plot([], [], "b-o", ms=3, lw=1.5, label="O-A-F-E-B", animated=True)
-    plate, = world.fill([], [], color="tab:green", alpha=0.5, label="plate E-F-P", animated=True)
-    world_gears = [world.plot([], [], lw=0.8, animated=True)[0] for _ in outlines]
-    gear_reach = max(np.linalg.norm(g.center) + np.linalg.norm(g.pitch_curve, axis=1).max() for g in gears)
-    every = np.vstack([check.trajectory, gear_reach * np.array([[-1, -1], [1, 1]]), mech.hinge_b[None], state["e"],
-                       state["f"]])
-    low, high = np.nanmin(every, axis=0), np.nanmax(every, axis=0)
-    pad = 0.05 * (high - low).max()
-    world.set(xlim=(low[0] - pad, high[0] + pad), ylim=(low[1] - pad, high[1] + pad), aspect="equal",
-              xlabel="x (mm)", ylabel="y (mm)", title="ground frame")
-    world.legend(fontsize=7, loc="upper left", bbox_to_anchor=(0, -0.12), ncols=2)
-    carrier_curves = [carrier.plot([], [], lw=1, label=name, animated=True)[0] for *_, name in outlines]
-    carrier_teeth = [carrier.plot([], [], "k-", lw=0.6, animated=True)[0] for _ in toothed]
-    clock = carrier.text(0.0, -0.22, _former_clock_text(0.0), transform=carrier.transAxes, ha="left", va="top",
-                         fontsize=9, animated=True)
-    centers = np.array([g.center for g in gears])
-    carrier.plot(*centers.T, "k+")
-    carrier.plot(*centers[[0, 1, 3]].T, "k:", lw=0.8)
-    reach = max(np.linalg.norm(g.pitch_curve, axis=1).max() for g in gears)
-    carrier.set(xlim=(centers[:, 0].min() - 1.2 * reach, centers[:, 0].max() + 1.2 * reach),
-                ylim=(centers[:, 1].min() - 1.2 * reach, centers[:, 1].max() + 1.2 * reach), aspect="equal",
-                xlabel="x along the carrier O-A (mm)", ylabel="y on the carrier (mm)",
-                title="pitch curves on the carrier with teeth")
-    carrier.legend(fontsize=7, **LEGEND_BESIDE)
-
-    def draw(k):
-        c = turns[k]
-        trace.set_data(*check.trajectory[check.carrier_turns <= c].T)
-        chain.set_data(*np.array([[0.0, 0.0], state["a"][k], state["f"][k], state["e"][k], mech.hinge_b]).T)
-        plate.set_xy(np.array([state["e"][k], state["f"][k], state["p"][k]]))
-        for line, (outline, center, angle, _) in zip(carrier_curves, outlines, strict=True):
-            line.set_data(*_former_placed(outline, center, angle, c).T)
-        for line, (outline, center, angle, _) in zip(world_gears, outlines, strict=True):
-            line.set_data(*carrier_to_world(mech, _former_placed(outline, center, angle, c), c).T)
-        for line, (outline, center, angle, _) in zip(carrier_teeth, toothed, strict=True):
-            line.set_data(*_former_placed(outline, center, angle, c).T)
-        clock.set_text(_former_clock_text(c))
-        return [trace, chain, plate, clock, *world_gears, *carrier_curves, *carrier_teeth]
-
-    return fig, draw
-
-
-def former_write_animation(result, folder: Path, teeth) -> Path:
-    images = blitted_frames(*former_draw_frames(result, teeth, animation.FRAMES), animation.FRAMES)
-    return write_gif(images, folder / "animation.gif")
 
 
 # --- the comparison ---
