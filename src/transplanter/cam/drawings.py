@@ -50,7 +50,7 @@ def write_csv(result: CamResult, path: Path) -> Path:
     return path
 
 
-def write_dxf(result: CamResult, path: Path) -> Path:
+def cam_sheet(result: CamResult) -> Sheet:
     sheet = Sheet()
     sheet.polyline(result.geometry.profile, "OUTLINE", close=True)
     if result.problem.follower.kind != "flat_faced":
@@ -60,17 +60,21 @@ def write_dxf(result: CamResult, path: Path) -> Path:
     sheet.circle((0.0, 0.0), bore_radius(result), "BORE")
     sheet.diameter_dimension((0.0, 0.0), bore_radius(result), 45.0)
     sheet.title_block(TitleBlock("cam", 1, result.problem.title))
-    return sheet.save(path)
+    return sheet
 
 
 def write_drawings(result: CamResult, folder: str | Path) -> list[Path]:
     """``cam_profile.csv``, ``cam.dxf`` and ``cam.svg`` in ``folder`` (made if missing); the files written."""
     require_result(result, CamResult, "cam")
-    folder = writable_folder(folder)
-    svg = folder / "cam.svg"
+    return write_sheet_and_drawings(result, writable_folder(folder))[1]
+
+
+def write_sheet_and_drawings(result: CamResult, folder: Path) -> tuple[Sheet, list[Path]]:
+    """The files of ``write_drawings`` in the existing ``folder``: cam.dxf's sheet (for a PDF) and the files."""
+    sheet, svg = cam_sheet(result), folder / "cam.svg"
     pitch = None if result.problem.follower.kind == "flat_faced" else np.vstack([result.geometry.pitch,
                                                                                  result.geometry.pitch[:1]])
     turn = np.linspace(0.0, 2 * np.pi, BORE_SEGMENTS, endpoint=False)
     write_svg(result.geometry.profile, svg, pitch_curve=pitch, bore=bore_radius(result) * np.c_[np.cos(turn),
                                                                                                    np.sin(turn)])
-    return [write_csv(result, folder / "cam_profile.csv"), write_dxf(result, folder / "cam.dxf"), svg]
+    return sheet, [write_csv(result, folder / "cam_profile.csv"), sheet.save(folder / "cam.dxf"), svg]

@@ -67,12 +67,14 @@ def gear_sheet(gear: GearDrawing) -> Sheet:
     return sheet
 
 
+def write_gear_sheet(gear: GearDrawing, folder: Path) -> tuple[Sheet, list[Path]]:
+    """``<name>.dxf`` and ``<name>.svg`` of ``gear`` in ``folder``: the sheet (for the PDF) and the files."""
+    sheet, dxf, svg = gear_sheet(gear), folder / f"{gear.name}.dxf", folder / f"{gear.name}.svg"
+    sheet.save(dxf)
+    write_svg(gear.outline, svg, pitch_curve=gear.pitch_curve, bore=gear.bore.outline(), mark=gear.mark)
+    return sheet, [dxf, svg]
+
+
 def write_gear_sheets(gears, folder: Path) -> list[Path]:
     """``<name>.dxf`` and ``<name>.svg`` per ``GearDrawing`` in ``folder``; the files written."""
-    written = []
-    for gear in gears:
-        dxf, svg = folder / f"{gear.name}.dxf", folder / f"{gear.name}.svg"
-        gear_sheet(gear).save(dxf)
-        write_svg(gear.outline, svg, pitch_curve=gear.pitch_curve, bore=gear.bore.outline(), mark=gear.mark)
-        written += [dxf, svg]
-    return written
+    return [path for gear in gears for path in write_gear_sheet(gear, folder)[1]]

@@ -36,12 +36,16 @@ FIGURE_SIZE = (9.0, 4.8)
 Teeth = dict[str, tuple[np.ndarray, np.ndarray, Callable[[np.ndarray], np.ndarray]]]
 
 
-def _placed(outline: np.ndarray, center: np.ndarray, angle: Callable, c: float) -> np.ndarray:
-    return center + outline @ rotation(float(np.asarray(angle(np.array([c])))[0])).T
+def _placed(outline: np.ndarray, center: np.ndarray, turn: float) -> np.ndarray:
+    return center + outline @ rotation(turn).T
+
+
+#: The clock below the carrier frame: its fixed words drawn once, the turn after them redrawn each frame.
+CLOCK_WORDS = "carrier turn (clockwise from pose 1):"
 
 
 def _clock_text(c: float) -> str:
-    return f"carrier turn {np.degrees(c):5.1f} deg (clockwise from pose 1)"
+    return f" {np.degrees(c):5.1f} deg"
 
 
 def _draw_frames(result: FiveBarResult, teeth: Teeth | None, frames: int) -> tuple[Figure, Callable[[int], list]]:
@@ -50,8 +54,10 @@ def _draw_frames(result: FiveBarResult, teeth: Teeth | None, frames: int) -> tup
     turns = np.linspace(0, 2 * np.pi, frames, endpoint=False)
     state = close_loop(mech, turns, result.design.relative_angle.evaluate(turns))
     gears = gears_on_carrier(result.train, float(mech.carrier_length))
-    outlines = [(g.pitch_curve, g.center, g.angle, g.name.replace("_", " ")) for g in gears]
-    toothed = [(outline, center, angle, name) for name, (outline, center, angle) in (teeth or {}).items()]
+    # each gear's turn (rad) at every frame, evaluated at once
+    outlines = [(g.pitch_curve, g.center, np.asarray(g.angle(turns)), g.name.replace("_", " ")) for g in gears]
+    toothed = [(outline, center, np.asarray(angle(turns)), name)
+               for name, (outline, center, angle) in (teeth or {}).items()]
 
     fig = Figure(figsize=FIGURE_SIZE, layout="constrained")
     world, carrier = fig.subplots(1, 2, width_ratios=[1, 1.5])
@@ -81,8 +87,10 @@ def _draw_frames(result: FiveBarResult, teeth: Teeth | None, frames: int) -> tup
 
     carrier_curves = [carrier.plot([], [], lw=1, label=name, animated=True)[0] for *_, name in outlines]
     carrier_teeth = [carrier.plot([], [], "k-", lw=0.6, animated=True)[0] for _ in toothed]
-    clock = carrier.text(0.0, -0.22, _clock_text(0.0), transform=carrier.transAxes, ha="left", va="top", fontsize=9,
-                         animated=True)      # below the axis label, where constrained layout keeps room for it
+    words = carrier.text(0.0, -0.22, CLOCK_WORDS, transform=carrier.transAxes, ha="left", va="top",
+                         fontsize=9)      # below the axis label, where constrained layout keeps room for it
+    clock = carrier.annotate(_clock_text(0.0), (1.0, 0.0), xycoords=words, ha="left", va="bottom", fontsize=9,
+                             animated=True)
     centers = np.array([g.center for g in gears])
     carrier.plot(*centers.T, "k+")
     carrier.plot(*centers[[0, 1, 3]].T, "k:", lw=0.8)
@@ -100,12 +108,12 @@ def _draw_frames(result: FiveBarResult, teeth: Teeth | None, frames: int) -> tup
         hinges = np.array([[0.0, 0.0], state["a"][k], state["f"][k], state["e"][k], mech.hinge_b])
         chain.set_data(*hinges.T)
         plate.set_xy(np.array([state["e"][k], state["f"][k], state["p"][k]]))
-        for line, (outline, center, angle, _) in zip(carrier_curves, outlines, strict=True):
-            line.set_data(*_placed(outline, center, angle, c).T)
-        for line, (outline, center, angle, _) in zip(world_gears, outlines, strict=True):
-            line.set_data(*carrier_to_world(mech, _placed(outline, center, angle, c), c).T)
-        for line, (outline, center, angle, _) in zip(carrier_teeth, toothed, strict=True):
-            line.set_data(*_placed(outline, center, angle, c).T)
+        for line, world_line, (outline, center, angles, _) in zip(carrier_curves, world_gears, outlines, strict=True):
+            placed = _placed(outline, center, angles[k])
+            line.set_data(*placed.T)
+            world_line.set_data(*carrier_to_world(mech, placed, c).T)
+        for line, (outline, center, angles, _) in zip(carrier_teeth, toothed, strict=True):
+            line.set_data(*_placed(outline, center, angles[k]).T)
         clock.set_text(_clock_text(c))
         if support is not None and moving_support:
             moving_support[0].set_data(*np.array([joints[name][k] for name in "CGHZ"]).T)

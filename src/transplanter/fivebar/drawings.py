@@ -27,8 +27,8 @@ from pathlib import Path
 import numpy as np
 
 from transplanter.api_arguments import require_result
-from transplanter.cam.drawings import write_drawings as write_cam_drawings
-from transplanter.drawing.gear_sheet import GearDrawing, draw_keyed_bore, write_gear_sheets
+from transplanter.cam.drawings import write_sheet_and_drawings
+from transplanter.drawing.gear_sheet import GearDrawing, draw_keyed_bore, write_gear_sheet
 from transplanter.drawing.parts_list import write_parts_list
 from transplanter.drawing.pdf import write_pdf
 from transplanter.drawing.plate_sheet import PlatePart, plate_sheet
@@ -158,13 +158,17 @@ def write_drawings(result: FiveBarResult, folder: str | Path) -> list[Path]:
     require_result(result, FiveBarResult, "fivebar")
     folder = writable_folder(folder)
     plates, gears = parts(result), gear_drawings(result, tooth_outlines(result.toothed))
-    sheets = [assembly_sheet(result).save(folder / "linkage.dxf")]
-    sheets += [plate_sheet(part).save(folder / f"{part.name}.dxf") for part in plates]
-    gear_files = write_gear_sheets(gears, folder)
-    cam = write_cam_drawings(result.support.cam, folder) if result.support else []
-    sheets += [path for path in gear_files + cam if path.suffix == ".dxf"]
-    others = [path for path in gear_files + cam if path.suffix != ".dxf"]
-    return [*sheets, *others, write_pdf(sheets, folder / "drawings.pdf"),
+    pages = [("linkage.dxf", assembly_sheet(result)), *((f"{part.name}.dxf", plate_sheet(part)) for part in plates)]
+    sheets = [sheet.save(folder / name) for name, sheet in pages]
+    files = [write_gear_sheet(gear, folder) for gear in gears]
+    if result.support:
+        files.append(write_sheet_and_drawings(result.support.cam, folder))
+    for sheet, written in files:
+        dxf = next(path for path in written if path.suffix == ".dxf")
+        pages.append((dxf.name, sheet))
+        sheets.append(dxf)
+    others = [path for _, written in files for path in written if path.suffix != ".dxf"]
+    return [*sheets, *others, write_pdf([(name, sheet.document) for name, sheet in pages], folder / "drawings.pdf"),
             write_parts_list(plates, gears, folder / "parts.csv"), *write_tables(result, folder)]
 
 

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from transplanter.drawing.gear_sheet import GearDrawing, write_gear_sheets
+from transplanter.drawing.gear_sheet import GearDrawing, write_gear_sheet
 from transplanter.drawing.parts_list import write_parts_list
 from transplanter.drawing.pdf import write_pdf
 from transplanter.fivebar.drawings import toothed_gear_drawings, write_pitch_curves
@@ -60,7 +60,8 @@ def write_gear_files(toothed: ToothedTrain, direction: int, title: str, folder: 
     """The gear sheets, their PDF, parts.csv and the pitch-curve tables of the module docstring in ``folder``; the
     files written."""
     drawings = gear_drawings(toothed, direction, title)
-    sheets = write_gear_sheets(drawings, folder)
-    return [*sheets, write_pdf([path for path in sheets if path.suffix == ".dxf"], folder / "drawings.pdf"),
+    files = [write_gear_sheet(gear, folder) for gear in drawings]
+    pages = [(f"{gear.name}.dxf", sheet.document) for gear, (sheet, _) in zip(drawings, files, strict=True)]
+    return [*(path for _, written in files for path in written), write_pdf(pages, folder / "drawings.pdf"),
             write_parts_list((), drawings, folder / "parts.csv"),
             *write_pitch_curves(toothed.train, toothed.carrier_length, folder, direction == 1)]
