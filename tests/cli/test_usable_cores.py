@@ -17,7 +17,7 @@ def test_a_process_pinned_to_some_cores_may_use_only_those(pinned):
     if len(allowed) < pinned:
         pytest.skip(f"this process may use {len(allowed)} core(s)")
     cores = set(allowed[:pinned])
-    child = subprocess.run([sys.executable, "-c", "from transplanter.side_process import usable_cores; print(usable_cores())"],
-                           preexec_fn=lambda: os.sched_setaffinity(0, cores), capture_output=True, text=True,
-                           check=True)
+    code = "from transplanter.side_process import usable_cores; print(usable_cores())"
+    child = subprocess.run([sys.executable, "-c", code], preexec_fn=lambda: os.sched_setaffinity(0, cores),
+                           capture_output=True, text=True, check=True)
     assert int(child.stdout) == pinned
