@@ -20,6 +20,7 @@ def _sheet(label: str) -> Sheet:
     sheet.arc((60.0, 20.0), 6.0, 30.0, 300.0, "BORE")
     sheet.center_cross((20.0, 20.0), 14.0)
     sheet.text(f"hinge {label}", (25.0, 25.0))
+    sheet.text("%%c10 bore, 20%%d", (25.0, 35.0))                    # DXF control codes: Ø and °
     sheet.aligned_dimension((20.0, 20.0), (60.0, 20.0), -30.0)
     sheet.diameter_dimension((20.0, 20.0), 5.0, 225.0)
     sheet.title_block(TitleBlock(f"part {label}", 2, "a test problem"))
@@ -50,11 +51,11 @@ def test_one_page_per_sheet_with_the_sheets_texts_as_text(sheets, tmp_path):
     assert len(re.findall(rb"/Type\s*/Page\b(?!s)", path.read_bytes())) == len(sheets)
     shown = _shown_texts(path)
     for name, document in sheets:
-        expected = [entity.dxf.text for entity in document.modelspace().query("TEXT")]
+        expected = [entity.plain_text() for entity in document.modelspace().query("TEXT")]
         expected += [text.plain_text() for dimension in document.modelspace().query("DIMENSION")
                      for text in dimension.virtual_entities() if text.dxftype() == "MTEXT"]
         assert f"{name} (millimetres)" in shown
-        assert {"40", "Ø10"} <= set(expected)          # the aligned and the diameter dimension's texts
+        assert {"40", "Ø10", "Ø10 bore, 20°"} <= set(expected)      # the dimensions' texts, control codes read
         assert set(expected) - {""} <= set(shown)          # the title block's blank material shows nothing
 
 

@@ -125,7 +125,7 @@ def collect(entities, document: Drawing, ink: Ink, parent: Pen | None = None) ->
         elif kind == "POINT":
             ink.points[pen.colour].append(np.asarray(entity.dxf.location)[:2])
         elif kind == "TEXT":
-            ink.texts.append((entity.dxf.text, np.asarray(entity.dxf.insert)[:2], entity.dxf.height,
+            ink.texts.append((entity.plain_text(), np.asarray(entity.dxf.insert)[:2], entity.dxf.height,
                               entity.dxf.get("rotation", 0.0), TEXT_ALIGNMENT[entity.dxf.get("halign", 0)],
                               "baseline", pen.colour))
         elif kind == "MTEXT":
