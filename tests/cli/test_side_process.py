@@ -3,6 +3,7 @@
 as they were; an interrupt here ends it at once."""
 from __future__ import annotations
 
+import io
 import multiprocessing
 import os
 import subprocess
@@ -12,7 +13,7 @@ import warnings
 
 import pytest
 
-from transplanter import side_process
+from transplanter import progress, side_process
 from transplanter.errors import SolverError
 from transplanter.side_process import in_this_process, side_by_side
 
@@ -121,3 +122,18 @@ def test_an_interrupt_here_ends_the_side_at_once(two_cores):
         side_by_side(lambda: time.sleep(5.0), here)
     assert time.perf_counter() - start < 2.0
     assert multiprocessing.active_children() == []
+
+
+def test_progress_lines_of_the_side_are_shown_here_and_silent_where_progress_is(two_cores):
+    def there():
+        progress.report("figures", 1, 2)
+        return os.getpid()
+
+    shown = io.StringIO()
+    with progress.showing(shown):
+        pid, _ = side_by_side(there, lambda: progress.report("files", 1, 1))
+    assert pid != os.getpid()
+    assert shown.getvalue() == "transplanter: files 1/1\ntransplanter: figures 1/2\n"
+    with progress.showing(shown, enabled=False):
+        side_by_side(there, lambda: None)
+    assert shown.getvalue().count("\n") == 2
