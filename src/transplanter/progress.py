@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import contextlib
 import contextvars
+import io
 import sys
 import time
 from typing import TextIO
@@ -45,3 +46,23 @@ def showing(stream: TextIO | None = None, enabled: bool = True):
         yield
     finally:
         _stream.reset(token)
+
+
+@contextlib.contextmanager
+def held():
+    """Inside it, the lines that would be shown are kept in the StringIO yielded instead (empty when progress
+    is silent): a side process's lines, shown by the process that started it (``show``)."""
+    buffer = io.StringIO()
+    token = _stream.set(buffer if _stream.get() is not None else None)
+    try:
+        yield buffer
+    finally:
+        _stream.reset(token)
+
+
+def show(text: str) -> None:
+    """Lines kept by ``held`` elsewhere, shown here."""
+    stream = _stream.get()
+    if stream is not None and text:
+        stream.write(text)
+        stream.flush()

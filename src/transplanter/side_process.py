@@ -2,9 +2,10 @@
 
 On Linux, where this process may run on more than one core (``os.sched_getaffinity``: ``taskset``, a
 container's or a scheduler's CPU set), ``start_side_process(work, calls)`` forks one process that runs
-``work(*call)`` for each call and hands back the results, the warnings it raised and its exceptions (raised
-here, as the same class with the same message). Elsewhere, within ``in_this_process()`` (a study with a worker
-per core, where the workers are the parallelism), or where the system refuses the process or its semaphores
+``work(*call)`` for each call and hands back the results, the warnings it raised, its progress lines (shown
+here as each call is collected) and its exceptions (raised here, as the same class with the same message).
+Elsewhere, within ``in_this_process()`` (a study with a worker per core, where the workers are the
+parallelism), or where the system refuses the process or its semaphores
 (a sandbox), it gives None and the caller does the work here, in turn. The fork copies this process as it is,
 so ``work`` may be a closure over objects that do not pickle (CasADi Functions); only calls and results cross.
 
@@ -25,6 +26,8 @@ from concurrent.futures import Future, ProcessPoolExecutor
 from contextvars import ContextVar
 from multiprocessing.reduction import ForkingPickler
 from typing import Any, TypeVar
+
+from transplanter import progress
 
 #: A side process on Linux only (macOS lists fork, but its system libraries are not safe to use in a forked child).
 FORKS = sys.platform.startswith("linux")
@@ -70,7 +73,7 @@ class SideProcess:
                                          initargs=(work,))     # a forked child inherits initargs, nothing pickled
 
     def submit(self, *call: Any) -> Future:
-        """``work(*call)`` in the side process: the Future's result is ``(result, warned)``, or its exception."""
+        """``work(*call)`` in the side process: the Future to pass to ``outcome``."""
         return self._pool.submit(_run_work, *call)
 
     def close(self) -> None:
@@ -102,10 +105,14 @@ def start_side_process(work: Callable[..., Any], calls: Sequence[tuple]) -> tupl
         return None
 
 
-def reissue(warned: list[Warned]) -> None:
-    """Raise here the warnings the side process raised, as they were (the run prints or records them)."""
+def outcome(future: Future) -> Any:
+    """The result of a call in the side process, its warnings raised here as they were (the run prints or records
+    them) and its progress lines shown here; its exception raised here."""
+    result, warned, said = future.result()
     for message, category, filename, lineno in warned:
         warnings.warn_explicit(message, category, filename, lineno)
+    progress.show(said)
+    return result
 
 
 def side_by_side(there: Callable[[], There], here: Callable[[], Here]) -> tuple[There, Here]:
@@ -117,12 +124,11 @@ def side_by_side(there: Callable[[], There], here: Callable[[], Here]) -> tuple[
     side, (future,) = started
     try:
         mine = here()
-        result, warned = future.result()
+        result = outcome(future)
     except BaseException:
         side.stop()
         raise
     side.close()
-    reissue(warned)
     return result, mine
 
 
@@ -134,16 +140,17 @@ def _install(work: Callable[..., Any]) -> None:
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
-def _run_work(*call: Any) -> tuple[Any, list[Warned]]:
-    """In the side process: one call of the work, with the warnings it raised; an exception made to cross."""
+def _run_work(*call: Any) -> tuple[Any, list[Warned], str]:
+    """In the side process: one call of the work, with the warnings it raised and the progress lines it would have
+    shown; an exception made to cross."""
     assert _work is not None, "installed when the process starts"
     try:
-        with warnings.catch_warnings(record=True) as log:
+        with warnings.catch_warnings(record=True) as log, progress.held() as said:
             result = _work(*call)
     except Exception as error:
         _let_cross(error)
         raise
-    return result, [(w.message, w.category, w.filename, w.lineno) for w in log]
+    return result, [(w.message, w.category, w.filename, w.lineno) for w in log], said.getvalue()
 
 
 def _let_cross(error: BaseException) -> None:

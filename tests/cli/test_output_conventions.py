@@ -73,9 +73,11 @@ def test_sigterm_ends_a_run_as_ctrl_c_does(tmp_path, monkeypatch, capsys):
     import transplanter.cli as cli
     original = cli._save_figures
 
+    run = os.getpid()       # the run's process (the figures may be saved in a side process of it)
+
     def save_then_terminate(figures, out, dpi=120):
         original(figures, out, dpi)
-        os.kill(os.getpid(), signal.SIGTERM)
+        os.kill(run, signal.SIGTERM)
     monkeypatch.setattr(cli, "_save_figures", save_then_terminate)
     before = signal.getsignal(signal.SIGTERM)
     assert main(["burmester", PROBLEM, "--out", str(tmp_path / "out"), "--quiet"]) == 130

@@ -3,6 +3,7 @@
 as they were; an interrupt here ends it at once."""
 from __future__ import annotations
 
+import io
 import multiprocessing
 import os
 import subprocess
@@ -12,7 +13,7 @@ import warnings
 
 import pytest
 
-from transplanter import side_process
+from transplanter import progress, side_process
 from transplanter.errors import SolverError
 from transplanter.side_process import in_this_process, side_by_side
 
@@ -21,6 +22,11 @@ from transplanter.side_process import in_this_process, side_by_side
 def two_cores(monkeypatch):
     """As on a machine that gives this process two cores, whatever runs the test."""
     monkeypatch.setattr(side_process, "usable_cores", lambda: 2)
+
+
+def ended_here(before: set) -> bool:
+    """No process this test started is left (processes other tests left are not this test's)."""
+    return set(multiprocessing.active_children()) <= before
 
 
 def order_of_work():
@@ -39,11 +45,12 @@ def order_of_work():
 
 
 def test_the_side_runs_in_another_process_beside_this_one(two_cores):
+    before = set(multiprocessing.active_children())
     there, here = order_of_work()
     (there_pid, there_log), (here_pid, here_log) = side_by_side(there, here)
     assert here_pid == os.getpid() and there_pid != os.getpid()
     assert there_log == ["there"] and here_log == ["here"]      # each saw only its own work
-    assert multiprocessing.active_children() == []             # the side process has ended
+    assert ended_here(before)           # the side process has ended
 
 
 @pytest.mark.parametrize("confined", ["one core", "in this process", "not Linux", "refused"])
@@ -82,11 +89,12 @@ def test_an_exception_of_the_side_is_raised_here_as_itself(two_cores):
     def there():
         raise SolverError("the design NLP did not converge", "Maximum_Iterations_Exceeded")
 
+    before = set(multiprocessing.active_children())
     with pytest.raises(SolverError, match="did not converge") as raised:
         side_by_side(there, lambda: None)
     assert raised.value.status == "Maximum_Iterations_Exceeded"
     assert str(raised.value) == "the design NLP did not converge (solver status: Maximum_Iterations_Exceeded)"
-    assert multiprocessing.active_children() == []
+    assert ended_here(before)
 
 
 def test_an_oserror_of_the_side_keeps_its_file_name(two_cores):
@@ -116,8 +124,24 @@ def test_an_interrupt_here_ends_the_side_at_once(two_cores):
         time.sleep(0.3)
         raise KeyboardInterrupt
 
+    before = set(multiprocessing.active_children())
     start = time.perf_counter()
     with pytest.raises(KeyboardInterrupt):
         side_by_side(lambda: time.sleep(5.0), here)
     assert time.perf_counter() - start < 2.0
-    assert multiprocessing.active_children() == []
+    assert ended_here(before)
+
+
+def test_progress_lines_of_the_side_are_shown_here_and_silent_where_progress_is(two_cores):
+    def there():
+        progress.report("figures", 1, 2)
+        return os.getpid()
+
+    shown = io.StringIO()
+    with progress.showing(shown):
+        pid, _ = side_by_side(there, lambda: progress.report("files", 1, 1))
+    assert pid != os.getpid()
+    assert shown.getvalue() == "transplanter: files 1/1\ntransplanter: figures 1/2\n"
+    with progress.showing(shown, enabled=False):
+        side_by_side(there, lambda: None)
+    assert shown.getvalue().count("\n") == 2

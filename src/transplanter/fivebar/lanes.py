@@ -21,7 +21,7 @@ from collections.abc import Callable
 from concurrent.futures import FIRST_COMPLETED, Future, wait
 
 from transplanter.fivebar.design_solver import DesignSolver
-from transplanter.side_process import in_this_process, reissue, start_side_process
+from transplanter.side_process import in_this_process, outcome, start_side_process
 
 LANES = 2
 #: Within it, ``refine_in_lanes`` runs lane 1 after lane 0 in this process, never in a fork.
@@ -71,6 +71,4 @@ def _collect(pending: dict[Future, int], finished: Finished, timeout: float | No
     exception raised in the lane is raised here."""
     done, _ = wait(pending, timeout=timeout, return_when=FIRST_COMPLETED)
     for future in sorted(done, key=lambda future: pending[future]):
-        (outcome, seconds), warned = future.result()
-        reissue(warned)
-        finished(pending.pop(future), outcome, seconds)
+        finished(pending.pop(future), *outcome(future))
