@@ -387,6 +387,8 @@ def _run(args) -> int:
             if _RUN.stopped:            # a solver that caught the interrupt and went on, or an interrupt just now
                 raise KeyboardInterrupt
     except TransplanterError as error:
+        if _RUN.stopped:                # an error the interrupt caused (a side process it ended)
+            return _interrupted(out, args.warned)
         _say(f"transplanter: error: {error}", args.warned)
         return 2
     except OSError as error:            # a disk that fills or a file that goes away under the run
@@ -397,9 +399,14 @@ def _run(args) -> int:
         # an interrupt raised inside a library's C call can come out as another error (CasADi's: SystemError)
         if not isinstance(error, KeyboardInterrupt) and not _RUN.stopped:
             raise
-        _say("transplanter: interrupted" + (f"; {out} is left as it was" if out else ""), args.warned)
-        return 130
+        return _interrupted(out, args.warned)
     return code
+
+
+def _interrupted(out, warned: list) -> int:
+    """Exit 130 with its one line: the run was stopped (Ctrl-C, SIGTERM) and ``out`` left as it was."""
+    _say("transplanter: interrupted" + (f"; {out} is left as it was" if out else ""), warned)
+    return 130
 
 
 class _Run:

@@ -22,12 +22,13 @@ import signal
 import sys
 import warnings
 from collections.abc import Callable, Iterator, Sequence
-from concurrent.futures import Future, ProcessPoolExecutor
+from concurrent.futures import BrokenExecutor, Future, ProcessPoolExecutor
 from contextvars import ContextVar
 from multiprocessing.reduction import ForkingPickler
 from typing import Any, TypeVar
 
 from transplanter import progress
+from transplanter.errors import TransplanterError
 
 #: A side process on Linux only (macOS lists fork, but its system libraries are not safe to use in a forked child).
 FORKS = sys.platform.startswith("linux")
@@ -83,11 +84,14 @@ class SideProcess:
     def stop(self) -> None:
         """End the process now (its queued calls cancelled, the one it is on cut short) and wait until it has."""
         processes = list(getattr(self._pool, "_processes", {}).values())
+        manager = getattr(self._pool, "_executor_manager_thread", None)
         self._pool.shutdown(wait=False, cancel_futures=True)
         for process in processes:
             process.terminate()
         for process in processes:
             process.join()
+        if manager is not None:     # its threads ended too: a thread still holding a lock at the next fork would
+            manager.join()          # leave that lock held in the forked child, which then waits for ever
 
 
 def start_side_process(work: Callable[..., Any], calls: Sequence[tuple]) -> tuple[SideProcess, list[Future]] | None:
@@ -108,7 +112,11 @@ def start_side_process(work: Callable[..., Any], calls: Sequence[tuple]) -> tupl
 def outcome(future: Future) -> Any:
     """The result of a call in the side process, its warnings raised here as they were (the run prints or records
     them) and its progress lines shown here; its exception raised here."""
-    result, warned, said = future.result()
+    try:
+        result, warned, said = future.result()
+    except BrokenExecutor:
+        raise TransplanterError("a side process of this run ended before it gave its result (killed from outside, "
+                                "or the system ran out of memory); expected it to finish: run again") from None
     for message, category, filename, lineno in warned:
         warnings.warn_explicit(message, category, filename, lineno)
     progress.show(said)
