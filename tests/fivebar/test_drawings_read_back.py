@@ -244,24 +244,31 @@ def test_thinning_keeps_an_outline_simple_where_plain_douglas_peucker_would_cros
     assert shapely.distance(shapely.points(outline), shapely.linearrings(kept)).max() <= 0.05
 
 
-def test_the_design_is_a_command_result(result, example_result_drawings_copied, tmp_path):
+@pytest.fixture
+def no_solids(monkeypatch):
+    """The parts' writer as without transplanter[cad]: no STEP solids (test_fivebar_solids.py writes and checks
+    those of the example's result)."""
+    from transplanter.solids import part_files
+
+    monkeypatch.setattr(part_files, "cad_installed", lambda: False)
+
+
+def test_the_design_is_a_command_result(result, example_result_drawings_copied, no_solids, tmp_path):
     """What the command runner reads of the five-bar design (``CommandResult``)."""
     check_protocol(result, tmp_path)
 
 
 @pytest.fixture
-def quick_command(example_result_from_synthesize, example_result_drawings_copied, monkeypatch):
+def quick_command(example_result_from_synthesize, example_result_drawings_copied, no_solids, monkeypatch):
     """The fivebar command on the module's result with one small figure, a stand-in animation, the session's
     drawings copied and no solids (all tested above or elsewhere; here only what the command writes and lists)."""
     from transplanter.fivebar import output_files
-    from transplanter.solids import part_files
 
     def stand_in(result, folder, teeth=None):
         (folder / "animation.gif").write_bytes(b"GIF89a")
         return [folder / "animation.gif"]
     monkeypatch.setattr(fivebar.FiveBarResult, "draw_figures", lambda result: {"trajectory": Figure(figsize=(1, 1))})
     monkeypatch.setattr(output_files, "write_animation", stand_in)
-    monkeypatch.setattr(part_files, "cad_installed", lambda: False)
 
 
 @pytest.mark.parametrize("animation", [True, False])
