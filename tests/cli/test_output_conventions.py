@@ -1,5 +1,6 @@
 """The command line's output conventions: --out written whole or not at all, report.json lists its files,
 progress on stderr unless --quiet or --json, FAILED results exit 1."""
+import contextlib
 import io
 import json
 import os
@@ -107,6 +108,23 @@ def test_an_interrupt_a_solver_swallows_still_ends_the_run(tmp_path, monkeypatch
     assert capsys.readouterr().err == f"transplanter: interrupted; {tmp_path / 'out'} is left as it was\n"
     assert list(tmp_path.iterdir()) == []
     assert {n: signal.getsignal(n) for n in before} == before
+
+
+def test_an_error_the_interrupt_caused_ends_the_run_as_interrupted(tmp_path, monkeypatch, capsys):
+    """SIGTERM to the whole process group ends a side process too, and the run then meets the side's error: the
+    interrupt came first, so the run exits 130 as interrupted, not 2 with that error."""
+    import signal
+
+    from transplanter.errors import TransplanterError
+
+    def solve_then_lose_the_side(problem):
+        with contextlib.suppress(KeyboardInterrupt):   # as a solver swallows it (above); the side ended meanwhile
+            os.kill(os.getpid(), signal.SIGTERM)
+        raise TransplanterError("a side process of this run ended before it gave its result")
+    monkeypatch.setattr(burmester, "synthesize", solve_then_lose_the_side)
+    assert main(["burmester", PROBLEM, "--out", str(tmp_path / "out"), "--quiet"]) == 130
+    assert capsys.readouterr().err == f"transplanter: interrupted; {tmp_path / 'out'} is left as it was\n"
+    assert list(tmp_path.iterdir()) == []
 
 
 @pytest.mark.parametrize("exchange", [True, False], ids=["exchange", "two renames"])
