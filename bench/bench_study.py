@@ -168,7 +168,8 @@ def main():
         print(f"inside the cases: {built:.1f} s building design NLPs = {built / case_seconds:.1%} of their seconds")
         for pid, samples in memory.items():
             print(f"worker {pid}: over the study's {len(samples)} cases resident {samples[0][0]:.0f} -> "
-                  f"{samples[-1][0]:.0f} MB, peak {samples[0][1]:.0f} -> {samples[-1][1]:.0f} MB")
+                  f"{samples[-1][0]:.0f} MB, peak {samples[0][1]:.0f} -> {samples[-1][1]:.0f} MB; resident after "
+                  "each case recorded (MB): " + " ".join(f"{resident:.0f}" for resident, _ in samples))
         kept, lost, twice = killed_and_resumed(args.resume_cases, folder / "killed")
         print(f"killed after {kept} of {args.resume_cases} cases, resumed: {lost} cases lost, {twice} run twice "
               "(target 0 and 0)")
