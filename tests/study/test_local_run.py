@@ -44,6 +44,8 @@ def test_each_case_is_the_commands_own_result(finished):
         report = json.loads((finished.folder / "cases" / row["case_id"] / "report.json").read_text())
         assert report["values"] == case.values and report["report"]["center_distance"] == result.to_json()[
             "center_distance"]
+        memory = report["worker_memory"]        # a worker's, taken in it
+        assert memory["pid"] != os.getpid() and memory["peak_mb"] >= memory["resident_mb"] > 0
     assert {row["status"] for row in finished.rows} == {"passed", "failed", "no result"}
 
 

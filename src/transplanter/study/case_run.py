@@ -18,6 +18,7 @@ from typing import Any
 from transplanter.errors import TransplanterError
 from transplanter.fivebar.lanes import lanes_here
 from transplanter.study.binding import binding_requirement
+from transplanter.study.worker_memory import case_memory
 
 #: The statuses of a case, by the exit class of the command (0, 1, 2) or by what stopped it.
 PASSED, FAILED, NO_RESULT, ERROR, TIMEOUT, CRASHED = "passed", "failed", "no result", "error", "timeout", "crashed"
@@ -32,8 +33,16 @@ def run_case(command_name: str, problem: dict, source: str, fork_lanes: bool = T
     """Run ``command_name`` on ``problem`` (the problem file's content) as the command line does, without
     figures or files (``fork_lanes`` False: a five-bar's lanes both in this process): the case's status, the
     command's exit class (0 passed, 1 failed a check, 2 no result; None for an error the command does not
-    expect, a bug), its one-line error, the requirement that binds, the seconds it took and its report
-    (report.json's content). Errors are recorded without the ``source`` they start with."""
+    expect, a bug), its one-line error, the requirement that binds, the seconds it took, its report (report.json's
+    content) and the worker's memory over the case (``worker_memory.case_memory``, taken once the job's objects
+    are gone). Errors are recorded without the ``source`` they start with."""
+    with case_memory() as memory:
+        outcome = _job_outcome(command_name, problem, source, fork_lanes)
+    return {**outcome, "memory": memory}
+
+
+def _job_outcome(command_name: str, problem: dict, source: str, fork_lanes: bool) -> dict[str, Any]:
+    """``run_case``'s outcome but the memory."""
     from transplanter.cli import COMMANDS, command_defaults
 
     command = next(c for c in COMMANDS if c.name == command_name)

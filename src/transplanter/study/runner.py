@@ -87,7 +87,8 @@ class _Study:
             partial.write_text(report_json({"case_id": case.case_id, "command": self.spec.command,
                                             "values": case.values, "status": outcome["status"],
                                             "exit_class": outcome.get("exit_class"), "error": outcome.get("error", ""),
-                                            "warnings": outcome.get("warnings", []), "report": report,
+                                            "warnings": outcome.get("warnings", []),
+                                            "worker_memory": outcome.get("memory", {}), "report": report,
                                             "files": {"report": ["report.json"]}}) + "\n")
         row = row_of(case.case_id, case.values, outcome, attempts, self.spec.collect)
         append_row(self.folder / "cases.csv", self.header, row)
