@@ -17,8 +17,9 @@ scheduling overhead, each worker's memory over the cases, and a resume after a k
   start-up (its imports) and the time between cases; and the share of the cases' own seconds that builds
   the design NLP (a build per case: the NLP is the problem's). The load average is printed before and after:
   the ratios mean little on a machine others load.
-- Memory: each worker's resident and peak memory (VmRSS, VmHWM) after each of its cases, first and last
-  (target: flat, no leak from the solver caches).
+- Memory: each worker's peak memory while each of its cases ran and its resident memory after it (the
+  cases' report.json, ``worker_memory``), in the order it ran them, with the trend of each series (MB per case,
+  least squares) (target: flat, no leak from the solver caches).
 - Resume: ``transplanter study`` on ``--resume-cases`` cases, killed (SIGKILL, the whole process group) after
   a few cases, then ``--resume``: the cases lost and the cases run twice (target: 0 and 0).
 """
@@ -27,7 +28,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import csv
-import multiprocessing
+import json
 import os
 import signal
 import subprocess
@@ -36,6 +37,8 @@ import tempfile
 import time
 from collections import Counter
 from pathlib import Path
+
+import numpy as np
 
 from transplanter.study import load_study, run
 from transplanter.study.spec import StudySpec
@@ -51,12 +54,6 @@ def _spec(cases: int, workers: int) -> StudySpec:
     return replace(spec, samples=cases, executor=replace(spec.executor, workers=workers))
 
 
-def _memory(pid: int) -> tuple[float, float]:
-    """Resident and peak resident memory of process ``pid`` (MB)."""
-    fields = dict(line.split(":", 1) for line in Path(f"/proc/{pid}/status").read_text().splitlines() if ":" in line)
-    return int(fields["VmRSS"].split()[0]) / 1024, int(fields["VmHWM"].split()[0]) / 1024
-
-
 def checks_seconds(spec: StudySpec) -> float:
     """The time the study takes to draw its cases and check each one's problem before any runs."""
     from transplanter.study.cases import study_cases
@@ -70,8 +67,6 @@ def checks_seconds(spec: StudySpec) -> float:
 def build_seconds(folder: Path) -> float:
     """The seconds the cases of the study in ``folder`` spent building their design NLPs (their reports'
     timings)."""
-    import json
-
     reports = (json.loads(path.read_text())["report"] for path in folder.glob("cases/*/report.json"))
     return sum(report.get("timings_s", {}).get("nlp_build", 0.0) for report in reports)
 
@@ -90,20 +85,24 @@ def one_core():
 def timed_study(cases: int, workers: int, folder: Path):
     """Run the study; its wall time to the last case recorded (the report and figures after it are not
     scheduling), the time until its first case started (checks, the workers' start-up), its rows and each
-    worker's memory after each case."""
+    worker's (peak while the case ran, resident after it) over its cases, in the order they were recorded."""
     memory: dict[int, list[tuple[float, float]]] = {}
     recorded = []
 
     def sample(row):
         recorded.append((time.perf_counter(), float(row["seconds"])))
-        for child in multiprocessing.active_children():
-            with contextlib.suppress(OSError, KeyError):        # a worker that ended meanwhile
-                memory.setdefault(child.pid, []).append(_memory(child.pid))
+        case = json.loads((folder / "cases" / row["case_id"] / "report.json").read_text())["worker_memory"]
+        memory.setdefault(case["pid"], []).append((case["peak_mb"], case["resident_mb"]))
 
     start = time.perf_counter()
     outcome = run(_spec(cases, workers), folder, on_case=sample)
     first_started = recorded[0][0] - recorded[0][1] - start
     return recorded[-1][0] - start, first_started, outcome.rows, memory
+
+
+def trend(series: list[float]) -> float:
+    """The least-squares slope of ``series`` against its index (per case)."""
+    return float(np.polyfit(np.arange(len(series)), series, 1)[0]) if len(series) > 1 else 0.0
 
 
 def _ids(path: Path) -> list[str]:
@@ -132,6 +131,17 @@ def killed_and_resumed(cases: int, folder: Path) -> tuple[int, int, int]:
     return len(kept), cases - len(set(ids)), twice
 
 
+def print_memory(run_name: str, memory: dict[int, list[tuple[float, float]]]):
+    """Each worker's peaks and resident memory over its cases, with their trends."""
+    for pid, samples in memory.items():
+        peaks, residents = ([sample[k] for sample in samples] for k in (0, 1))
+        print(f"{run_name}, worker {pid}, its {len(samples)} cases: peak while each ran {min(peaks):.0f}-"
+              f"{max(peaks):.0f} MB (trend {trend(peaks):+.2f} MB per case), resident after each "
+              f"{min(residents):.0f}-{max(residents):.0f} MB (trend {trend(residents):+.2f} MB per case)\n"
+              "  peaks (MB): " + " ".join(f"{peak:.0f}" for peak in peaks) + "\n  resident after (MB): "
+              + " ".join(f"{resident:.0f}" for resident in residents))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--cases", type=int, default=64)
@@ -145,7 +155,7 @@ def main():
         folder = Path(temporary)
         checks = checks_seconds(_spec(args.cases, 1))
         with one_core():
-            one, start_up, rows_one, _ = timed_study(args.cases, 1, folder / "one")
+            one, start_up, rows_one, memory_one = timed_study(args.cases, 1, folder / "one")
         every = None if args.one_core_only else timed_study(args.cases, 1, folder / "every")
         two, _, rows_two, memory = timed_study(args.cases, 2, args.keep or folder / "two")
         tables = [rows_one, rows_two] + ([] if every is None else [every[2]])
@@ -166,10 +176,8 @@ def main():
               f"{(one - case_seconds) / case_seconds:.1%} (target under 5 %)")
         built = build_seconds(folder / "one")
         print(f"inside the cases: {built:.1f} s building design NLPs = {built / case_seconds:.1%} of their seconds")
-        for pid, samples in memory.items():
-            print(f"worker {pid}: over the study's {len(samples)} cases resident {samples[0][0]:.0f} -> "
-                  f"{samples[-1][0]:.0f} MB, peak {samples[0][1]:.0f} -> {samples[-1][1]:.0f} MB; resident after "
-                  "each case recorded (MB): " + " ".join(f"{resident:.0f}" for resident, _ in samples))
+        print_memory("one worker on one core", memory_one)
+        print_memory("two workers", memory)
         kept, lost, twice = killed_and_resumed(args.resume_cases, folder / "killed")
         print(f"killed after {kept} of {args.resume_cases} cases, resumed: {lost} cases lost, {twice} run twice "
               "(target 0 and 0)")
