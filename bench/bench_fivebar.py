@@ -1,6 +1,6 @@
 """Speed of the five-bar main job, against baselines, in one run.
 
-    python bench/bench_fivebar.py
+    python bench/bench_fivebar.py [--part N ...]
 
 BLAS runs single-threaded (``OPENBLAS_NUM_THREADS`` / ``OMP_NUM_THREADS`` = 1, set here
 before numpy loads, for this process and the fresh one of part 4).
@@ -12,8 +12,11 @@ before numpy loads, for this process and the fresh one of part 4).
    constraints and their Jacobian (no Hessian: SLSQP approximates it).
 3. Design NLP per region candidate, same problem (the first exchange round: the fixed grid,
    from the candidate itself) and the same objective: the package (IPOPT, exact Hessian)
-   against scipy SLSQP given casadi's exact gradient and constraint Jacobian (each evaluated once per point); then the
-   package's whole refinement of the candidate (every exchange round).
+   against scipy SLSQP given casadi's exact gradient and constraint Jacobian (each evaluated once per
+   point), for two first-round NLPs (``FIRST_ROUNDS``: the curvature rows off, and the main job's
+   refinements' own first solve); each side's failures are timed and counted, and left out of the
+   medians; where a package solve's time goes (evaluations, iteration callback, IPOPT's own work).
+   Then the package's whole refinement of each candidate (every exchange round).
 4. The whole main job as the CLI runs it (region, every candidate refined in the two lanes of
    ``fivebar.lanes``, the toothed gears cut and mesh-checked, verification, report, figures,
    drawings and the animation), in a fresh process including start-up; the target is
@@ -22,6 +25,7 @@ before numpy loads, for this process and the fresh one of part 4).
 """
 from __future__ import annotations
 
+import argparse
 import os
 import time
 from pathlib import Path
@@ -36,10 +40,11 @@ from fresh_process import cli_run  # noqa: E402  (bench/ is the script's own fol
 from scipy.optimize import minimize  # noqa: E402
 
 from transplanter.errors import SolverError  # noqa: E402
-from transplanter.fivebar.design_solver import DesignSolver, HollowError  # noqa: E402
+from transplanter.fivebar.design_solver import CONCAVITY_LIMIT, DesignSolver, HollowError  # noqa: E402
 from transplanter.fivebar.nlp import length_unit  # noqa: E402
 from transplanter.fivebar.problem import load_problem  # noqa: E402
 from transplanter.fivebar.region import solution_region  # noqa: E402
+from transplanter.solve.ipopt import CONSTRAINT_TOLERANCE  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "vegetable_planting.toml"
@@ -48,6 +53,11 @@ CANDIDATES = 5
 #: The loosest SLSQP tolerance that reaches the package's objective (measured: 1e-10 stops with
 #: the design 0.12 mm away and the objective 2% higher; 1e-12 within 1e-7 mm of IPOPT's design).
 SLSQP_FTOL = 1e-12
+#: The first-round NLPs part 3 compares, by label: (curvature floor, closure in t) as ``DesignSolver.solve``
+#: takes them; the second is the first solve of every refinement in the main job.
+FIRST_ROUNDS = {"curvature rows off": (None, False),
+                f"as the main job's refinements start (a kappa >= {-CONCAVITY_LIMIT:g}, t below the closure "
+                "margin too)": (-CONCAVITY_LIMIT, True)}
 
 
 class SlsqpBaseline:
@@ -122,74 +132,110 @@ def hessian_evaluations(layout, candidate, nlp, problem, repeats: int = 50) -> N
           f"{own.n_nodes():,} operations (built in {own_build:.2f} s); own / package {seconds[1] / seconds[0]:.2f}x")
 
 
-def main():
-    print("baseline: the design NLP handed to scipy SLSQP with casadi's exact gradient and constraint Jacobian, "
-          "values and derivatives each one fused casadi Function evaluated once per point (per candidate); "
-          "the main job has a target, not a baseline (bench_main_job.py compares it with a bare start-up)")
-    problem = load_problem(EXAMPLE)
+def ipopt_split(stats: dict, seconds: float) -> str:
+    """Where a package solve's ``seconds`` went, from its IPOPT Function's statistics: the NLP's
+    evaluations, the iteration callback (``solve.stall``) and the rest (IPOPT's own work, mostly its
+    linear algebra, and the start and the independent whole-turn check around the solve)."""
+    evaluations = sum(value for key, value in stats.items() if key.startswith("t_wall_nlp_"))
+    callback = stats["t_wall_callback_fun"]
+    return (f"evaluations {evaluations:.3f} s, iteration callback {callback:.3f} s, "
+            f"IPOPT's own and the check {seconds - evaluations - callback:.3f} s")
+
+
+def per_candidate(problem, parts: set[int]) -> None:
+    """Parts 1-3: the region sweep, the NLP's build and the NLP per candidate against SLSQP."""
     start = time.perf_counter()
     region = solution_region(problem)
     sweep = time.perf_counter() - start
-    print(f"region sweep: {len(region.candidates)} candidates in {sweep:.3f} s = "
-          f"{len(region.candidates) / sweep:,.0f} candidates/s ({len(region.feasible)} feasible)")
-
+    if 1 in parts:
+        print(f"region sweep: {len(region.candidates)} candidates in {sweep:.3f} s = "
+              f"{len(region.candidates) / sweep:,.0f} candidates/s ({len(region.feasible)} feasible)")
+    if not parts & {2, 3}:
+        return
     start = time.perf_counter()
     solver = DesignSolver(problem)
     build = time.perf_counter() - start
     start = time.perf_counter()
     baseline = SlsqpBaseline(solver.nlp.layout)
     baseline_build = time.perf_counter() - start
-    print(f"design NLP, built once per problem: package IPOPT solver (exact Hessian) {build:.3f} s; "
-          f"baseline casadi objective/gradient/constraint/Jacobian Functions {baseline_build:.3f} s")
-
+    if 2 in parts:
+        print(f"design NLP, built once per problem: package IPOPT solver (exact Hessian) {build:.3f} s; "
+              f"baseline casadi objective/gradient/constraint/Jacobian Functions {baseline_build:.3f} s")
+    if 3 not in parts:
+        return
     nlp = solver.nlp
-    layout, unit = nlp.layout, length_unit(problem)
-    hessian_evaluations(layout, region.feasible[0], nlp, problem)
-    ours, theirs, refines = [], [], []
+    hessian_evaluations(nlp.layout, region.feasible[0], nlp, problem)
+    for label, (floor, closure) in FIRST_ROUNDS.items():
+        first_rounds(solver, baseline, region.feasible[:CANDIDATES], label, floor, closure)
+    refines = []
     for candidate in region.feasible[:CANDIDATES]:
         begin = time.perf_counter()
         try:
-            design = solver.solve(candidate)
-        except SolverError as error:        # no optimum to compare SLSQP's with: counted, left out of the medians
-            print(f"  candidate: package {time.perf_counter() - begin:.3f} s, ended with {error.status}; "
-                  "left out of the comparison")
-            continue
-        ours.append(time.perf_counter() - begin)
-        values = nlp.start(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points,
-                           problem.poses, problem.carrier_turns)
-        bounds = nlp.bounds(0, None, values["least_curvature"])
-        begin = time.perf_counter()
-        result, violation = baseline.solve(layout.vector(values),
-                                           layout.parameter_vector(nlp.parameters(candidate.mech.branch, [])), bounds)
-        theirs.append(time.perf_counter() - begin)
-        begin = time.perf_counter()
-        try:
-            refined = solver.refine(candidate).objective
+            refined = f"objective {solver.refine(candidate).objective:.10e}"
         except SolverError as error:        # the start fails: timed all the same, as the main job spends it
             refined = f"failed ({(error.reason if isinstance(error, HollowError) else error.status)[:60]}...)"
         refines.append(time.perf_counter() - begin)
+        print(f"  candidate: package refinement (all exchange rounds) {refines[-1]:.3f} s, {refined}")
+    print(f"package refinement per candidate, one solver in this process (median of the first {CANDIDATES}, "
+          f"failures included): {np.median(refines):.3f} s, builds of the package solver: {solver.builds}, "
+          f"refinements taken from an earlier one that reached the same optimum: {solver.repeats}")
+
+
+def first_rounds(solver: DesignSolver, baseline: SlsqpBaseline, candidates, label: str, floor: float | None,
+                 closure: bool) -> None:
+    """The first round of each candidate, by the package (IPOPT) and by SLSQP from the same start: the fixed
+    grid, the curvature rows holding a kappa >= ``floor`` (None: off), t held below the closure margin's
+    sin^2 too when ``closure``. A start either side fails from is timed on both and left out of the medians."""
+    nlp, problem = solver.nlp, solver.problem
+    layout, unit = nlp.layout, length_unit(problem)
+    ours, theirs, totals, failed = [], [], [0.0, 0.0], [0, 0]
+    print(f"first round, {label}:")
+    for candidate in candidates:
+        begin = time.perf_counter()
+        try:
+            design = solver.solve(candidate, curvature_floor=floor, closure_in_quality=closure)
+            failure, iterations = None, design.iterations
+        except SolverError as error:
+            failure, iterations = f"package ended with {error.status}", solver.solver.watch.count
+        package = time.perf_counter() - begin
+        split = ipopt_split(solver.solver.function.stats(), package)
+        values = nlp.start(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points,
+                           problem.poses, problem.carrier_turns)
+        bounds = nlp.bounds(0, floor, values["least_curvature"], closure)
+        begin = time.perf_counter()
+        result, violation = baseline.solve(layout.vector(values),
+                                           layout.parameter_vector(nlp.parameters(candidate.mech.branch, [])), bounds)
+        slsqp = time.perf_counter() - begin
+        slsqp_failed = not result.success or violation > CONSTRAINT_TOLERANCE
+        totals = [totals[0] + package, totals[1] + slsqp]
+        failed = [failed[0] + (failure is not None), failed[1] + slsqp_failed]
+        print(f"  candidate: package {package:.3f} s, {iterations} iterations, {package / iterations * 1e3:.1f} ms "
+              f"each ({split}); SLSQP {slsqp:.3f} s, {result.nit} iterations, {slsqp / result.nit * 1e3:.1f} ms "
+              f"each, {result.nfev} evaluations of the values, objective {result.fun:.10e}, constraint violation "
+              f"{violation:.1e}, {result.message!r}")
+        if failure is None and slsqp_failed:
+            failure = "SLSQP found no feasible optimum"
+        if failure is not None:
+            print(f"    {failure}; left out of the medians")
+            continue
+        ours.append(package)
+        theirs.append(slsqp)
         reached = layout.vector(nlp.start(design.mech, design.relative_angle, design.stroke,
                                           design.reached_return_points, design.poses, design.carrier_turns))
         lengths = slice(0, layout.variables["relative_angle_start"].start)     # lengths and hinges, before rho1
-        apart = np.abs(result.x - reached)[lengths].max() * unit
-        print(f"  candidate: package {ours[-1]:.3f} s, {design.iterations} iterations, objective "
-              f"{design.objective:.10e}; SLSQP {theirs[-1]:.3f} s, {result.nit} iterations, objective "
-              f"{result.fun:.10e}, constraint violation {violation:.1e}, {result.message!r}, "
-              f"dimensions {apart:.1e} mm from the package's; "
-              f"package refinement (all exchange rounds) {refines[-1]:.3f} s, objective "
-              f"{refined if isinstance(refined, str) else f'{refined:.10e}'}")
-    print(f"first candidate, one-off builds included: package {build + ours[0]:.3f} s, "
-          f"baseline {baseline_build + theirs[0]:.3f} s, "
-          f"baseline / package {(baseline_build + theirs[0]) / (build + ours[0]):.1f}x")
-    ours, theirs = np.median(ours), np.median(theirs)
-    print(f"design NLP per candidate (median of the {len(refines)} of the first {CANDIDATES} whose first round "
-          "converges, first exchange round, same problem and start): "
-          f"package IPOPT {ours:.3f} s, SLSQP with casadi's exact gradient and Jacobian {theirs:.3f} s, "
-          f"baseline / package {theirs / ours:.1f}x (below 1: the package is slower); "
-          "package refinement per candidate, one solver in this process "
-          f"(median of the first {len(refines)}): {np.median(refines):.3f} s, builds of the package solver: "
-          f"{solver.builds}, refinements taken from an earlier one that reached the same optimum: {solver.repeats}")
+        print(f"    package objective {design.objective:.10e}, SLSQP's dimensions "
+              f"{np.abs(result.x - reached)[lengths].max() * unit:.1e} mm from the package's")
+    count = len(candidates)
+    print(f"design NLP per candidate, first round, {label} (median of the {len(ours)} of the first {count} where "
+          "both converge, same problem and start): "
+          f"package IPOPT {np.median(ours):.3f} s, SLSQP with casadi's exact gradient and Jacobian "
+          f"{np.median(theirs):.3f} s, baseline / package {np.median(theirs) / np.median(ours):.2f}x (below 1: the "
+          f"package is slower); all {count}, failures included: package {totals[0]:.3f} s ({failed[0]} failed), "
+          f"SLSQP {totals[1]:.3f} s ({failed[1]} failed), baseline / package {totals[1] / totals[0]:.2f}x")
 
+
+def main_job(parts: set[int]) -> None:
+    """Parts 4 and 5: the main job and the bands example in fresh processes (5 runs the main job too)."""
     seconds, report = cli_run("fivebar", str(EXAMPLE))
     timings = report["timings_s"]
     refined = len(timings["nlp_per_candidate"])
@@ -197,10 +243,26 @@ def main():
           f"(target < 20 s); its refinements {timings['nlp']:.2f} s of wall time for {refined} candidates in "
           f"two lanes, {timings['nlp'] / refined:.3f} s per candidate (target < 0.3 s); "
           f"teeth {timings['gears_teeth']:.2f} s")
+    if 5 not in parts:
+        return
     banded, report = cli_run("fivebar", str(BANDS))
     print(f"bands example (fresh process, everything included): {banded:.2f} s, {banded / seconds:.2f}x the "
           f"fixed-pose main job above (target within 2x); {len(report['key_pose_sets'])} pose sets tried, "
           f"smallest transmission angle at E {report['transmission_angle_min_deg']:.2f} deg")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--part", type=int, action="append", choices=range(1, 6),
+                        help="run only this part (repeatable; default: all)")
+    parts = set(parser.parse_args().part or range(1, 6))
+    print("baseline: the design NLP handed to scipy SLSQP with casadi's exact gradient and constraint Jacobian, "
+          "values and derivatives each one fused casadi Function evaluated once per point (per candidate); "
+          "the main job has a target, not a baseline (bench_main_job.py compares it with a bare start-up)")
+    if parts & {1, 2, 3}:
+        per_candidate(load_problem(EXAMPLE), parts)
+    if parts & {4, 5}:
+        main_job(parts)
 
 
 if __name__ == "__main__":
