@@ -66,6 +66,7 @@ from transplanter.generated import casadi_function
 from transplanter.geometry.periodic_bspline import CASADI, TWO_PI, basis, basis_matrix, knots
 from transplanter.geometry.turn_quadrature import NODES, panels
 from transplanter.solve import ActiveBound, Bounds, NLPBuilder, NLPLayout, Solution
+from transplanter.solve.multipliers import Multipliers
 from transplanter.trains.pressure_angle import pressure_rows
 
 GRID_POINTS = 72
@@ -125,6 +126,9 @@ class DesignSolution:
         inside their bands.
     solved : Solution or None
         The solve layer's solution it was read from, while an exchange continues it from its multipliers.
+    multipliers : Multipliers or None
+        That solution's multipliers, kept with the design (in a lane's result too): a re-solve that continues
+        the design starts from them.
     """
 
     mech: FiveBar
@@ -149,6 +153,7 @@ class DesignSolution:
     curvature_floor: float | None = None
     convexity_note: str = ""
     solved: Solution | None = field(default=None, repr=False, compare=False)
+    multipliers: Multipliers | None = field(default=None, repr=False, compare=False)
 
 
 def reach(problem: FiveBarProblem) -> float:
@@ -262,7 +267,8 @@ class DesignNLP:
             min_curvature=tuple(float(v) for v in np.fmin(check["curvature"].min(axis=1), knot_sides.min(axis=1))),
             active_bounds=solution.active_bounds(), poses=poses, carrier_turns=key_turns,
             curvature_floor=curvature_floor,
-            convexity_note="" if curvature_floor is not None else "curvature rows off", solved=solution)
+            convexity_note="" if curvature_floor is not None else "curvature rows off", solved=solution,
+            multipliers=solution.multipliers())
 
 
 def key_pose_entries(nlp: NLPBuilder, problem: FiveBarProblem, unit: float) -> np.ndarray:

@@ -28,6 +28,7 @@ import numpy as np
 from transplanter.errors import SolverError
 from transplanter.solve.active import ActiveBound, active_bounds
 from transplanter.solve.layout import Bounds, NLPLayout
+from transplanter.solve.multipliers import Multipliers
 from transplanter.solve.stall import IterationWatch, StallRule
 
 #: IPOPT return statuses that count as a solution (every result is checked again independently).
@@ -77,6 +78,10 @@ class Solution:
         """Every variable block's values, by name (a start for another solve)."""
         return {name: block.read(self.x) for name, block in self.layout.variables.items()}
 
+    def multipliers(self) -> Multipliers:
+        """Its multipliers, a start for a re-solve that continues it (``Solver.solve``'s ``continues``)."""
+        return Multipliers(self.lam_x, self.lam_g)
+
     def active_bounds(self) -> tuple[ActiveBound, ...]:
         """The named bounds the solution sits on (``solve.active``)."""
         return active_bounds(self.layout, self.bounds, self.x, self.g, self.lam_x, self.lam_g)
@@ -111,10 +116,11 @@ class Solver:
 
     def solve(self, start: Mapping[str, object], bounds: Bounds | None = None,
               parameters: Mapping[str, object] | None = None, iteration_limit: int | None = None,
-              failure: str = "the NLP did not converge", continues: Solution | None = None) -> Solution:
+              failure: str = "the NLP did not converge",
+              continues: Solution | Multipliers | None = None) -> Solution:
         """Solve from ``start`` (a value per variable block), within ``bounds`` (default: the declared
         ones), at ``parameters``; a ``SolverError`` starting with ``failure`` and naming the status (or
-        the stall) when IPOPT does not succeed. ``continues``: a solution of this layout whose multipliers
+        the stall) when IPOPT does not succeed. ``continues``: a solution of this layout, or its multipliers, that
         start the solve (module docstring; those of bounds this solve lifts start at zero)."""
         layout = self.layout
         bounds = bounds or layout.bounds()
@@ -125,7 +131,10 @@ class Solver:
             arguments["p"] = layout.parameter_vector(parameters or {})
         function = self.function
         if continues is not None:
-            assert continues.layout is layout, "multipliers of this solver's own NLP"
+            if isinstance(continues, Solution):
+                assert continues.layout is layout, "multipliers of this solver's own NLP"
+                continues = continues.multipliers()
+            assert continues.fits(layout), "multipliers sized for this solver's NLP"
             arguments["lam_x0"] = held_multipliers(continues.lam_x, bounds.lbx, bounds.ubx)
             arguments["lam_g0"] = held_multipliers(continues.lam_g, bounds.lbg, bounds.ubg)
             function = self._warm()
