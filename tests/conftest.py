@@ -41,6 +41,18 @@ def example_result(example_problem):
     return fivebar.synthesize(example_problem)
 
 
+RICE = Path(__file__).resolve().parents[1] / "examples/rice_hoe_reverse.toml"
+
+
+@pytest.fixture(scope="session")
+def rice_result():
+    """The rice hoe's reverse train, examples/rice_hoe_reverse.toml, synthesised without the tolerance analysis once
+    per test process for the files that only read it (each synthesis takes seconds)."""
+    from transplanter import reverse
+
+    return reverse.synthesize(reverse.load_problem(RICE), tolerance=False)
+
+
 @pytest.fixture
 def example_result_from_synthesize(monkeypatch, example_result):
     """``fivebar.synthesize`` of the example file with no pick and the tolerance analysis (as the ``fivebar`` command

@@ -31,10 +31,10 @@ def test_a_start_that_reaches_a_known_optimum_gets_the_design_solving_it_again_g
     is taken from the first (no solve after its first), and equals the second start refined on a solver that
     has not seen the first, to the solver's tolerance; the exchange turns left are the first's."""
     problem = example_problem
-    starts = []
+    starts, first_solves = [], DesignSolver(problem)   # a first solve leaves the solver as it was: one serves all
     for candidate in region.feasible:
         try:
-            solution = DesignSolver(problem).solve(candidate, curvature_floor=-CONCAVITY_LIMIT, closure_in_quality=True)
+            solution = first_solves.solve(candidate, curvature_floor=-CONCAVITY_LIMIT, closure_in_quality=True)
         except SolverError:         # a start that does not converge is no use here
             continue
         assert solution.solved is not None

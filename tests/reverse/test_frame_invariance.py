@@ -71,14 +71,14 @@ def test_the_train_moves_with_its_path(example, angle, shift, scale):
     np.testing.assert_allclose(moved_gears, gears, rtol=1e-9)
 
 
-def test_the_ratio_range_bounds_the_sampled_ratio():
+def test_the_ratio_range_bounds_the_sampled_ratio(rice_result):
     """The range found holds every grid value of i0 away from the touches, and comes within the touches' rounding
     (TOUCH_ROUNDING) of the extremes sampled at the touches, which are the rice path's extremes (at its inner touch
     the ratio bends sharply: a polynomial across the touch missed it by 1.6e-5)."""
     from transplanter.geometry.planar import TWO_PI
     from transplanter.reverse.ratio_extremes import TOUCH_REACH, ratio_range
 
-    motion = reverse.synthesize(reverse.load_problem(EXAMPLE), tolerance=False).motion
+    motion = rice_result.motion
     low, high = ratio_range(motion)
     ratio = motion.total_ratio()
     away = np.all([np.abs(np.mod(motion.grid - touch.parameter + np.pi, TWO_PI) - np.pi) > TOUCH_REACH

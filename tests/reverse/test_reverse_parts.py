@@ -20,20 +20,15 @@ RICE = ROOT / "examples" / "rice_hoe_reverse.toml"
 GEARS = ("sun", "first_intermediate", "second_intermediate", "planet")
 
 
-@pytest.fixture(scope="module")
-def rice():
-    return synthesize(load_problem(RICE), tolerance=False)
-
-
-def test_parts_list_has_a_row_per_gear_and_the_pdf_a_page_per_sheet(rice, tmp_path):
-    written = {path.name for path in rice.write_files(tmp_path, solids=False)}
+def test_parts_list_has_a_row_per_gear_and_the_pdf_a_page_per_sheet(rice_result, tmp_path):
+    written = {path.name for path in rice_result.write_files(tmp_path, solids=False)}
     assert {"drawings.pdf", "parts.csv"} <= written
     assert not any(name.endswith(".step") for name in written)
     pages = re.findall(rb"/Type\s*/Page\b(?!s)", (tmp_path / "drawings.pdf").read_bytes())
     assert len(pages) == len(GEARS)
     with (tmp_path / "parts.csv").open() as stream:
         rows = list(csv.DictReader(stream))
-    toothed, bores = rice.toothed, gear_bores(rice.toothed)
+    toothed, bores = rice_result.toothed, gear_bores(rice_result.toothed)
     teeth = dict(zip(GEARS, [toothed.counts[0]] * 2 + [toothed.counts[1]] * 2, strict=True))
     assert [row["part"] for row in rows] == list(GEARS)
     for row in rows:
@@ -42,8 +37,9 @@ def test_parts_list_has_a_row_per_gear_and_the_pdf_a_page_per_sheet(rice, tmp_pa
 
 
 @pytest.mark.parametrize("given, written", [(None, FACE_WIDTH_MODULES * 1.5), (12.5, 12.5)])
-def test_face_width_is_written_to_the_design_and_read_back(rice, tmp_path, given, written):
-    result = dataclasses.replace(rice, problem=dataclasses.replace(rice.problem, solid_sizes=SolidSizes(given)))
+def test_face_width_is_written_to_the_design_and_read_back(rice_result, tmp_path, given, written):
+    sized = dataclasses.replace(rice_result.problem, solid_sizes=SolidSizes(given))
+    result = dataclasses.replace(rice_result, problem=sized)
     result.write_files(tmp_path, solids=False)
     assert re.search(rf"^face_width_mm = {written}$", (tmp_path / "design.toml").read_text(), re.M)
     design = load_design(tmp_path / "design.toml")

@@ -20,14 +20,9 @@ RICE = Path(__file__).parents[2] / "examples" / "rice_hoe_reverse.toml"
 GEARS = ("sun", "first_intermediate", "second_intermediate", "planet")
 
 
-@pytest.fixture(scope="module")
-def rice():
-    return synthesize(load_problem(RICE), tolerance=False)
-
-
-def test_rice_train_has_whole_teeth_on_a_bent_carrier_that_mesh(rice):
-    toothed, s = rice.toothed, rice.motion.carrier_length
-    assert rice.failures == [] and toothed.passed
+def test_rice_train_has_whole_teeth_on_a_bent_carrier_that_mesh(rice_result):
+    toothed, s = rice_result.toothed, rice_result.motion.carrier_length
+    assert rice_result.failures == [] and toothed.passed
     a1, a2 = toothed.train.center_distances
     assert abs(a1 - a2) <= s <= a1 + a2 and a1 + a2 > s * (1 + 1e-6)         # the carrier is bent
     for stage, count in zip((toothed.train.stage_one, toothed.train.stage_two), toothed.counts, strict=True):
@@ -37,15 +32,16 @@ def test_rice_train_has_whole_teeth_on_a_bent_carrier_that_mesh(rice):
     shaft = toothed.shaft
     assert np.hypot(*shaft) == pytest.approx(a1, rel=1e-12)
     assert np.hypot(shaft[0] - s, shaft[1]) == pytest.approx(a2, rel=1e-12)
-    assert rice.verification.max_error_mm < 1e-8 * (s + rice.motion.arm_length)   # rolled on the chosen centres
+    reach = s + rice_result.motion.arm_length
+    assert rice_result.verification.max_error_mm < 1e-8 * reach                 # rolled on the chosen centres
 
 
-def test_rice_gears_cut_outlines_that_do_not_cross_themselves(rice):
+def test_rice_gears_cut_outlines_that_do_not_cross_themselves(rice_result):
     """The sun's and second intermediate's pitch curves have hollow corners (the first intermediate's and planet's
     matching ones bulge), and the planet bends near the rack's undercut limit: the tip and root curves offset
     from such a curve cross themselves there, and a flank turns back before the root; every outline must still
     be a simple closed curve."""
-    for teeth in rice.toothed.teeth:
+    for teeth in rice_result.toothed.teeth:
         for outline in teeth.outlines:
             assert shapely.is_simple(shapely.linearrings(outline)) and shapely.Polygon(outline).is_valid
         assert teeth.self_intersections == (0, 0)
@@ -88,9 +84,9 @@ def test_out_has_gear_sheets_and_pitch_curves_listed_in_the_report(tmp_path, cap
     assert f"center_distances = {toothed['center_distances_mm']}".replace("'", "") in design
 
 
-def test_gear_files_are_the_same_bytes_when_written_again(rice, tmp_path):
-    first = rice.write_files(tmp_path / "one", solids=False)
-    second = rice.write_files(tmp_path / "two", solids=False)
+def test_gear_files_are_the_same_bytes_when_written_again(rice_result, tmp_path):
+    first = rice_result.write_files(tmp_path / "one", solids=False)
+    second = rice_result.write_files(tmp_path / "two", solids=False)
     assert [p.name for p in first] == [p.name for p in second]
     assert all(a.read_bytes() == b.read_bytes() for a, b in zip(first, second, strict=True))
 

@@ -1,24 +1,19 @@
 """The reverse train's STEP solids read back: each gear its drawn tooth outline less its keyed bore, extruded to
 the problem's ``train.face_width_mm``."""
 from dataclasses import replace
-from pathlib import Path
 
 import shapely
 
 from tests.solids.step_checks import check_solid, keyed_hole_area, read_step
-from transplanter.reverse import synthesize
 from transplanter.reverse.gear_files import gear_drawings
-from transplanter.reverse.problem import load_problem
 from transplanter.reverse.solid_files import write_solids
 from transplanter.solids.sizes import SolidSizes
 from transplanter.solids.step import gear_solid
 
-RICE = Path(__file__).resolve().parents[2] / "examples" / "rice_hoe_reverse.toml"
 
-
-def test_every_reverse_gear_is_its_drawing_extruded(tmp_path):
-    problem = replace(load_problem(RICE), solid_sizes=SolidSizes(face_width_mm=11.0))
-    result = synthesize(problem, tolerance=False)
+def test_every_reverse_gear_is_its_drawing_extruded(rice_result, tmp_path):
+    problem = replace(rice_result.problem, solid_sizes=SolidSizes(face_width_mm=11.0))
+    result = replace(rice_result, problem=problem)
     written = write_solids(result.toothed, result.problem, tmp_path)
     drawings = gear_drawings(result.toothed, problem.direction, problem.title)
     assert [path.name for path in written] == [f"{gear.name}.step" for gear in drawings]
