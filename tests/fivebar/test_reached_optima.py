@@ -31,10 +31,10 @@ def test_a_start_that_reaches_a_known_optimum_gets_the_design_solving_it_again_g
     is taken from the first (no solve after its first), and equals the second start refined on a solver that
     has not seen the first, to the solver's tolerance; the exchange turns left are the first's."""
     problem = example_problem
-    starts, first_solves = [], DesignSolver(problem)   # a first solve leaves the solver as it was: one serves all
+    starts, solver = [], DesignSolver(problem)   # a first solve leaves the solver as it was: one serves all
     for candidate in region.feasible:
         try:
-            solution = first_solves.solve(candidate, curvature_floor=-CONCAVITY_LIMIT, closure_in_quality=True)
+            solution = solver.solve(candidate, curvature_floor=-CONCAVITY_LIMIT, closure_in_quality=True)
         except SolverError:         # a start that does not converge is no use here
             continue
         assert solution.solved is not None
@@ -45,7 +45,7 @@ def test_a_start_that_reaches_a_known_optimum_gets_the_design_solving_it_again_g
             starts.append((candidate, solution.solved.x))
     assert len(starts) == 2, "two starts of the example reach one optimum"
     (first, _), (second, _) = starts
-    solver = DesignSolver(problem)
+    assert solver.reached == () and solver.exchange_turns.size == 0 and solver.builds == 1   # as built: fresh
     design = solver.refine(first)
     left = solver.exchange_turns
     solver.exchange_turns = np.empty(0)           # the second start is offered what the first was
