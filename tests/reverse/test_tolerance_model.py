@@ -112,18 +112,17 @@ def test_gear_phases_move_the_arm_as_the_designed_motion_says(result, model):
     assert 6 < np.median(sun[0]) / np.median(sun[1]) < 10
 
 
-def test_mirrored_path_mirrors_the_sensitivities():
-    """The rice hoe mirrored in x, run the other way round, is the mirror image of the design: every
-    sensitivity mirrors (x and the arm's angle change sign; an x offset and the bend, angles and offsets
-    counted counterclockwise or along x, change sign with them), which holds the rotation direction's signs
+def test_mirrored_path_mirrors_the_sensitivities(rice_result):
+    """The rice hoe (conftest's ``rice_result``) mirrored in x, run the other way round, is the mirror image of the
+    design: every sensitivity mirrors (x and the arm's angle change sign; an x offset and the bend, angles and
+    offsets counted counterclockwise or along x, change sign with them), which holds the rotation direction's signs
     to account."""
     data = tomllib.loads(RICE.read_text())
-    jacobians = []
-    for _ in range(2):
-        model = reverse.synthesize(reverse.parse_problem(data, "rice"), tolerance=False).tolerance_model()
-        jacobians.append(model.jacobian())
-        data["trajectory"]["points"] = [[-x, y] for x, y in data["trajectory"]["points"]]
-        data["arm"]["direction"] = "counterclockwise"
+    data["trajectory"]["points"] = [[-x, y] for x, y in data["trajectory"]["points"]]
+    data["arm"]["direction"] = "counterclockwise"
+    mirror = reverse.synthesize(reverse.parse_problem(data, "mirrored rice"), tolerance=False)
+    model = rice_result.tolerance_model()
+    jacobians = [model.jacobian(), mirror.tolerance_model().jacobian()]
     odd = [name in ("carrier_bend", "clearance_pivot_x", "clearance_planet_x") for name in model.names]
     mirrored = jacobians[0] * np.array([-1, 1, -1])[:, None, None] * np.where(odd, -1, 1)
     assert np.abs(jacobians[1] - mirrored).max() < 1e-6 * np.abs(jacobians[0]).max()
