@@ -53,6 +53,18 @@ def rice_result():
     return reverse.synthesize(reverse.load_problem(RICE), tolerance=False)
 
 
+PICKUP = Path(__file__).resolve().parents[1] / "examples/pickup_arm_reverse.toml"
+
+
+@pytest.fixture(scope="session")
+def pickup_result():
+    """The pick-up arm's reverse train on its bent carrier, examples/pickup_arm_reverse.toml, synthesised without the
+    tolerance analysis once per test process for the files that only read it."""
+    from transplanter import reverse
+
+    return reverse.synthesize(reverse.load_problem(PICKUP), tolerance=False)
+
+
 @pytest.fixture
 def example_result_from_synthesize(monkeypatch, example_result):
     """``fivebar.synthesize`` of the example file with no pick and the tolerance analysis (as the ``fivebar`` command

@@ -93,13 +93,6 @@ def test_pickup_tip_of_eq15_is_the_two_link_arm(rng):
         assert tip == pytest.approx(o2 + S * unit(carrier + bend + planet + mounting), abs=1e-12)
 
 
-@pytest.fixture(scope="module")
-def pickup():
-    """The pick-up arm's train on its bent carrier, for the two tests that read it (its tolerance analysis is not
-    read here)."""
-    return synthesize(load_problem(ROOT / "examples" / "pickup_arm_reverse.toml"), tolerance=False)
-
-
 def test_rice_example_reproduces_its_path_by_rolling(rice_result):
     assert rice_result.monotonic
     assert stationary_radii(rice_result.motion) == []         # both extremes touch, the one at the start too
@@ -115,19 +108,19 @@ def test_rice_example_reproduces_its_path_by_rolling(rice_result):
     assert ratio.min() > 0
 
 
-def test_pickup_example_on_a_bent_carrier(pickup):
-    result = pickup
+def test_pickup_example_on_a_bent_carrier(pickup_result):
+    result = pickup_result
     assert result.monotonic and result.geometry is not None
     assert np.degrees(result.geometry.bend) > 1
     assert result.verification.max_error_mm < 1e-6
 
 
-def test_peak_to_valley_as_printed_does_not_close(pickup):
+def test_peak_to_valley_as_printed_does_not_close(pickup_result):
     """The reverse-gear-design paper's i1 = i25 bs, on the pick-up loop with bs = 0.6, against the stage-one pair
     built independently: driver r1 = a / (1 + i1) (eq 13 of Wang et al. 2025, ``ratio_pair_pitch``), driven
     turn int r1 / (a - r1) dc (``conjugate_pitch``) by the trapezoid rule. The intermediate gear turns
     600 deg per cycle, and the package's own split (the exponent bs, corrected) turns it 360 deg."""
-    result = pickup
+    result = pickup_result
     pair, conjugate = numpy_twin(ratio_pair_pitch), numpy_twin(conjugate_pitch)
     c = np.linspace(0, TWO_PI, 200001)
     a = 50.0

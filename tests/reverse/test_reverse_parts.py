@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from transplanter.reverse import evaluate_design, load_design, synthesize
+from transplanter.reverse import evaluate_design, load_design
 from transplanter.reverse.gear_files import gear_bores
 from transplanter.reverse.problem import load_problem
 from transplanter.solids.sizes import FACE_WIDTH_MODULES, SolidSizes
@@ -49,7 +49,6 @@ def test_face_width_is_written_to_the_design_and_read_back(rice_result, tmp_path
     assert again.to_json()["solids"] == result.to_json()["solids"]
 
 
-def test_the_pickup_arms_note_names_the_reverse_problems_fields():
-    result = synthesize(load_problem(ROOT / "examples" / "pickup_arm_reverse.toml"), tolerance=False)
-    assert result.toothed is None
-    assert "train.center_distances[0] = 90:" in result.teeth_note and "gears." not in result.teeth_note
+def test_the_pickup_arms_note_names_the_reverse_problems_fields(pickup_result):
+    assert pickup_result.toothed is None
+    assert "train.center_distances[0] = 90:" in pickup_result.teeth_note and "gears." not in pickup_result.teeth_note

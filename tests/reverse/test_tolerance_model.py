@@ -32,9 +32,7 @@ pytestmark = pytest.mark.filterwarnings("error")      # a numpy warning is a fai
 
 @pytest.fixture(scope="module", params=[RICE, PICKUP], ids=["straight carrier", "bent carrier"])
 def result(request):
-    if request.param == RICE:
-        return request.getfixturevalue("rice_result")
-    return reverse.synthesize(reverse.load_problem(request.param), tolerance=False)
+    return request.getfixturevalue("rice_result" if request.param == RICE else "pickup_result")
 
 
 @pytest.fixture(scope="module")
