@@ -124,7 +124,6 @@ class Solver:
         start the solve (module docstring; those of bounds this solve lifts start at zero)."""
         layout = self.layout
         bounds = bounds or layout.bounds()
-        self.watch.watch(iteration_limit, bounds.lbg, bounds.ubg, layout.row_scales())
         arguments = {"x0": layout.vector(start), "lbx": bounds.lbx, "ubx": bounds.ubx, "lbg": bounds.lbg,
                      "ubg": bounds.ubg}
         if layout.p.shape[0]:
@@ -138,14 +137,12 @@ class Solver:
             arguments["lam_x0"] = held_multipliers(continues.lam_x, bounds.lbx, bounds.ubx)
             arguments["lam_g0"] = held_multipliers(continues.lam_g, bounds.lbg, bounds.ubg)
             function = self._warm()
+        self.watch.watch(iteration_limit, bounds.lbg, bounds.ubg, layout.row_scales(), function)
         result = function(**arguments)
         stats = function.stats()
         status = stats["return_status"]
         if self.watch.stalled:
-            rule = self.watch.rule
-            assert rule is not None
-            status = (f"a stall (a row off its bounds by more than {rule.violation:g} of its size for "
-                      f"{rule.iterations} iterations in a row, after {self.watch.count})")
+            status = self.watch.stall_text()
         if status not in ACCEPTED:
             raise SolverError(failure, status)
         x, g, lam_x, lam_g = (np.asarray(result[key]).ravel() for key in ("x", "g", "lam_x", "lam_g"))
