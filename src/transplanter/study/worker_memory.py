@@ -11,9 +11,9 @@ numbers are None and nothing is trimmed.
 
 A worker's allocator keeps at most ``ARENAS`` heaps (glibc's ``M_ARENA_MAX``; by default a new thread gets a heap
 of its own, up to eight per core, and a five-bar case cuts its gear stages on two threads): each heap keeps its own
-freed pages in part, out of the trim's reach. Two workers side by side, each running cases of the bundled five-bar
-study in turn, left after each case 217-310 MB resident over 26 cases with three heaps and 217-227 MB over 23
-with two.
+freed pages in part, out of the trim's reach. Two workers side by side, each running 64 cases of the bundled
+five-bar study in turn: with three heaps resident after each case 217-315 MB, rising (313-315 MB after the last
+ten); with two 217-227 MB (217-219 after the last forty).
 """
 from __future__ import annotations
 
