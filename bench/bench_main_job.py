@@ -1,8 +1,8 @@
 """The main job against a bare start-up, in fresh processes of one run.
 
-    python bench/bench_main_job.py [runs]
+    python bench/bench_main_job.py [--runs 3]
 
-Each of ``runs`` rounds (default 3) times the main job as the CLI runs it (``transplanter fivebar
+Each of ``--runs`` rounds (default 3) times the main job as the CLI runs it (``transplanter fivebar
 examples/vegetable_planting.toml --out DIR``: region, refinements, gears with their teeth, verification,
 report, figures, drawings and the animation; ``--no-step``: the README's install has no ``cad`` extra, so its
 main job writes no STEP, and the test command's install has it) and, right after, a bare fresh process that
@@ -12,7 +12,7 @@ absolute times, and the report's own wall times of the steps (target: at most 17
 """
 from __future__ import annotations
 
-import sys
+import argparse
 from pathlib import Path
 
 import numpy as np
@@ -42,4 +42,6 @@ def main(runs: int) -> None:
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 3)
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--runs", type=int, default=3, help="rounds of the main job and the bare start-up")
+    main(parser.parse_args().runs)
