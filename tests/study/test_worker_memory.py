@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import os
+import platform
 import subprocess
 import sys
 import textwrap
@@ -75,8 +76,7 @@ HEAPS_OF_EIGHT_THREADS = textwrap.dedent("""
 """)
 
 
-@pytest.mark.skipif(not hasattr(os, "confstr") or "glibc" not in (os.confstr("CS_GNU_LIBC_VERSION") or ""),
-                    reason="glibc's allocator")
+@pytest.mark.skipif(platform.libc_ver()[0] != "glibc", reason="glibc's allocator")
 def test_a_worker_keeps_at_most_its_heaps_however_many_threads_allocate():
     child = subprocess.run([sys.executable, "-c", HEAPS_OF_EIGHT_THREADS], capture_output=True, text=True,
                            timeout=120, check=True)
