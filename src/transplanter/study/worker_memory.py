@@ -21,12 +21,14 @@ import contextlib
 import ctypes
 import gc
 import os
+import platform
 from collections.abc import Iterator
 from pathlib import Path
 
 _STATUS, _CLEAR_REFS = Path("/proc/self/status"), Path("/proc/self/clear_refs")
 #: The most heaps a worker's allocator keeps (module docstring), and glibc's ``mallopt`` parameter that sets it.
 ARENAS, _M_ARENA_MAX = 2, -8
+_GLIBC = platform.libc_ver()[0] == "glibc"
 #: What ``/proc/self/clear_refs`` takes to set the peak resident memory to the present one.
 _RESET_PEAK = "5"
 
@@ -46,8 +48,9 @@ def _status_mb() -> tuple[float | None, float | None]:
 
 
 def _glibc_function(name: str):
-    """glibc's function ``name`` in this process, None where the C library has none."""
-    return getattr(ctypes.CDLL(None), name, None)
+    """glibc's function ``name`` in this process, None where the C library is another (Windows loads none by
+    ``CDLL(None)``; macOS's and musl's take other ``mallopt`` parameters)."""
+    return getattr(ctypes.CDLL(None), name, None) if _GLIBC else None
 
 
 def _limit_heaps():
