@@ -50,7 +50,7 @@ def test_a_run_of_regularised_iterations_stops_the_solve_where_the_free_path_has
     assert solver.watch.stalled and solver.watch.count == end + 1
     stopped = np.array(solver.function.stats()["iterations"]["regularization_size"])
     np.testing.assert_array_equal(stopped, sizes[:end + 1])       # the same path up to the stop
-    assert raised.value.status == (f"a stall (IPOPT's Hessian regularisation at or above {threshold:g} for {run} "
+    assert raised.value.status == (f"a stall (the Hessian regularisation at or above {threshold:g} for {run} "
                                    f"iterations in a row, after {end + 1})")
 
 

@@ -69,7 +69,7 @@ class IterationWatch(ca.Callback):
         if self.infeasible_run >= rule.iterations:
             held = f"a row off its bounds by more than {rule.violation:g} of its size for {rule.iterations}"
         else:
-            held = (f"IPOPT's Hessian regularisation at or above {rule.regularization:g} for "
+            held = (f"the Hessian regularisation at or above {rule.regularization:g} for "
                     f"{rule.regularized_iterations}")
         return f"a stall ({held} iterations in a row, after {self.count})"
 
