@@ -9,8 +9,9 @@ until the fine grid holds (the quality to ``QUALITY_GAP`` of t), each round from
 multipliers too (``Solver.solve``'s ``continues``: 6-22 iterations a round instead of 21-29). The added
 turns, the start's assembly branch and the start itself are inputs of a solve, not of the NLP's
 expressions, so one solver serves every start and round. The turns an exchange added are offered to
-every later start from its first solve: each row holds a condition the whole turn must meet anyway, so
-they change no solution, and starts that end in the same mechanism need one round, not three.
+every later start from its first solve (those the design sits on first: ``handed_turns``): each row holds a
+condition the whole turn must meet anyway, so they change no solution, and starts that end in the same
+mechanism need one round, not three.
 """
 from __future__ import annotations
 
@@ -21,10 +22,12 @@ import numpy as np
 
 from transplanter.errors import SolverError
 from transplanter.fivebar.candidate import Candidate
+from transplanter.fivebar.handed_turns import handed_turns
 from transplanter.fivebar.nlp import (
     ADDED_CAPACITY,
     CONCAVITY_LIMIT,
     CURVATURE_FLOOR,
+    GRID_BLOCKS,
     DesignNLP,
     DesignSolution,
     build_nlp,
@@ -207,7 +210,9 @@ class DesignSolver:
             return check["turns"][periodic_peaks(shortfall)]
 
         solution, added = exchange(solve, worst_turns, self.exchange_turns, EXCHANGE_ROUNDS, warm, first)
-        self.exchange_turns = added[-(self.nlp.capacity // 2):]     # room left for a new start's own rounds
+        assert solution.solved is not None, "a solve's design carries its solution"
+        self.exchange_turns = handed_turns(solution.solved, GRID_BLOCKS, self.nlp.fixed_points, added,
+                                           self.nlp.capacity // 2)
         # a lane's result leaves the solution (and the NLP) behind; its multipliers, plain arrays, go with it
         return dataclasses.replace(solution, solved=None)
 

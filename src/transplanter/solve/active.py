@@ -35,6 +35,16 @@ class ActiveBound:
         return f"{self.name} {'>=' if self.side == 'lower' else '<='} {self.limit:g}"
 
 
+def on_bounds(values: np.ndarray, lower: np.ndarray, upper: np.ndarray, multipliers: np.ndarray,
+              scale: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per entry, whether it sits on its lower bound and whether on its upper one (the module docstring's rule;
+    ``scale``: the entries' scales; CasADi's multiplier signs: negative on a lower bound, positive on an upper)."""
+    tolerance = ON_BOUND * scale
+    low = np.isfinite(lower) & ((values - lower <= tolerance) | (multipliers < -MULTIPLIER_FLOOR))
+    high = np.isfinite(upper) & ((upper - values <= tolerance) | (multipliers > MULTIPLIER_FLOOR))
+    return low, high
+
+
 def active_bounds(layout: NLPLayout, bounds: Bounds, x: np.ndarray, g: np.ndarray, lam_x: np.ndarray,
                   lam_g: np.ndarray) -> tuple[ActiveBound, ...]:
     """Every named bound the point (x, g) with multipliers (lam_x, lam_g) sits on, in block order; a name
@@ -43,13 +53,13 @@ def active_bounds(layout: NLPLayout, bounds: Bounds, x: np.ndarray, g: np.ndarra
     for blocks, values, lower, upper, multipliers in ((layout.variables, x, bounds.lbx, bounds.ubx, lam_x),
                                                       (layout.rows, g, bounds.lbg, bounds.ubg, lam_g)):
         for block in blocks.values():
+            span = block.slice
+            on_low, on_high = on_bounds(values[span], lower[span], upper[span], multipliers[span], block.scale)
             for entry, (low_name, high_name) in enumerate(block.names):
-                k, tolerance = block.start + entry, ON_BOUND * block.scale[entry]
-                if low_name and np.isfinite(lower[k]) and (values[k] - lower[k] <= tolerance
-                                                           or multipliers[k] < -MULTIPLIER_FLOOR):
+                k = block.start + entry
+                if low_name and on_low[entry]:
                     on.setdefault(low_name, []).append((lower[k], values[k], block.name, entry, True))
-                if high_name and np.isfinite(upper[k]) and (upper[k] - values[k] <= tolerance
-                                                            or multipliers[k] > MULTIPLIER_FLOOR):
+                if high_name and on_high[entry]:
                     on.setdefault(high_name, []).append((upper[k], values[k], block.name, entry, False))
     found = []
     for (name, side), hits in on.items():
