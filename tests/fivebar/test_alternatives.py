@@ -48,9 +48,11 @@ def wide_problem(samples: int = 300):
 
 @pytest.fixture(scope="module")
 def run():
-    """The wide problem synthesised with alternative 2 picked, and the progress calls it made (~4 s)."""
+    """The wide problem synthesised with alternative 2 picked, and the progress calls it made (~4 s); without the
+    tolerance analysis, which no test here reads."""
     calls = []
-    result = synthesize(wide_problem(), pick=2, progress=lambda step, done, total: calls.append((step, done, total)))
+    result = synthesize(wide_problem(), pick=2, progress=lambda step, done, total: calls.append((step, done, total)),
+                        tolerance=False)
     return result, calls
 
 
@@ -244,10 +246,17 @@ def test_a_start_whose_curves_cannot_be_held_to_shaper_hollows_fails_with_the_un
     """When IPOPT fails with the curves held to a kappa >= -CONCAVITY_LIMIT, ``refine`` does not hand on a
     design with hollows no cutter makes: it raises, naming the status and the hold. Where every start failed,
     ``refine_all`` lists each such start with the least a kappa of each curve of the design made without the
-    hold (here computed again, by its own solve); where a start gave a design, that re-solve is not made."""
+    hold (here computed again, by its own solve); where a start gave a design, that re-solve is not made. Every
+    solver here is a fresh twin of one built solver (``DesignSolver.twin``: the same state, no build of its own)."""
     result, _ = run
     problem, start = result.problem, result.region.feasible[0]
     monkeypatch.setattr(side_process, "FORKS", False)       # every solve in this process, where it is counted
+    built = DesignSolver(problem)
+
+    def fresh(kind: type[DesignSolver]) -> DesignSolver:
+        solver = built.twin()
+        solver.__class__ = kind
+        return solver
 
     class HeldFails(DesignSolver):
         unheld_solves = 0
@@ -260,13 +269,13 @@ def test_a_start_whose_curves_cannot_be_held_to_shaper_hollows_fails_with_the_un
             return super().solve(start, added_turns, warm, curvature_floor, iteration_limit, closure_in_quality,
                                  continues)
 
-    unheld = DesignSolver(problem)._exchange(start, None)
+    unheld = built.twin()._exchange(start, None)
     with pytest.raises(HollowError) as caught:
-        HeldFails(problem).refine(start)
+        fresh(HeldFails).refine(start)
     reason = caught.value.reason
     assert "Infeasible_Problem_Detected" in reason and f"{-CONCAVITY_LIMIT:g}" in reason
     assert HeldFails.unheld_solves == 0
-    found, failed, _ = refine_all(problem, HeldFails(problem), [start])
+    found, failed, _ = refine_all(problem, fresh(HeldFails), [start])
     assert found == [] and [(f.start, f.held) for f in failed] == [(0, True)]
     assert failed[0].reason.startswith(f"{reason}; without that hold: ")
     for curve, value in zip(CURVES, unheld.min_curvature, strict=True):
@@ -283,6 +292,6 @@ def test_a_start_whose_curves_cannot_be_held_to_shaper_hollows_fails_with_the_un
 
     HeldFails.unheld_solves = 0
     monkeypatch.setattr(alternatives, "DesignSolver", SecondHeldFails)     # lane 1's solver too
-    found, failed, _ = refine_all(problem, SecondHeldFails(problem), result.region.feasible[:2])
+    found, failed, _ = refine_all(problem, fresh(SecondHeldFails), result.region.feasible[:2])
     assert len(found) == 1 and [(f.start, f.held, f.reason) for f in failed] == [(1, True, reason)]
     assert HeldFails.unheld_solves == 0

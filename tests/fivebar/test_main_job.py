@@ -40,6 +40,13 @@ def result(example_result):
     return example_result
 
 
+@pytest.fixture(scope="module")
+def built(problem):
+    """The example's design solver, built once for the tests that take a twin of it (``DesignSolver.twin``: the
+    state of a new solver, sharing the built Functions)."""
+    return DesignSolver(problem)
+
+
 def test_fitted_relative_angle_interpolates_and_returns_after_a_turn(rng):
     c = np.sort(np.r_[0.0, rng.uniform(0.1, 6.2, 8)])
     rho = 0.3 + c + 0.2 * np.sin(c)
@@ -182,8 +189,8 @@ def test_a_solve_held_off_its_bounds_for_the_stall_window_is_stopped_and_says_so
     assert "a stall" in raised.value.status and "100" not in raised.value.status
 
 
-def test_a_feasible_iterate_restarts_the_stall_count(problem):
-    solver = DesignSolver(problem)
+def test_a_feasible_iterate_restarts_the_stall_count(built):
+    solver = built.twin()
     nlp, cap, window = solver.nlp, solver.solver.watch, design_solver.STALL.iterations
     bounds = nlp.bounds(0, -CONCAVITY_LIMIT, -CONCAVITY_LIMIT)
     lbg, ubg = bounds.lbg, bounds.ubg
@@ -202,8 +209,8 @@ def test_a_feasible_iterate_restarts_the_stall_count(problem):
     assert [iterate(outside) for _ in range(window)][-1] == 1 and cap.stalled
 
 
-def test_exchange_beyond_the_solver_room_rebuilds_it_larger(result, problem):
-    solver = DesignSolver(problem)
+def test_exchange_beyond_the_solver_room_rebuilds_it_larger(result, built):
+    solver = built.twin()
     capacity = solver.nlp.capacity
     design = solver.solve(result.start, np.linspace(0.1, 6.0, capacity + 1), warm=result.design,
                           curvature_floor=-CONCAVITY_LIMIT)

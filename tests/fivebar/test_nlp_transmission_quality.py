@@ -29,9 +29,9 @@ def problem(example_problem):
 @pytest.fixture(scope="module")
 def refined(problem):
     """The first region candidate that refines (some stall), its refinement and its attempt at convex curves, as
-    the alternatives make them."""
+    the alternatives make them: on one solver, as a lane refines its starts one after another."""
+    solver = DesignSolver(problem)
     for start in solution_region(problem).feasible:
-        solver = DesignSolver(problem)
         try:
             return start, solver.make_convex(start, solver.refine(start))
         except SolverError:

@@ -8,6 +8,7 @@ import pytest
 import sympy as sp
 
 from derivations import cusp as derivation
+from tests.api.test_problem_classes import assert_pickles_to_the_same_report
 from transplanter._generated.cusp import cycloid_trace, incomplete_cycloid
 from transplanter.errors import InfeasibleError
 from transplanter.gears import parse_problem, synthesize
@@ -153,6 +154,12 @@ def test_composite_teeth_of_the_ellipse_and_chord(example):
     assert f"transmission error {report['mesh_check']['transmission_error_mm']:.4f} mm" in markdown
     assert f"contact ratio at least {report['contact_ratio_min']:.3f}" in markdown
     assert markdown.count("- corner tooth at pitch arc") == 2 and "positions without contact: none" in markdown
+
+
+def test_the_composite_pair_pickles(example):
+    """The example (the driver and pair of examples/gear_cusp_composite.toml) goes through pickle as every job's
+    result does (tests/api/test_problem_classes.py): its corner teeth, arches and trials too."""
+    assert_pickles_to_the_same_report(example)
 
 
 def test_arch_normals_pass_through_the_rolling_contact_on_the_pitch_curve(example):

@@ -39,10 +39,10 @@ def _moved(data: dict, angle: float, shift, scale: float) -> dict:
     return data
 
 
-def _train(data: dict, scale: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
-    """What must not change: the arm (lengths per scale, touches as points on the unit circle of u, so u = 1 and
-    u = 0 agree; the ratio range) and the gears (radius ranges and perimeters per scale, teeth at the module)."""
-    report = reverse.synthesize(reverse.parse_problem(data), tolerance=False).to_json()
+def _train(report: dict, scale: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
+    """What must not change, read from a train's report: the arm (lengths per scale, touches as points on the unit
+    circle of u, so u = 1 and u = 0 agree; the ratio range) and the gears (radius ranges and perimeters per scale,
+    teeth at the module)."""
     touches = np.exp(2j * np.pi * np.sort([touch["u"] for touch in report["touches"]])).view(float)
     arm = [report["carrier_length"] / scale, report["arm_length"] / scale, *touches, *report["ratio_range"]]
     gears = [[*np.divide(gear["radius_range_mm"], scale), gear["perimeter_mm"] / scale, gear["teeth_at_module"]]
@@ -51,9 +51,9 @@ def _train(data: dict, scale: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
 
 
 @pytest.fixture(scope="module")
-def example():
-    data = read_toml(EXAMPLE)
-    return data, _train(data)
+def example(rice_result):
+    """The example's problem and what must not change, read from its train synthesised once per test process."""
+    return read_toml(EXAMPLE), _train(rice_result.to_json())
 
 
 #: Scales that keep the example's module among the modules teeth are cut at (``trains.toothed_train.MODULE_RANGE``):
@@ -66,7 +66,8 @@ SCALES = tuple(limit / read_toml(EXAMPLE)["train"]["module"] for limit in MODULE
        scale=st.floats(*SCALES))
 def test_the_train_moves_with_its_path(example, angle, shift, scale):
     data, (arm, gears) = example
-    moved_arm, moved_gears = _train(_moved(data, angle, shift, scale), scale)
+    moved = reverse.synthesize(reverse.parse_problem(_moved(data, angle, shift, scale)), tolerance=False)
+    moved_arm, moved_gears = _train(moved.to_json(), scale)
     np.testing.assert_allclose(moved_arm, arm, rtol=1e-9, atol=1e-12)   # atol: a zero
     np.testing.assert_allclose(moved_gears, gears, rtol=1e-9)
 

@@ -31,7 +31,8 @@ def _run(tmp_path, text, *flags):
 
 
 def test_json_report_has_the_design_fields_and_the_figures(tmp_path, capsys):
-    assert _run(tmp_path, RICE, "--json", "--no-step", "--out", str(tmp_path / "out")) == 0
+    """Without the tolerance analysis (its report and figures: tests/reverse/test_tolerance_model.py)."""
+    assert _run(tmp_path, RICE, "--json", "--no-step", "--no-tolerance", "--out", str(tmp_path / "out")) == 0
     report = json.loads(capsys.readouterr().out)
     for field in ("monotonic", "violations", "carrier_length", "arm_length", "ratio_range", "gear_closure_errors",
                   "roundtrip_max_error_mm", "branch_segments", "branch_switches_u", "gears"):
@@ -114,7 +115,7 @@ def test_center_distances_that_cannot_place_the_planet(tmp_path, capsys):
 def test_idler_train_report_says_how_far_it_misses(tmp_path, capsys):
     text = RICE.replace('topology = "sun-intermediate-planet"', 'topology = "sun-idler-planet"').replace(
         'split = "sqrt"', 'split = "identical_sun_planet"')
-    assert _run(tmp_path, text, "--json") == 1                  # a failed check, the report says which
+    assert _run(tmp_path, text, "--json", "--no-tolerance") == 1     # a failed check, the report says which
     captured = capsys.readouterr()
     report = json.loads(captured.out)
     assert report["status"] == "FAILED" and "misses the path by up to" in report["failures"][0]

@@ -20,6 +20,7 @@ from tests.tolerance.model_checks import (
 from transplanter import reverse
 from transplanter.errors import ProblemError
 from transplanter.reverse.idler_train import roll_idler_train
+from transplanter.reverse.synthesis import _analysed as analysed
 from transplanter.reverse.tolerance_model import DIMENSION_NAMES, IDLER_DIMENSION_NAMES, PATH_ACCURACY, TURN_SAMPLES
 from transplanter.reverse.verification import CHECK_POINTS, rebuild_tip
 from transplanter.tolerance import ToleranceSettings, analyse
@@ -194,13 +195,16 @@ def test_report_section_and_figures(result, analysis):
 def test_a_train_below_iso_2768_sizes_says_why_it_has_no_analysis_until_the_tolerances_are_given():
     data = tomllib.loads(RICE.read_text())
     data["trajectory"]["points"] = [[x / 1000, y / 1000] for x, y in data["trajectory"]["points"]]
-    result = reverse.synthesize(reverse.parse_problem(data, "micro"))
+    # one train, analysed as the synthesis's last step analyses it, with the problem's own tolerances table and with
+    # one that gives the tolerances (the table changes no dimension)
+    train = reverse.synthesize(reverse.parse_problem(data, "micro"), tolerance=False)
+    result = analysed(train)
     assert result.tolerance is None and not result.failures
     assert "no general tolerance for a length of 0.162 mm" in result.to_json()["tolerance_note"]
     assert "- Tolerances: no tolerance analysis" in result.to_markdown()
     data["tolerances"] = {"arm_length": 1e-3, "center_distance_L1": 1e-3, "center_distance_L2": 1e-3,
                           "carrier_bend": 0.5, "samples": 1000}
-    given = reverse.synthesize(reverse.parse_problem(data, "micro"))
+    given = analysed(dataclasses.replace(train, problem=reverse.parse_problem(data, "micro")))
     assert given.tolerance is not None and given.tolerance_note == ""
 
 
@@ -284,15 +288,17 @@ def test_path_accuracy_counts_the_built_tips_that_stray_further_than_asked(resul
     assert flags.tolist() == [False, False, True, True]
 
 
-def test_path_accuracy_is_read_from_the_tolerances_table():
+def test_path_accuracy_is_read_from_the_tolerances_table(rice_result):
+    """The rice hoe's train (a tolerances table changes no dimension) analysed as the synthesis's last step analyses
+    it, with a wide and a narrow path accuracy in its table."""
     data = tomllib.loads(RICE.read_text())
     data["tolerances"] = {"path_accuracy_mm": 40.0, "samples": 500}
-    wide = reverse.synthesize(reverse.parse_problem(data, "rice"))
+    wide = analysed(dataclasses.replace(rice_result, problem=reverse.parse_problem(data, "rice")))
     assert wide.tolerance.monte_carlo.violation_fraction == {"path accuracy": 0.0}
     assert wide.to_json()["tolerance"]["path_accuracy_mm"] == 40.0
     assert "a built tip within 40 mm (15.7 % of the reach s + l)" in wide.to_markdown()
     data["tolerances"]["path_accuracy_mm"] = 1e-6
-    narrow = reverse.synthesize(reverse.parse_problem(data, "rice"))
+    narrow = analysed(dataclasses.replace(rice_result, problem=reverse.parse_problem(data, "rice")))
     assert narrow.tolerance.monte_carlo.violation_fraction == {"path accuracy": 1.0}
     assert not narrow.failures                    # the synthesis's own round trip still judges the design
 
