@@ -5,11 +5,13 @@ a cam disc's profile extruded to its thickness, less its bore.
 A gear's and a cam disc's outline go in as smooth curves (``solids.smooth_outline``): split at its corners, each
 run one cubic B-spline edge, so a side face per run (a few per tooth) and no face per sampled segment, which made a
 gear of the main job a 10 MB file that OpenCASCADE took a minute to read back. Every point of the outline given
-lies within ``GEAR_WITHIN_MODULES`` of the module (a gear; 0.15 um at module 1.5, far below the few um of a fine
-gear's profile tolerance) or ``DISC_WITHIN_EXTENT`` of the outline's extent (a disc) of the solid's edge. Given the
-cut outline (as the commands give it), the edge therefore lies within that of the cut teeth, and within the
-drawing's own chord tolerance (``geometry.outline_thinning.DRAWN_WITHIN_MODULES``) plus that of the drawn
-polyline. A plate keeps its polyline (its arcs' 32 segments a quarter: about 130 faces, read back in 0.06 s).
+lies within ``GEAR_WITHIN_MODULES`` of the module (a gear: 0.15 um at module 1.5, far below the few um of a fine
+gear's profile tolerance) or ``DISC_WITHIN_EXTENT`` of the outline's extent (a disc) of the solid's edge; between
+two points the edge keeps within that plus twice the chord's sagitta of the chord. The commands give a gear its
+cut outline (the drawings thin it within ``geometry.outline_thinning.DRAWN_WITHIN_MODULES``): a shaper-cut outline
+has a point every 0.002 module, so its solid's edge is within the bound of the cut teeth and within the drawing's
+chord tolerance plus the bound of the drawn polyline. A plate keeps its polyline (its arcs' 32 segments a
+quarter: about 130 faces, read back in 0.06 s).
 
 Without build123d nothing is written and ``MISSING_NOTE`` says so. The sizes are ``solids.sizes``'; every command
 writes its parts through ``solids.part_files``.
