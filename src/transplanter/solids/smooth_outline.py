@@ -15,6 +15,8 @@ from scipy.interpolate import BSpline, make_interp_spline, make_lsq_spline
 #: corners and the junctions of its cut envelope, a plate's corners).
 CORNER_DEGREES = 10.0
 DEGREE = 3
+#: A run's first fit has a knot at every this many points (refined from there).
+START_POINTS = 64
 #: Knot refinements of a run before it is split at its sharpest vertex instead.
 REFINEMENTS = 12
 #: Where between two points (fractions of their chord's parameter span) the curve is held near the chord.
@@ -67,7 +69,7 @@ def _fitted(points: np.ndarray, within: float) -> BSpline | None:
     if len(points) <= 2 * (DEGREE + 1):
         curve = make_interp_spline(length, points, k=min(DEGREE, len(points) - 1))
         return curve if (_chord_distance(curve(between), points, chords) <= allowed).all() else None
-    inner = np.empty(0)
+    inner = length[START_POINTS:-1:START_POINTS]
     for _ in range(REFINEMENTS):
         knots = np.concatenate([[length[0]] * (DEGREE + 1), inner, [length[-1]] * (DEGREE + 1)])
         try:
