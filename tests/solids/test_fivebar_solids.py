@@ -1,43 +1,45 @@
-"""The five-bar's STEP solids: each link plate its outline less its holes (read back from its file), each gear its
-drawn tooth outline less its keyed bore, extruded to the problem's thickness and face width.
-
-A gear's STEP of the main job holds about 2,900 side faces and takes OpenCASCADE about a minute to read back, so
-the gears are checked as the solids the writer exports (those ``solids.step.gear_solid`` made for it); reading a
-gear's STEP back is tested on smaller gears through the same writer (test_step.py, test_command_solids.py,
-test_reverse_solids.py)."""
+"""The five-bar's STEP solids read back: each link plate its outline less its holes, each gear its cut tooth outline
+as smooth curves less its keyed bore, extruded to the problem's thickness and face width; a gear's edges measured
+against its cut outline and its drawn polyline."""
 from dataclasses import replace
 
 import numpy as np
 import shapely
 
-from tests.solids.step_checks import check_solid, keyed_hole_area, read_step
+from tests.solids.step_checks import check_solid, distance_to_lines, edge_samples, keyed_hole_area, read_step
 from transplanter.fivebar.drawings import gear_drawings, parts
-from transplanter.fivebar.gears_on_carrier import tooth_outlines
+from transplanter.fivebar.gears_on_carrier import cut_outlines, tooth_outlines
 from transplanter.fivebar.solid_files import write_solids
-from transplanter.solids import part_files
+from transplanter.geometry.outline_thinning import DRAWN_WITHIN_MODULES
 from transplanter.solids.sizes import SolidSizes
-from transplanter.solids.step import gear_solid
+from transplanter.solids.step import GEAR_WITHIN_MODULES
 
-ISO_10303 = b"ISO-10303-21;"
+#: The edges are sampled every this many modules; between samples a chord is as far from the curve as its sagitta
+#: (below 1e-5 module on the fillets), so the distances hold the bounds plus a tenth of the solid's.
+SAMPLE_MODULES = 2e-3
 
 
-def test_every_plate_and_gear_is_its_drawing_extruded(example_result, tmp_path, monkeypatch):
+def test_every_plate_and_gear_is_its_drawing_extruded(example_result, tmp_path):
     sizes = SolidSizes(face_width_mm=14.0, thickness_mm=5.0)
     result = replace(example_result, problem=replace(example_result.problem, solid_sizes=sizes))
-    exported = {}
-
-    def kept(gear, face_width):
-        exported[gear.name] = gear_solid(gear, face_width)
-        return exported[gear.name]
-    monkeypatch.setattr(part_files, "gear_solid", kept)
     written = write_solids(result, tmp_path)
     plates, gears = parts(result), gear_drawings(result, tooth_outlines(result.toothed))
+    cut = cut_outlines(result.toothed)
     assert sorted(path.name for path in written) == sorted(f"{part.name}.step" for part in [*plates, *gears])
     for part in plates:
         holes = [hole for hole in part.holes if hole.diameter]
         area = shapely.Polygon(part.outline()).area - sum(np.pi * (hole.diameter / 2) ** 2 for hole in holes)
         check_solid(read_step(tmp_path / f"{part.name}.step"), part.outline(), area, 5.0, len(holes))
+    module = result.toothed.module
+    within, spacing = GEAR_WITHIN_MODULES * module, SAMPLE_MODULES * module
     for gear in gears:
-        assert (tmp_path / f"{gear.name}.step").read_bytes().startswith(ISO_10303)
+        solid = read_step(tmp_path / f"{gear.name}.step")
         area = shapely.Polygon(gear.outline).area - keyed_hole_area(gear.bore)
-        check_solid(exported[gear.name], gear.outline, area, 14.0, 1)
+        check_solid(solid, cut[gear.name], area, 14.0, 1, within=1.1 * within)
+        edges = edge_samples(solid, spacing)
+        # every point of the cut outline (a point every 0.002 module) within the bound of the edge, every sample of
+        # the edge within the drawing's own chord tolerance plus that bound of the drawn polyline
+        assert distance_to_lines(cut[gear.name], edges, spacing).max() <= 1.1 * within
+        drawn = np.vstack([gear.outline, gear.outline[:1]])
+        drawing_tolerance = DRAWN_WITHIN_MODULES * module
+        assert distance_to_lines(np.vstack(edges), [drawn], spacing).max() <= drawing_tolerance + 1.1 * within

@@ -10,9 +10,8 @@ from transplanter import gears
 from transplanter.drawing.gear_sheet import GearDrawing
 from transplanter.drawing.plate_sheet import Hole, PlatePart
 from transplanter.drawing.sheet import TitleBlock
-from transplanter.geometry.outline_thinning import thinned
 from transplanter.shafts.keyed_bore import KeyedBore
-from transplanter.solids.step import FIXED_TIME, gear_solid, plate_solid, write_step
+from transplanter.solids.step import FIXED_TIME, GEAR_WITHIN_MODULES, gear_solid, plate_solid, write_step
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -31,12 +30,13 @@ def test_plate_solid_has_the_outline_less_its_holes_times_its_thickness(tmp_path
 def test_gear_solid_has_the_tooth_outline_less_its_keyed_bore_times_its_face_width(tmp_path):
     pair = gears.synthesize(gears.load_problem(ROOT / "examples/gear_ellipse.toml"))
     module = pair.problem.module
-    outline = thinned(pair.teeth.outlines[0], 1e-3 * module)
+    outline = pair.teeth.outlines[0]
     bore = KeyedBore.for_shaft(20.0, 0.3)
     gear = GearDrawing("driver", outline, outline, bore, TitleBlock("driver", 1, "t"))
     width = 10 * module
-    solid = read_back(gear_solid(gear, width), tmp_path / "driver.step")
-    check_solid(solid, outline, shapely.Polygon(outline).area - keyed_hole_area(bore), width, 1)
+    solid = read_back(gear_solid(gear, width, module), tmp_path / "driver.step")
+    check_solid(solid, outline, shapely.Polygon(outline).area - keyed_hole_area(bore), width, 1,
+                within=1.1 * GEAR_WITHIN_MODULES * module)
 
 
 def test_the_same_part_gives_the_same_step_bytes(tmp_path):

@@ -82,13 +82,17 @@ def carrier_to_world(mech: FiveBar, points: np.ndarray, c) -> np.ndarray:
     return rotate_about(points, (0.0, 0.0), np.asarray(mech.carrier_angle - np.asarray(c, float))[..., None])
 
 
-def tooth_outlines(toothed: ToothedTrain) -> dict[str, np.ndarray]:
+def cut_outlines(toothed: ToothedTrain) -> dict[str, np.ndarray]:
     """The cut outline (N, 2) mm of each gear of a toothed train, by the names of ``gears_on_carrier``
-    (both place stage 1 mirrored and give each gear the same frame, so the outlines fit the pitch curves),
-    thinned within ``DRAWN_WITHIN_MODULES`` of the module for drawings and pictures: a shaper-cut outline
-    has a vertex every 0.002 module, which CAD files and frames do not need."""
+    (both place stage 1 mirrored and give each gear the same frame, so the outlines fit the pitch curves)."""
+    return {gear.name.replace(" ", "_"): gear.outline for gear in toothed.gears}
+
+
+def tooth_outlines(toothed: ToothedTrain) -> dict[str, np.ndarray]:
+    """The cut outlines thinned within ``DRAWN_WITHIN_MODULES`` of the module for drawings and pictures: a
+    shaper-cut outline has a vertex every 0.002 module, which drawings and frames do not need."""
     tolerance = DRAWN_WITHIN_MODULES * toothed.module
-    return {gear.name.replace(" ", "_"): thinned(gear.outline, tolerance) for gear in toothed.gears}
+    return {name: thinned(outline, tolerance) for name, outline in cut_outlines(toothed).items()}
 
 
 def teeth_on_carrier(toothed: ToothedTrain, carrier_length: float) -> dict:

@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from transplanter.fivebar.drawings import gear_drawings, parts
-from transplanter.fivebar.gears_on_carrier import tooth_outlines
+from transplanter.fivebar.gears_on_carrier import cut_outlines
 from transplanter.fivebar.result import FiveBarResult
 from transplanter.solids.part_files import solids_note as part_solids_note
 from transplanter.solids.part_files import write_part_solids
@@ -25,8 +25,8 @@ def solids_note(result: FiveBarResult) -> str:
 
 
 def write_solids(result: FiveBarResult, folder: Path) -> list[Path]:
-    """``<part>.step`` per link plate and gear in ``folder``; none without the extra."""
+    """``<part>.step`` per link plate and gear (made from its cut outline) in ``folder``; none without the extra."""
     sizes = solid_sizes(result)
-    return write_part_solids(folder, gears=gear_drawings(result, tooth_outlines(result.toothed)),
-                             face_width=sizes["face_width_mm"], plates=parts(result),
+    return write_part_solids(folder, gears=gear_drawings(result, cut_outlines(result.toothed)),
+                             face_width=sizes["face_width_mm"], module=result.toothed.module, plates=parts(result),
                              thickness=sizes["plate_thickness_mm"])

@@ -1,15 +1,12 @@
-"""A cut gear pair's STEP solids (``solids.part_files``): ``driver.step`` and ``driven.step``, the drawings' tooth
-outlines (thinned within ``DRAWN_WITHIN_MODULES`` of the module, as the five-bar draws its gears: the ellipse
-example's 2,700 vertices a gear took 12 s to make and write, its 1,100 thinned 4 s) and keyed bores extruded to
-the face width, when the optional extra transplanter[cad] is installed."""
+"""A cut gear pair's STEP solids (``solids.part_files``): ``driver.step`` and ``driven.step``, the drawings' cut
+tooth outlines (as smooth curves, ``solids.step``) and keyed bores extruded to the face width, when the optional
+extra transplanter[cad] is installed."""
 from __future__ import annotations
 
-import dataclasses
 from pathlib import Path
 
 from transplanter.gears.drawings import gear_drawings
 from transplanter.gears.result import GearResult
-from transplanter.geometry.outline_thinning import DRAWN_WITHIN_MODULES, thinned
 from transplanter.solids.part_files import solids_note as part_solids_note
 from transplanter.solids.part_files import write_part_solids
 from transplanter.solids.sizes import SolidSizes
@@ -28,6 +25,4 @@ def write_solids(result: GearResult, folder: Path, sizes: SolidSizes) -> list[Pa
     module = result.problem.module
     if result.teeth is None or module is None:
         return []
-    drawn = [dataclasses.replace(gear, outline=thinned(gear.outline, DRAWN_WITHIN_MODULES * module))
-             for gear in gear_drawings(result)]
-    return write_part_solids(folder, gears=drawn, face_width=sizes.face_width(module))
+    return write_part_solids(folder, gears=gear_drawings(result), face_width=sizes.face_width(module), module=module)

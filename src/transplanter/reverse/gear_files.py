@@ -51,9 +51,12 @@ def bore_failures(toothed: ToothedTrain) -> list[str]:
             for text in rim_failures(f"{name.replace('_', ' ')} bore", roots[name], bore, toothed.module)]
 
 
-def gear_drawings(toothed: ToothedTrain, direction: int, title: str) -> list[GearDrawing]:
-    """The four gears to make, mirrored for a carrier turning counterclockwise (``direction`` +1)."""
-    return toothed_gear_drawings(toothed, tooth_outlines(toothed), gear_bores(toothed), title, direction == 1)
+def gear_drawings(toothed: ToothedTrain, direction: int, title: str,
+                  outlines: dict[str, np.ndarray] | None = None) -> list[GearDrawing]:
+    """The four gears to make, mirrored for a carrier turning counterclockwise (``direction`` +1), with the drawn
+    tooth outlines or the given ``outlines`` by name."""
+    outlines = tooth_outlines(toothed) if outlines is None else outlines
+    return toothed_gear_drawings(toothed, outlines, gear_bores(toothed), title, direction == 1)
 
 
 def write_gear_files(toothed: ToothedTrain, direction: int, title: str, folder: Path) -> list[Path]:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from transplanter.fivebar.gears_on_carrier import cut_outlines
 from transplanter.reverse.gear_files import gear_drawings
 from transplanter.reverse.problem import ReverseProblem
 from transplanter.solids.part_files import solids_note as part_solids_note
@@ -18,6 +19,7 @@ def solids_note(toothed: ToothedTrain, problem: ReverseProblem) -> str:
 
 
 def write_solids(toothed: ToothedTrain, problem: ReverseProblem, folder: Path) -> list[Path]:
-    """``<gear>.step`` per gear in ``folder``; none without the extra."""
-    return write_part_solids(folder, gears=gear_drawings(toothed, problem.direction, problem.title),
-                             face_width=problem.solid_sizes.face_width(toothed.module))
+    """``<gear>.step`` per gear in ``folder``, made from its cut outline; none without the extra."""
+    return write_part_solids(folder, gears=gear_drawings(toothed, problem.direction, problem.title,
+                                                         cut_outlines(toothed)),
+                             face_width=problem.solid_sizes.face_width(toothed.module), module=toothed.module)
