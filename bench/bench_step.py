@@ -17,7 +17,7 @@ first gear's is read back unless ``--every-baseline`` is given. Target: a gear r
 """
 from __future__ import annotations
 
-import sys
+import argparse
 import tempfile
 import time
 from pathlib import Path
@@ -96,4 +96,7 @@ def main(every_baseline: bool) -> None:
 
 
 if __name__ == "__main__":
-    main("--every-baseline" in sys.argv[1:])
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--every-baseline", action="store_true",
+                        help="read every baseline gear back (about a minute each), not only the first")
+    main(parser.parse_args().every_baseline)
