@@ -75,6 +75,6 @@ def test_the_command_refuses_a_bad_face_width_in_one_line(tmp_path):
 
 def test_without_the_cad_extra_no_solid_and_a_one_line_note(monkeypatch, tmp_path):
     monkeypatch.setattr(part_files, "cad_installed", lambda: False)
-    assert part_files.write_part_solids(tmp_path, gears=[object()], face_width=10.0) == []
+    assert part_files.write_part_solids(tmp_path, gears=[object()], face_width=10.0, module=1.5) == []
     assert part_files.solids_note(10.0, 6.0) == MISSING_NOTE and "\n" not in MISSING_NOTE
     assert list(tmp_path.iterdir()) == []

@@ -19,16 +19,18 @@ from transplanter.solids.step import (
 
 
 def write_part_solids(folder: Path, *, gears: Sequence[GearDrawing] = (), face_width: float = 0.0,
-                      module: float = 0.0, plates: Sequence[PlatePart] = (), thickness: float = 0.0,
+                      module: float | None = None, plates: Sequence[PlatePart] = (), thickness: float = 0.0,
                       discs: Sequence[BoredDisc] = ()) -> list[Path]:
     """``<name>.step`` in ``folder`` per link plate and per disc (``thickness`` mm thick), then per gear (any outline
     and keyed bore a drawing takes, ``face_width`` mm wide, its edge within ``solids.step.GEAR_WITHIN_MODULES`` of
-    the ``module``); none without the extra. The files written."""
+    the ``module``, which gears need); none without the extra. The files written."""
     if not cad_installed():
         return []
     written = [write_step(plate_solid(part, thickness), folder / f"{part.name}.step") for part in plates]
     written += [write_step(disc_solid(disc, thickness), folder / f"{disc.name}.step") for disc in discs]
-    written += [write_step(gear_solid(gear, face_width, module), folder / f"{gear.name}.step") for gear in gears]
+    if gears:
+        assert module is not None and module > 0, "a gear's solid is fitted within a part of its module"
+        written += [write_step(gear_solid(gear, face_width, module), folder / f"{gear.name}.step") for gear in gears]
     return written
 
 
