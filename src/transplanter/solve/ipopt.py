@@ -3,7 +3,8 @@ success, and solutions read back by block name.
 
 Options: IPOPT's adaptive barrier update, a stationarity tolerance ``tolerance`` (1e-10 unless a caller
 needs a tighter one) and a constraint violation tolerance of 1e-12, at most ``max_iterations``; no
-parameter multipliers (casadi then skips building the NLP's gradient function). Success is
+parameter multipliers (casadi then skips building the NLP's gradient function); the package's KKT
+factorisation where it is compiled (``kkt_solver``). Success is
 ``ACCEPTED``; any other end, or a stall (``solve.stall``), raises a ``SolverError`` naming it.
 
 A re-solve that continues a nearby optimum (the same NLP with rows added, as an exchange round) starts
@@ -27,6 +28,7 @@ import numpy as np
 
 from transplanter.errors import SolverError
 from transplanter.solve.active import ActiveBound, active_bounds
+from transplanter.solve.kkt_solver import kkt_solver_options
 from transplanter.solve.layout import Bounds, NLPLayout
 from transplanter.solve.multipliers import Multipliers
 from transplanter.solve.stall import IterationWatch, StallRule
@@ -49,7 +51,7 @@ def ipopt_options(tolerance: float, max_iterations: int) -> dict:
     """The option set every solver of the package uses."""
     return {"ipopt.print_level": 0, "ipopt.sb": "yes", "print_time": False, "ipopt.tol": tolerance,
             "ipopt.constr_viol_tol": CONSTRAINT_TOLERANCE, "ipopt.max_iter": max_iterations,
-            "ipopt.mu_strategy": "adaptive", "calc_lam_p": False, "no_nlp_grad": True}
+            "ipopt.mu_strategy": "adaptive", "calc_lam_p": False, "no_nlp_grad": True, **kkt_solver_options()}
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,32 @@
+"""Which linear solver IPOPT factors its KKT systems with.
+
+The design NLPs have a few dozen variables and a thousand or more constraint rows, each row touching a few
+variables. IPOPT's bundled MUMPS merges the thousand small fronts of such a system into one dense front of the
+rows: 8-20 ms a factorisation on the five-bar's design NLP (2,120 rows and columns), where the package's own
+sparse LDL^T (``sparse_ldl.c``, compiled at install) takes 0.2-0.4 ms after an ordering of 2-3 ms once a solve.
+IPOPT loads it at run time through the entry points of HSL's MA27 (``linear_solver`` ma27, ``hsllib`` the
+compiled file); its own scaling (MC19) is HSL's too, so none is asked for. Without the compiled file (an
+install without a C compiler) IPOPT keeps MUMPS: the same optima, more slowly.
+"""
+from __future__ import annotations
+
+from functools import cache
+from importlib.util import find_spec
+
+#: The compiled factorisation, an extension module of this package that IPOPT opens as a shared library.
+LIBRARY = "transplanter.solve._sparse_ldl"
+
+
+@cache
+def library_path() -> str | None:
+    """The compiled factorisation's file, or None where the install could not compile it."""
+    spec = find_spec(LIBRARY)
+    return spec.origin if spec is not None else None
+
+
+def kkt_solver_options() -> dict[str, str]:
+    """IPOPT's options for the package's factorisation, or none (MUMPS) where it is not compiled."""
+    path = library_path()
+    if path is None:
+        return {}
+    return {"ipopt.linear_solver": "ma27", "ipopt.hsllib": path, "ipopt.linear_system_scaling": "none"}
