@@ -8,6 +8,7 @@ import casadi as ca
 import numpy as np
 import pytest
 
+from transplanter.solve import ipopt, kkt_solver
 from transplanter.solve.kkt_solver import kkt_solver_options, library_path
 
 ENTRY = ctypes.POINTER(ctypes.c_int)
@@ -143,3 +144,12 @@ def test_ipopt_reaches_the_optimum_mumps_reaches():
         assert solver.stats()["return_status"] == "Solve_Succeeded"
         optima.append(np.asarray(result["x"]).ravel())
     assert np.abs(optima[0] - optima[1]).max() < 1e-8
+
+
+def test_without_the_compiled_file_ipopt_keeps_mumps(monkeypatch):
+    """An install without a C compiler has no library: the option set then names no linear solver (MUMPS)."""
+    monkeypatch.setattr(kkt_solver, "library_path", lambda: None)
+    options = ipopt.ipopt_options(ipopt.TOLERANCE, ipopt.MAX_ITERATIONS)
+    assert not any(key in options for key in ("ipopt.linear_solver", "ipopt.hsllib", "ipopt.linear_system_scaling"))
+    monkeypatch.undo()
+    assert ipopt.ipopt_options(ipopt.TOLERANCE, ipopt.MAX_ITERATIONS)["ipopt.hsllib"] == library_path()
