@@ -6,7 +6,8 @@ rows: 8-20 ms a factorisation on the five-bar's design NLP (2,120 rows and colum
 sparse LDL^T (``sparse_ldl.c``, compiled at install) takes 0.2-0.4 ms after an ordering of 2-3 ms once a solve.
 IPOPT loads it at run time through the entry points of HSL's MA27 (``linear_solver`` ma27, ``hsllib`` the
 compiled file); its own scaling (MC19) is HSL's too, so none is asked for. Without the compiled file (an
-install without a C compiler) IPOPT keeps MUMPS: the same optima, more slowly.
+install without a C compiler) IPOPT keeps MUMPS: the bundled five-bar example gets the same design, more slowly
+(a single solve may end at another local optimum: 1 of the main job's 37 in ``bench/bench_kkt_solver.py``).
 """
 from __future__ import annotations
 
