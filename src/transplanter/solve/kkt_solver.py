@@ -1,8 +1,8 @@
 """Which linear solver IPOPT factors its KKT systems with.
 
 The design NLPs have a few dozen variables and a thousand or more constraint rows, each row touching a few
-variables. IPOPT's bundled MUMPS merges the thousand small fronts of such a system into one dense front of the
-rows: 8-20 ms a factorisation on the five-bar's design NLP (2,120 rows and columns), where the package's own
+variables. IPOPT's bundled MUMPS takes 8-20 ms a factorisation on the five-bar's design NLP (2,120 rows and
+columns), growing with the rows as one dense front of all of them would, where the package's own
 sparse LDL^T (``sparse_ldl.c``, compiled at install) takes 0.2-0.4 ms after an ordering of 2-3 ms once a solve.
 IPOPT loads it at run time through the entry points of HSL's MA27 (``linear_solver`` ma27, ``hsllib`` the
 compiled file); its own scaling (MC19) is HSL's too, so none is asked for. Without the compiled file (an

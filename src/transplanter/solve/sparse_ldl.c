@@ -3,8 +3,8 @@
  *
  * The KKT systems of the design NLPs have a few dozen variables and a thousand or more constraint rows, each row
  * touching a few variables: eliminating a row's slack and then the row leaves a dense block of the variables and
- * the equality rows only. MUMPS amalgamates the thousand small fronts into one dense front of the rows and spends
- * 8-20 ms a factorisation where this takes about 0.3 ms (after an order of about 2 ms, once a solve).
+ * the equality rows only. MUMPS spends 8-20 ms a factorisation on them, growing with the rows as one dense front
+ * of all of them would, where this takes about 0.3 ms (after an order of about 2 ms, once a solve).
  *
  * - Order (at the first factorisation of a solve, from that matrix's values): first each node with a zero
  *   diagonal and a single neighbour (the slack of a row with no bounds) with that neighbour, as one 2x2 pivot
