@@ -32,14 +32,8 @@ def recorded_solves():
     solve = ipopt.Solver.solve
 
     def recording(self, start, bounds=None, parameters=None, iteration_limit=None, failure="", continues=None):
-        layout, held = self.layout, bounds or self.layout.bounds()
-        arguments = {"x0": layout.vector(start), "lbx": held.lbx, "ubx": held.ubx, "lbg": held.lbg, "ubg": held.ubg}
-        if layout.p.shape[0]:
-            arguments["p"] = layout.parameter_vector(parameters or {})
-        if continues is not None:
-            multipliers = continues.multipliers() if isinstance(continues, ipopt.Solution) else continues
-            arguments["lam_x0"] = ipopt.held_multipliers(multipliers.lam_x, held.lbx, held.ubx)
-            arguments["lam_g0"] = ipopt.held_multipliers(multipliers.lam_g, held.lbg, held.ubg)
+        layout = self.layout
+        arguments = self.ipopt_arguments(start, bounds or layout.bounds(), parameters, continues)
         if self.name == "fivebar_design":
             calls.append((layout, arguments, continues is not None))
         return solve(self, start, bounds, parameters, iteration_limit, failure, continues)

@@ -116,6 +116,25 @@ class Solver:
             self._warm_function = self._nlpsol(f"{self.name}_warm", {**self.options, **WARM_START, **shared})
         return self._warm_function
 
+    def ipopt_arguments(self, start: Mapping[str, object], bounds: Bounds,
+                        parameters: Mapping[str, object] | None = None,
+                        continues: Solution | Multipliers | None = None) -> dict[str, np.ndarray]:
+        """IPOPT's arguments for a solve from ``start`` within ``bounds`` at ``parameters``; with ``continues``,
+        its multipliers too (``lam_x0``, ``lam_g0``: those of bounds this solve lifts start at zero)."""
+        layout = self.layout
+        arguments = {"x0": layout.vector(start), "lbx": bounds.lbx, "ubx": bounds.ubx, "lbg": bounds.lbg,
+                     "ubg": bounds.ubg}
+        if layout.p.shape[0]:
+            arguments["p"] = layout.parameter_vector(parameters or {})
+        if continues is not None:
+            if isinstance(continues, Solution):
+                assert continues.layout is layout, "multipliers of this solver's own NLP"
+                continues = continues.multipliers()
+            assert continues.fits(layout), "multipliers sized for this solver's NLP"
+            arguments["lam_x0"] = held_multipliers(continues.lam_x, bounds.lbx, bounds.ubx)
+            arguments["lam_g0"] = held_multipliers(continues.lam_g, bounds.lbg, bounds.ubg)
+        return arguments
+
     def solve(self, start: Mapping[str, object], bounds: Bounds | None = None,
               parameters: Mapping[str, object] | None = None, iteration_limit: int | None = None,
               failure: str = "the NLP did not converge",
@@ -126,19 +145,8 @@ class Solver:
         start the solve (module docstring; those of bounds this solve lifts start at zero)."""
         layout = self.layout
         bounds = bounds or layout.bounds()
-        arguments = {"x0": layout.vector(start), "lbx": bounds.lbx, "ubx": bounds.ubx, "lbg": bounds.lbg,
-                     "ubg": bounds.ubg}
-        if layout.p.shape[0]:
-            arguments["p"] = layout.parameter_vector(parameters or {})
-        function = self.function
-        if continues is not None:
-            if isinstance(continues, Solution):
-                assert continues.layout is layout, "multipliers of this solver's own NLP"
-                continues = continues.multipliers()
-            assert continues.fits(layout), "multipliers sized for this solver's NLP"
-            arguments["lam_x0"] = held_multipliers(continues.lam_x, bounds.lbx, bounds.ubx)
-            arguments["lam_g0"] = held_multipliers(continues.lam_g, bounds.lbg, bounds.ubg)
-            function = self._warm()
+        arguments = self.ipopt_arguments(start, bounds, parameters, continues)
+        function = self._warm() if continues is not None else self.function
         self.watch.watch(iteration_limit, bounds.lbg, bounds.ubg, layout.row_scales(), function)
         result = function(**arguments)
         stats = function.stats()

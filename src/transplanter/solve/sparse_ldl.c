@@ -94,6 +94,28 @@ static int degree(const Graph *g, int i)
     return d;
 }
 
+/* The nodes in `node`'s row, into out; their count. */
+static int members(const Graph *g, int node, int *out)
+{
+    const uint64_t *row = bit_row(g, node);
+    int count = 0;
+    for (int w = 0; w < g->words; w++)
+        for (uint64_t bits = row[w]; bits; bits &= bits - 1) out[count++] = w * 64 + __builtin_ctzll(bits);
+    return count;
+}
+
+/* `node` eliminated from g: its neighbours become a clique, and none of them links to it any more. */
+static void eliminate(Graph *g, int node, const int *neighbours, int count)
+{
+    const uint64_t *row = bit_row(g, node);
+    for (int c = 0; c < count; c++) {
+        uint64_t *other = bit_row(g, neighbours[c]);
+        for (int w = 0; w < g->words; w++) other[w] |= row[w];
+        clear_bit(other, neighbours[c]);
+        clear_bit(other, node);
+    }
+}
+
 static void enqueue(int *head, int *next, int *previous, char *queued, const int *deg, int i)
 {
     next[i] = head[deg[i]];
@@ -149,9 +171,8 @@ static int order(int n, int nz, const int *irn, const int *icn, const double *a,
     int k = 0;
     for (int i = 0; i < n; i++) {
         if (done[i] || kept[i] || diagonal[i] != 0.0 || degree(&linked, i) != 1) continue;
-        int r = -1;
-        for (int w = 0; w < linked.words && r < 0; w++)
-            if (bit_row(&linked, i)[w]) r = w * 64 + __builtin_ctzll(bit_row(&linked, i)[w]);
+        members(&linked, i, neighbours);
+        int r = neighbours[0];
         if (done[r] || kept[r] || !has_bit(bit_row(&strong, i), r)) continue;
         pair[k] = 1;
         perm[k++] = i;
@@ -159,17 +180,9 @@ static int order(int n, int nz, const int *irn, const int *icn, const double *a,
         perm[k++] = r;
         done[i] = done[r] = 1;
         clear_bit(bit_row(&linked, r), i);
-        const uint64_t *row = bit_row(&linked, r);
-        int count = 0;
-        for (int w = 0; w < linked.words; w++)
-            for (uint64_t bits = row[w]; bits; bits &= bits - 1) neighbours[count++] = w * 64 + __builtin_ctzll(bits);
-        for (int c = 0; c < count; c++) {
-            uint64_t *other = bit_row(&linked, neighbours[c]);
-            for (int w = 0; w < linked.words; w++) other[w] |= row[w];
-            clear_bit(other, neighbours[c]);
-            clear_bit(other, r);
-            clear_bit(bit_row(&strong, neighbours[c]), r);
-        }
+        int count = members(&linked, r, neighbours);
+        eliminate(&linked, r, neighbours, count);
+        for (int c = 0; c < count; c++) clear_bit(bit_row(&strong, neighbours[c]), r);     /* no fill: a_s = 0 */
     }
     /* the pivotable nodes not yet eliminated, in lists by degree (head[d], then next) */
     for (int d = 0; d <= n; d++) head[d] = -1;
@@ -199,16 +212,11 @@ static int order(int n, int nz, const int *irn, const int *icn, const double *a,
         perm[k] = best;
         pair[k] = 0;
         done[best] = 1;
-        const uint64_t *row = bit_row(&linked, best), *strong_row = bit_row(&strong, best);
-        int count = 0;
-        for (int w = 0; w < linked.words; w++)
-            for (uint64_t bits = row[w]; bits; bits &= bits - 1) neighbours[count++] = w * 64 + __builtin_ctzll(bits);
-        for (int c = 0; c < count; c++) {        /* the neighbours become a clique */
+        const uint64_t *strong_row = bit_row(&strong, best);
+        int count = members(&linked, best, neighbours);
+        for (int c = 0; c < count; c++) {        /* fill from two nonzeros is a nonzero, and makes a pivot one */
             int u = neighbours[c];
-            uint64_t *other = bit_row(&linked, u), *other_strong = bit_row(&strong, u);
-            for (int w = 0; w < linked.words; w++) other[w] |= row[w];
-            clear_bit(other, u);
-            clear_bit(other, best);
+            uint64_t *other_strong = bit_row(&strong, u);
             if (has_bit(strong_row, u)) {
                 for (int w = 0; w < strong.words; w++) other_strong[w] |= strong_row[w];
                 clear_bit(other_strong, u);
@@ -216,6 +224,7 @@ static int order(int n, int nz, const int *irn, const int *icn, const double *a,
             }
             clear_bit(other_strong, best);
         }
+        eliminate(&linked, best, neighbours, count);
         for (int c = 0; c < count; c++) {        /* a neighbour loses one and may gain up to count - 1 */
             int u = neighbours[c];
             if (queued[u]) dequeue(head, next, previous, queued, deg, u);
