@@ -105,6 +105,8 @@ class Solver:
         layout = self.layout
         if layout.hessian is not None:
             options = {"hess_lag": layout.hessian, **options}
+        if layout.jacobian is not None:
+            options = {"jac_g": layout.jacobian, **options}
         return ca.nlpsol(name, "ipopt", {"x": layout.x, "p": layout.p, "f": layout.f, "g": layout.g}, options)
 
     def _warm(self) -> ca.Function:

@@ -13,6 +13,7 @@ import casadi as ca
 import numpy as np
 
 from transplanter.solve.lifted_hessian import lifted_hessian
+from transplanter.solve.lifted_jacobian import lifted_jacobian
 
 #: A bound's name in reports and the side of the reported quantity it limits ("lower" or "upper"), or
 #: None for a bound no report names (an equality, a row that only keeps the NLP well posed).
@@ -115,7 +116,8 @@ class NLPBuilder:
     def lifted(self, name: str, expression) -> ca.SX:
         """A symbol standing for ``expression`` (of the variables and parameters; any shape) in the
         expressions that follow: the NLP is the same, and the Hessian of its Lagrangian is formed through
-        these quantities (``solve.lifted_hessian``): worth it where many rows share few of them each."""
+        these quantities (``solve.lifted_hessian``) and the rows' Jacobian through them too
+        (``solve.lifted_jacobian``): worth it where many rows share few of them each."""
         expression = ca.SX(expression)
         symbol = ca.SX.sym(name, *expression.shape)
         self._lifted.append((ca.vec(symbol), ca.vec(expression)))
@@ -136,16 +138,17 @@ class NLPBuilder:
         x = ca.vertcat(*(symbol for _, symbol in self._variables))
         p = ca.vertcat(*(ca.vec(symbol) for _, symbol in self._parameters))
         f, g = ca.SX(objective), ca.vertcat(*(expression for _, expression in self._rows))
-        hessian = None
+        hessian = jacobian = None
         if self._lifted:
             lifted, values = (ca.vertcat(*side) for side in zip(*self._lifted, strict=True))
             hessian = lifted_hessian(x, p, lifted, values, f, g)
+            jacobian = lifted_jacobian(x, p, self._lifted, g)
             f, g = ca.substitute([f, g], [lifted], [values])
         return NLPLayout(
             x=x, p=p, f=f, g=g,
             variables={block.name: block for block, _ in self._variables},
             parameters={block.name: block for block, _ in self._parameters},
-            rows={block.name: block for block, _ in self._rows}, hessian=hessian)
+            rows={block.name: block for block, _ in self._rows}, hessian=hessian, jacobian=jacobian)
 
 
 @dataclass(frozen=True)
@@ -162,6 +165,8 @@ class NLPLayout:
     #: The Hessian of the Lagrangian through the lifted quantities (IPOPT's ``hess_lag``), or None
     #: (CasADi forms it): ``NLPBuilder.lifted``.
     hessian: ca.Function | None = None
+    #: The rows and their Jacobian through the lifted quantities (IPOPT's ``jac_g``), or None (CasADi forms it).
+    jacobian: ca.Function | None = None
 
     def vector(self, values: Mapping[str, object]) -> np.ndarray:
         """The decision vector from a value for every variable block, by name."""

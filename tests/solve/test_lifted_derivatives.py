@@ -1,5 +1,6 @@
-"""The Hessian of the Lagrangian formed through lifted quantities (``NLPBuilder.lifted``,
-``solve.lifted_hessian``) is CasADi's own Hessian of the same NLP, and IPOPT reaches the same optimum with it."""
+"""The Hessian of the Lagrangian and the rows' Jacobian formed through lifted quantities (``NLPBuilder.lifted``,
+``solve.lifted_hessian``, ``solve.lifted_jacobian``) are CasADi's own of the same NLP, and IPOPT reaches the same
+optimum with them."""
 import casadi as ca
 import numpy as np
 import pytest
@@ -41,6 +42,17 @@ def test_the_lifted_hessian_is_casadis_own_of_the_same_nlp(rng):
         assert np.abs(lifted - expected).max() <= 1e-12 * np.abs(expected).max()
         values = [np.array(ca.Function("v", [s.x, s.p], [s.f, s.g])(x, p)[k]) for s in (layout, plain) for k in (0, 1)]
         assert np.array_equal(values[0], values[2]) and np.array_equal(values[1], values[3])
+
+
+def test_the_lifted_jacobian_is_casadis_own_of_the_same_nlp(rng):
+    layout = _curved_problem(lift=True)
+    assert layout.jacobian is not None and _curved_problem(lift=False).jacobian is None
+    own = ca.Function("own", [layout.x, layout.p], [layout.g, ca.jacobian(layout.g, layout.x)])
+    for _ in range(5):
+        x, p = rng.normal(size=3), rng.normal(size=1)
+        (rows, lifted), (own_rows, expected) = layout.jacobian(x, p), own(x, p)
+        assert np.abs(np.array(rows) - np.array(own_rows)).max() <= 1e-14 * np.abs(np.array(own_rows)).max()
+        assert np.abs(np.array(lifted) - np.array(expected)).max() <= 1e-12 * np.abs(np.array(expected)).max()
 
 
 def test_ipopt_reaches_the_same_optimum_through_the_lifted_hessian():
