@@ -78,6 +78,19 @@ def transmission_margin(lengths, theta1, theta2, theta5):
     return (q**2 + r**2 - p**2) / (q**2 + r**2) * bf.dot(bf) / l3**2
 
 
+def triangle_margins(lengths, theta1, theta2, theta5):
+    """sin^2 of the angles EBF and BEF from the triangle B-E-F alone: with BE = L4, EF = L3 and D = |BF|^2,
+    F - B = OA + AF - OB, the law of cosines gives cos(EBF) = (L4^2 + D - L3^2) / (2 L4 sqrt(D)) and the sine
+    rule sin^2(BEF) = sin^2(EBF) D / L3^2. The same two quantities as eq (10)'s margin and
+    ``transmission_margin`` (tested), in a form a few operations long where the expanded P, Q, R are not: the
+    design NLP evaluates them and their second derivatives at every grid point of every iteration."""
+    l1, l2, l3, l4, l5 = lengths
+    bf = l1 * unit(theta1) + l2 * unit(theta2) - l5 * sp.Matrix([-sp.cos(theta5), sp.sin(theta5)])
+    squared = bf.dot(bf)
+    closure = 1 - (l4**2 + squared - l3**2) ** 2 / (4 * l4**2 * squared)
+    return closure, closure * squared / l3**2
+
+
 def derive() -> list[Derived]:
     lengths = symbol_group("lengths", 5)
     angles = symbol_group("angles", 4)            # theta1, theta2, theta4, theta5
@@ -110,6 +123,11 @@ def derive() -> list[Derived]:
                 doc="sin^2 of the angle BEF at E = margin |BF|^2 / L3^2 (sine rule), for theta1, theta2, theta5.",
                 inputs=(("lengths", lengths), ("crank_angles", crank)),
                 outputs=(("margin", (transmission_margin(lengths, *crank),)),)),
+        Derived(name="fivebar_triangle_margins",
+                doc=("sin^2(angle EBF) and sin^2(angle BEF) from the triangle B-E-F (law of cosines in |BF|^2, "
+                     "sine rule): eq (10)'s margin and the transmission margin, short, for theta1, theta2, theta5."),
+                inputs=(("lengths", lengths), ("crank_angles", crank)),
+                outputs=(("margins", triangle_margins(lengths, *crank)),)),
         Derived(name="fivebar_plate_hinges",
                 doc="E and F of the plate in pose (x_P, y_P, direction) from plate points (e_x, e_y, f_x, f_y).",
                 inputs=(("pose", pose), ("plate_points", plate)),

@@ -15,11 +15,13 @@ from tests.published_script import reproduce
 from transplanter._generated.fivebar import (
     fivebar_assembly_sine,
     fivebar_closure,
+    fivebar_closure_margin,
     fivebar_discriminant,
     fivebar_half_angle_quadratic,
     fivebar_plate_hinges,
     fivebar_pose_closure,
     fivebar_transmission_margin,
+    fivebar_triangle_margins,
 )
 from transplanter.fivebar.linkage import FiveBar
 from transplanter.generated import casadi_function
@@ -94,6 +96,20 @@ def test_discriminant_says_when_the_chain_can_close(rng):
     assert checked > 350 and disagreements_printed > 0
 
 
+def test_triangle_margins_are_eq10s_margin_and_the_transmission_margin(rng):
+    """The short form the design NLP evaluates (law of cosines in |BF|^2, sine rule) against the margins written
+    through eq (8)'s P, Q, R, at lengths and crank angles where the chain closes and where it does not (the
+    identity is algebraic: both sides are the same rational function)."""
+    triangle = casadi_function(fivebar_triangle_margins)
+    closure_margin = casadi_function(fivebar_closure_margin)
+    transmission = casadi_function(fivebar_transmission_margin)
+    for _ in range(300):
+        lengths, crank = rng.uniform(0.3, 2.0, 5), rng.uniform(-np.pi, np.pi, 3)
+        short = np.asarray(triangle(lengths, crank)).ravel()
+        expected = float(closure_margin(lengths, crank)), float(transmission(lengths, crank))
+        assert short == pytest.approx(expected, rel=1e-10, abs=1e-12 * max(1.0, *np.abs(expected)))
+
+
 def test_position_closure_vanishes_and_assembly_sine_is_the_margin_along_forward_kinematics(rng):
     """The rows the design NLP imposes at a pose (``fivebar_pose_closure``, ``fivebar_assembly_sine``, the plate's
     hinges and the transmission margin) evaluated on the hinges the independent forward kinematics places
@@ -103,6 +119,7 @@ def test_position_closure_vanishes_and_assembly_sine_is_the_margin_along_forward
     residual = casadi_function(fivebar_pose_closure)
     sine = casadi_function(fivebar_assembly_sine)
     transmission = casadi_function(fivebar_transmission_margin)
+    triangle = casadi_function(fivebar_triangle_margins)
     checked = 0
     for _ in range(40):
         mech = FiveBar(carrier_length=rng.uniform(40, 80), carrier_angle=rng.uniform(-np.pi, np.pi),
@@ -127,7 +144,9 @@ def test_position_closure_vanishes_and_assembly_sine_is_the_margin_along_forward
             lengths = [mech.carrier_length, mech.rod_length, mech.link_length, mech.receiving_length, np.hypot(*b)]
             u, v = b - e, f - e
             at_e = np.arctan2(abs(u[0] * v[1] - u[1] * v[0]), np.dot(u, v))
-            assert float(transmission(lengths, [theta1, theta1 + rho[k], np.arctan2(b[1], -b[0])])) == \
-                pytest.approx(np.sin(at_e) ** 2, rel=1e-9, abs=1e-12)
+            crank = [theta1, theta1 + rho[k], np.arctan2(b[1], -b[0])]
+            assert float(transmission(lengths, crank)) == pytest.approx(np.sin(at_e) ** 2, rel=1e-9, abs=1e-12)
+            assert np.asarray(triangle(lengths, crank)).ravel() == \
+                pytest.approx([state["margin"][k], np.sin(at_e) ** 2], rel=1e-9, abs=1e-12)
             checked += 1
     assert checked > 50

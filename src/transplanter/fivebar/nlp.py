@@ -11,9 +11,11 @@ quantity, named as the file names it (``key_poses.P2.angle_deg``) and held withi
 Transmission quality. F is driven (the carrier and the gears place it); the plate E-F-P is held at E by the
 receiving plate BE, a two-force link, so a load at P is balanced about F by the force in BE, which is the
 load's moment about F over L3 sin(mu), mu the angle between EF and BE at E: the transmission angle that
-carries the load. t <= sin^2(mu) on the grid (the derived transmission margin) and the NLP maximises t;
-``conditions.min_transmission_angle_deg`` is a floor on t. Angle EBF, whose sin^2 is the derived closure
-margin (eq 10 without its scale: where it vanishes the chain jams), is held above ``min_closure_margin``.
+carries the load. t <= sin^2(mu) on the grid and the NLP maximises t; ``conditions.min_transmission_angle_deg``
+is a floor on t. Angle EBF, whose sin^2 is the closure margin (eq 10 without its scale: where it vanishes the
+chain jams), is held above ``min_closure_margin``. Both are the derived triangle margins
+(``fivebar_triangle_margins``: law of cosines in |BF|^2), equal to eq (10)'s form and a fraction of its
+operations in the Hessian.
 
 Constraints, each a named block (every closure equation from ``derivations/fivebar.py``):
 - ``pose_closure``: at the key poses (as chosen within their bands) and the return points (the plate at
@@ -51,10 +53,9 @@ import numpy as np
 
 from transplanter._generated.fivebar import (
     fivebar_assembly_sine,
-    fivebar_closure_margin,
     fivebar_plate_hinges,
     fivebar_pose_closure,
-    fivebar_transmission_margin,
+    fivebar_triangle_margins,
 )
 from transplanter._generated.train_pitch_curvature import train_pitch_curvature
 from transplanter.fivebar.linkage import FiveBar
@@ -363,8 +364,8 @@ def build_nlp(problem: FiveBarProblem, capacity: int = ADDED_CAPACITY) -> Design
     lengths = nlp.lifted("lengths", ca.vertcat(l1, l2, ca.norm_2(e_local - f_local), l4, ca.norm_2(b)))
     crank = ca.vertcat(cranks, ca.repmat(nlp.lifted("ground_angle", ca.atan2(b[1], -b[0])), 1, points))
     along_grid = ca.repmat(lengths, 1, points), crank
-    margin = casadi_function(fivebar_closure_margin).map(points)(*along_grid).T
-    transmission = casadi_function(fivebar_transmission_margin).map(points)(*along_grid).T
+    margins = casadi_function(fivebar_triangle_margins).map(points)(*along_grid)
+    margin, transmission = margins[0, :].T, margins[1, :].T
     curvature = casadi_function(train_pitch_curvature).map(points)(derivatives, ca.repmat(correction, 1, points))[1]
     low_ratio, high_ratio = problem.ratio_bounds
     nlp.constraints("closure_margin", margin, problem.min_closure_margin, np.inf, problem.min_closure_margin,
