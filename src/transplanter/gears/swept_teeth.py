@@ -127,22 +127,25 @@ def _cut(at_edge: np.ndarray, lowest: np.ndarray, width: float, perimeter: float
     runs = _run_maxima(lowest, RUN_LEVELS)
     for block in range(0, ends.shape[1], SEGMENT_BLOCK):
         s_a, h_a, s_b, h_b = ends[:, block:block + SEGMENT_BLOCK]
-        run = np.mod(s_b - s_a + perimeter / 2, perimeter) - perimeter / 2
+        run = s_b - s_a + perimeter / 2                                    # the short way round:
+        run = run - perimeter * np.floor(run / perimeter) - perimeter / 2  # np.mod's value, in a few cheap steps
         back = run < 0
-        s_a, h_a, h_b = np.where(back, s_b, s_a), np.where(back, h_b, h_a), np.where(back, h_a, h_b)
+        start = np.where(back, s_b, s_a)
         run = np.abs(run)
-        first = np.floor(s_a / width).astype(int)
-        crossed = np.floor((s_a + run) / width).astype(int) - first       # bin edges crossed
+        first = np.floor(start / width).astype(int)
+        crossed = np.floor((start + run) / width).astype(int) - first     # bin edges crossed
         low = np.mod(first, count)                                         # bins low to low + crossed
-        level = np.minimum(np.log2(crossed + 1).astype(int), RUN_LEVELS - 1)
-        high = np.minimum(low + crossed - 2 ** level + 1, count - 1)       # inf where the run passes the end
-        reached = np.maximum(runs[level, low], runs[level, high])
+        level = np.minimum(np.frexp(crossed + 1)[1] - 1, RUN_LEVELS - 1)   # floor(log2(crossed + 1))
+        high = np.minimum(low + crossed - np.left_shift(1, level) + 1, count - 1)  # inf where past the end
+        reached = np.maximum(runs.take(level * count + low), runs.take(level * count + high))
         some = np.flatnonzero((crossed > 0) & ((crossed >= 2 ** RUN_LEVELS - 1) | (np.minimum(h_a, h_b) < reached)))
-        slope = (h_b[some] - h_a[some]) / run[some]                        # run > 0 where an edge is crossed
-        s_a, h_a, first, crossed = s_a[some], h_a[some], first[some], crossed[some]
-        segment = np.repeat(np.arange(len(some)), crossed)
+        back, h_a, h_b = back[some], h_a[some], h_b[some]
+        h_a, h_b = np.where(back, h_b, h_a), np.where(back, h_a, h_b)
+        slope = (h_b - h_a) / run[some]                                    # run > 0 where an edge is crossed
+        start, first, crossed = start[some], first[some], crossed[some]
         edge = np.arange(crossed.sum()) + np.repeat(first + 1 - (np.cumsum(crossed) - crossed), crossed)
-        np.minimum.at(at_edge, edge % count, h_a[segment] + (edge * width - s_a[segment]) * slope[segment])
+        np.minimum.at(at_edge, edge % count, np.repeat(h_a, crossed) + (edge * width - np.repeat(start, crossed))
+                      * np.repeat(slope, crossed))
 
 
 def _with_segment_ends(near: np.ndarray, at: np.ndarray, after: np.ndarray, edged: int) -> np.ndarray:
