@@ -28,6 +28,7 @@ from scipy.spatial import cKDTree
 
 from transplanter._generated.cusp import variable_involute
 from transplanter.generated import numpy_twin
+from transplanter.geometry.planar import modulo
 from transplanter.geometry.self_crossings import without_loops
 
 _VARIABLE_INVOLUTE = numpy_twin(variable_involute)
@@ -73,10 +74,10 @@ class PitchTable:
         interval of s's cell, one back where rounding put s a cell late, then forward past every sample <= s."""
         first, per_mm = self._cells
         with np.errstate(invalid="ignore"):         # a NaN arc length takes any cell and gives NaN as before
-            k = first[np.clip((s * per_mm).astype(np.intp), 0, len(first) - 1)]
-        k -= (self.arc[k] > s) & (k > 0)
+            k = first.take((s * per_mm).astype(np.intp), mode="clip")
+        k -= (self.arc.take(k) > s) & (k > 0)
         last = len(self.arc) - 2
-        while (move := (self.arc[k + 1] <= s) & (k < last)).any():
+        while (move := (self.arc.take(k + 1) <= s) & (k < last)).any():
             k += move
         return k
 
@@ -115,8 +116,9 @@ class PitchTable:
         two sides cross) take the foot nearest to them by bisection (``_nearest_foot``).
         """
         px, py = points[:, 0], points[:, 1]
-        s = np.mod(start, self.perimeter)
-        piece = self._pieces.take(self._interval(s), axis=1)
+        s = modulo(start, self.perimeter)
+        # (mode="clip": the intervals are in range, and the take skips numpy's bounds check)
+        piece = self._pieces.take(self._interval(s), axis=1, mode="clip")
         for _ in range(newton_steps):
             t = (s - piece[12]) * piece[13]
             dx = px - (((piece[6] * t + piece[4]) * t + piece[2]) * t + piece[0])
@@ -142,10 +144,11 @@ class PitchTable:
                 break
             moved = (t + step * piece[13] < 0) | (t + step * piece[13] > 1)
             if moved.any():
-                s[moved] = np.mod(s[moved], self.perimeter)
-                piece[:, moved] = self._pieces.take(self._interval(s[moved]), axis=1)
+                again = np.flatnonzero(moved)
+                s[again] = modulo(s[again], self.perimeter)
+                piece[:, again] = self._pieces.take(self._interval(s[again]), axis=1, mode="clip")
         height = self.orientation * (dx * along_y - dy * along_x)
-        s = np.mod(s, self.perimeter)
+        s = modulo(s, self.perimeter)
         if moving.any():
             s[moving], height[moving] = self._nearest_foot(points[moving], tolerance)
         return s, height
