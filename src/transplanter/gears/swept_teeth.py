@@ -178,6 +178,12 @@ def _with_segment_ends(near: np.ndarray, first_ends: np.ndarray, second_ends: np
     return grown
 
 
+def _cutting(h_a: np.ndarray, h_b: np.ndarray, tip_height: float) -> np.ndarray:
+    """Indices of the segments, with end heights ``h_a`` and ``h_b`` (infinite where not projected), that may cut:
+    both ends projected, one below the blank's tip."""
+    return np.flatnonzero((np.minimum(h_a, h_b) < tip_height) & (np.maximum(h_a, h_b) < np.inf))
+
+
 def _lower_envelope(table: PitchTable, tip_height: float, module: float, positions) -> np.ndarray:
     """Blank (heights up to ``tip_height`` over the pitch curve) cut down by the region an outline sweeps through
     ``positions`` (``_positions``, in the gear frame), in the pitch curve's normal coordinates (s, h).
@@ -211,16 +217,16 @@ def _lower_envelope(table: PitchTable, tip_height: float, module: float, positio
                                                               radial_arc(angle.ravel().take(projected)), tolerance)
         kept = np.flatnonzero(h < tip_height)
         np.minimum.at(height, np.minimum((s.take(kept) / width).astype(int), count - 1), h.take(kept))
-        # a segment cuts with both ends projected and one below the tip; one with an end never projected (outside
-        # the grown tip by the polar test, though made near by another segment of its other end) cuts only at that
-        # other end, recorded above
-        chord_starts = np.arange(near.size - near.shape[1])
-        for segments, first, second in ((edges, first_ends, second_ends),
-                                        (chords, chord_starts, chord_starts + near.shape[1])):
-            lower, higher = np.minimum(h.take(first), h.take(second)), np.maximum(h.take(first), h.take(second))
-            cuts = np.flatnonzero((lower < tip_height) & (higher < np.inf))
-            first, second = first.take(cuts), second.take(cuts)
-            segments.append(np.stack([s.take(first), h.take(first), s.take(second), h.take(second)]))
+        # the segments that may cut (``_cutting``); one with an end never projected (outside the grown tip by the
+        # polar test, though made near by another segment of its other end) cuts only at that other end, recorded
+        # above
+        h_a, h_b = h.take(first_ends), h.take(second_ends)
+        cuts = _cutting(h_a, h_b, tip_height)
+        first, second = first_ends.take(cuts), second_ends.take(cuts)
+        edges.append(np.stack([s.take(first), h_a.take(cuts), s.take(second), h_b.take(cuts)]))
+        row = near.shape[1]             # a chord joins a vertex to itself one row on
+        cuts = _cutting(h[:-row], h[row:], tip_height)
+        chords.append(np.stack([s.take(cuts), h.take(cuts), s.take(cuts + row), h.take(cuts + row)]))
     # the chords against the heights the vertices reach, then the edges against those and the chords' (most
     # edges lie inside the swept region and cut nothing)
     for segments in (chords, edges):
