@@ -11,9 +11,10 @@ TWO_PI = 2 * np.pi
 
 
 def modulo(value, period: float) -> np.ndarray:
-    """``np.mod(value, period)`` (period > 0) as value - period floor(value / period): the same value but at a
-    whole number of periods, where rounding may give period or a rounding error below 0 for np.mod's 0; a few
-    cheap operations where np.mod's floating remainder costs several times as much."""
+    """``np.mod(value, period)`` (period > 0) as value - period floor(value / period), a few cheap operations where
+    np.mod's floating remainder costs several times as much. The same value from -period to 2 period, to
+    rounding beyond; within rounding of a multiple of the period it may give period, or a rounding error below
+    0, for np.mod's 0 (or period)."""
     return value - period * np.floor(value / period)
 
 
