@@ -3,9 +3,10 @@
     python bench/bench_teeth.py
 
 The stages are those of the five-bar example's planetary train (examples/vegetable_planting.toml: 57 and 77
-shaper-cut teeth of module 1.5 in today's design, a 16-tooth shaper). Both sides run in this process on the same
-pitch curves through ``generate_teeth``, both stages at once on two threads as the main job cuts them
-(``trains.toothed_train``), best of three each:
+shaper-cut teeth of module 1.5 in today's design, a 16-tooth shaper). Both sides run from this process on the
+same pitch curves through ``generate_teeth``, both stages at once as the main job cuts them
+(``trains.toothed_train.cut_stages``: stage two in a forked side process, on Linux with a second core; the
+former cut is patched in before the fork), best of three each (CPU time: both processes'):
 
 - the package: every point's normal foot converged by Newton's method from where the ray through the gear's
   centre meets the pitch curve; segments cut after all positions are projected, passed over where they stay
@@ -20,8 +21,7 @@ mesh check of the package's stages.
 """
 from __future__ import annotations
 
-import time
-from concurrent.futures import ThreadPoolExecutor
+import os
 from functools import partial
 from pathlib import Path
 from unittest import mock
@@ -36,8 +36,7 @@ from transplanter.gears import synthesis as gear_synthesis
 from transplanter.gears.mesh_check import check_mesh
 from transplanter.gears.problem import load_problem
 from transplanter.gears.rack_teeth import PitchTable
-from transplanter.gears.teeth import generate_teeth
-from transplanter.trains.toothed_train import design_toothed_train
+from transplanter.trains.toothed_train import cut_stages, design_toothed_train
 
 ROOT = Path(__file__).resolve().parents[1]
 GEAR_EXAMPLES = ("gear_concave_shaper.toml", "gear_cusp_composite.toml")
@@ -84,17 +83,17 @@ def former_lower_envelope(table, tip_height, module, positions):
     tip = table.points + (tip_height + swept_teeth.MARGIN_MODULES * module) * table.normals
     tip_angle, tip_squared = swept_teeth._polar(tip)
     order = np.argsort(tip_angle)
-    for cloud, at, after, edged in positions:
+    for cloud, first_ends, second_ends in positions:
         angle, squared = swept_teeth._polar(cloud)
         near = squared < np.interp(angle, tip_angle[order], tip_squared[order], period=2 * np.pi)
-        grown = swept_teeth._with_segment_ends(near, at, after, edged)
+        grown = swept_teeth._with_segment_ends(near, first_ends, second_ends)
         s, h = np.zeros(near.shape), np.full(near.shape, np.inf)
         s[grown], h[grown] = former_normal_coordinates(table, samples, cloud[grown])
         keep = h < tip_height
         np.minimum.at(height, np.minimum((s[keep] / width).astype(int), count - 1), h[keep])
-        cuts = (keep[:edged, at] | keep[:edged, after]) & grown[:edged, at] & grown[:edged, after]
-        former_cut(at_edge, width, perimeter, (s[:edged, at][cuts], h[:edged, at][cuts],
-                                               s[:edged, after][cuts], h[:edged, after][cuts]))
+        at, after = np.unravel_index(first_ends, near.shape), np.unravel_index(second_ends, near.shape)
+        cuts = (keep[at] | keep[after]) & grown[at] & grown[after]
+        former_cut(at_edge, width, perimeter, (s[at][cuts], h[at][cuts], s[after][cuts], h[after][cuts]))
         cuts = (keep[:-1] | keep[1:]) & grown[:-1] & grown[1:]
         former_cut(at_edge, width, perimeter, (s[:-1][cuts], h[:-1][cuts], s[1:][cuts], h[1:][cuts]))
     height = np.minimum(height, np.minimum(at_edge, np.roll(at_edge, -1)))
@@ -110,11 +109,12 @@ def former(function):
 
 # --- the comparison ---
 
-def both_stages(stages, module, alpha, cutters, cutter_teeth):
-    """Both stages' teeth on two threads, as ``design_toothed_train`` cuts them."""
-    with ThreadPoolExecutor(2) as pool:
-        return list(pool.map(lambda design, cutter: generate_teeth(design, module, alpha, "bench", cutter,
-                                                                   cutter_teeth), stages, cutters))
+def cpu_time(function) -> float:
+    """CPU time (s) of one call of ``function()``: this process's and that of the side processes it ended."""
+    start = os.times()
+    function()
+    end = os.times()
+    return sum(end[:4]) - sum(start[:4])     # user, system, children's user, children's system
 
 
 def change(first, second) -> float:
@@ -130,19 +130,15 @@ def main():
     gearing = result.problem.gearing
     toothed = design_toothed_train(result.design.relative_angle, result.design.mech.carrier_length, gearing, "bench")
     stages = (toothed.train.stage_one, toothed.train.stage_two)
-    cut = partial(both_stages, stages, toothed.module, toothed.pressure_angle, [t.cutter for t in toothed.teeth],
-                  gearing.shaper_teeth)
+    cut = partial(cut_stages, stages, toothed.module, toothed.pressure_angle, (toothed.teeth[0].cutter,
+                  toothed.teeth[1].cutter), gearing.shaper_teeth, "bench")
     print(f"main job's stages: {toothed.teeth[0].counts} and {toothed.teeth[1].counts} teeth, module "
           f"{toothed.module:g}, cut by {[t.cutter for t in toothed.teeth]}")
     ours_s, ours = best_time(cut, 3)
     old_s, old = best_time(partial(former, cut), 3)
-    start = time.process_time()
-    cut()
-    ours_cpu = time.process_time() - start
-    start = time.process_time()
-    former(cut)
-    old_cpu = time.process_time() - start
-    print(f"teeth of both stages, two threads (best of 3): package {ours_s:.2f} s wall ({ours_cpu:.2f} s CPU), "
+    ours_cpu, old_cpu = cpu_time(cut), cpu_time(partial(former, cut))
+    print(f"teeth of both stages, as the main job cuts them (best of 3): package {ours_s:.2f} s wall "
+          f"({ours_cpu:.2f} s CPU), "
           f"former {old_s:.2f} s wall ({old_cpu:.2f} s CPU); ratio {old_s / ours_s:.2f}x; target under 1 s")
     for k, (new, previous) in enumerate(zip(ours, old, strict=True)):
         print(f"  stage {k + 1}: former outlines from the package's (driver, driven): "

@@ -9,6 +9,7 @@ from transplanter.geometry.planar import (
     casadi_rotate,
     casadi_unit,
     cross,
+    modulo,
     rotate,
     unit,
 )
@@ -19,6 +20,19 @@ def test_rotate_turns_counterclockwise_by_a_known_angle():
     assert rotate(np.pi / 6, [2.0, 0.0]) == pytest.approx([np.sqrt(3.0), 1.0], abs=1e-15)
     assert rotate(-np.pi / 2, [0.0, 3.0]) == pytest.approx([3.0, 0.0], abs=1e-15)
     assert rotate(TWO_PI, [0.3, -0.7]) == pytest.approx([0.3, -0.7], abs=1e-15)
+
+
+def test_modulo_gives_numpys_remainder(rng):
+    """From -period to 2 period, np.mod's remainder exactly (the multiples of the period included); a few periods
+    out, to rounding; next to a multiple, 0 or period to rounding."""
+    period = 377.123
+    values = np.r_[rng.uniform(-period, 2 * period, 100000), np.arange(-1, 2) * period]
+    assert np.array_equal(modulo(values, period), np.mod(values, period))
+    values = rng.uniform(-5 * period, 5 * period, 100000)
+    assert np.abs(modulo(values, period) - np.mod(values, period)).max() < 1e-14 * 5 * period
+    multiples = np.arange(-5, 6) * period
+    near = modulo(np.r_[np.nextafter(multiples, np.inf), np.nextafter(multiples, -np.inf)], period)
+    assert (np.minimum(np.abs(near), np.abs(near - period)) < 1e-14 * 5 * period).all()
 
 
 def test_cross_is_positive_when_the_second_vector_points_counterclockwise_of_the_first():

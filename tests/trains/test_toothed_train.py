@@ -7,15 +7,18 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from transplanter import side_process
 from transplanter.errors import ProblemError
 from transplanter.fivebar.problem import load_problem, parse_problem
 from transplanter.fivebar.relative_angle import RelativeAngle
 from transplanter.gears.pair import arc_lengths
+from transplanter.gears.teeth import generate_teeth
 from transplanter.trains.planetary import design_train
 from transplanter.trains.report import toothed_train_json
 from transplanter.trains.rolling import arc_map, conjugate_curve
 from transplanter.trains.toothed_train import (
     Gearing,
+    cut_stages,
     cutting_reasons,
     design_toothed_train,
     gear_angles,
@@ -143,6 +146,22 @@ def test_report_json(smooth):
     assert {"max_overlap_mm", "min_clearance_mm", "transmission_error_deg", "passed"} <= set(report["mesh_check"])
     assert report["mesh_check"]["passed"] is True
     assert all(g["module"] == 1.5 and g["cutter"] == "rack" for g in report["gears"])
+
+
+@pytest.mark.parametrize("cores", [1, 2])
+def test_both_stages_cut_beside_each_other_are_each_cut_alone(smooth, cores, monkeypatch):
+    """With a second core stage two is cut in a side process, on one core after stage one here: either way each
+    stage's outlines equal those of cutting it alone, in the stages' order (theirs differ, so a swap would show)."""
+    monkeypatch.setattr(side_process, "usable_cores", lambda: cores)
+    stages = (smooth.train.stage_one, smooth.train.stage_two)
+    cutters = (smooth.teeth[0].cutter, smooth.teeth[1].cutter)
+    alone = [generate_teeth(stage, smooth.module, smooth.pressure_angle, "test", cutter, Gearing().shaper_teeth)
+             for stage, cutter in zip(stages, cutters, strict=True)]
+    assert alone[0].counts != alone[1].counts
+    cut = cut_stages(stages, smooth.module, smooth.pressure_angle, cutters, Gearing().shaper_teeth, "test")
+    for mine, expected in zip(cut, alone, strict=True):
+        assert mine.counts == expected.counts
+        assert all(np.array_equal(a, b) for a, b in zip(mine.outlines, expected.outlines, strict=True))
 
 
 def test_concave_stretch_sends_a_stage_to_the_shaper_with_the_numbers():

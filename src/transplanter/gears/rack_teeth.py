@@ -28,6 +28,7 @@ from scipy.spatial import cKDTree
 
 from transplanter._generated.cusp import variable_involute
 from transplanter.generated import numpy_twin
+from transplanter.geometry.planar import modulo
 from transplanter.geometry.self_crossings import without_loops
 
 _VARIABLE_INVOLUTE = numpy_twin(variable_involute)
@@ -73,10 +74,10 @@ class PitchTable:
         interval of s's cell, one back where rounding put s a cell late, then forward past every sample <= s."""
         first, per_mm = self._cells
         with np.errstate(invalid="ignore"):         # a NaN arc length takes any cell and gives NaN as before
-            k = first[np.clip((s * per_mm).astype(np.intp), 0, len(first) - 1)]
-        k -= (self.arc[k] > s) & (k > 0)
+            k = first.take((s * per_mm).astype(np.intp), mode="clip")
+        k -= (self.arc.take(k) > s) & (k > 0)
         last = len(self.arc) - 2
-        while (move := (self.arc[k + 1] <= s) & (k < last)).any():
+        while (move := (self.arc.take(k + 1) <= s) & (k < last)).any():
             k += move
         return k
 
@@ -110,43 +111,57 @@ class PitchTable:
 
         Newton's method from ``start`` (mm, one per point) on the interpolant itself (its tangent's turn
         included, the slope bounded below as said there); a point stays on its sample interval while its steps
-        keep it there (the cubic continues smoothly past the ends) and is looked up again when it leaves. Points
-        whose steps have not settled after ``newton_steps`` (near a corner of the curve, where the normals of its
-        two sides cross) take the foot nearest to them by bisection (``_nearest_foot``).
+        keep it there (the cubic continues smoothly past the ends) and is looked up again when it leaves. A point
+        has settled where its offset's part along the tangent is within half the tolerance (a step, at most twice
+        that part, would stay within it). From a start near the foot (``swept_teeth`` takes the ray's) nearly
+        every point settles in two steps: points are checked from the third evaluation on, and those still moving
+        then go on by themselves. Points not settled after ``newton_steps`` (near a corner of the curve, where
+        the normals of its two sides cross) take the foot nearest to them by bisection (``_nearest_foot``).
         """
-        px, py = points[:, 0], points[:, 1]
-        s = np.mod(start, self.perimeter)
-        piece = self._pieces.take(self._interval(s), axis=1)
-        for _ in range(newton_steps):
-            t = (s - piece[12]) * piece[13]
+        s = modulo(start, self.perimeter)
+        height = np.empty(len(s))
+        moving = np.arange(len(s))              # the points still iterated; their own arrays follow
+        px, py, arc = points[:, 0], points[:, 1], s.copy()
+        # (mode="clip": the intervals are in range, and the take skips numpy's bounds check)
+        piece = self._pieces.take(self._interval(arc), axis=1, mode="clip")
+        for evaluation in range(newton_steps + 1):
+            t = (arc - piece[12]) * piece[13]
             dx = px - (((piece[6] * t + piece[4]) * t + piece[2]) * t + piece[0])
             dy = py - (((piece[7] * t + piece[5]) * t + piece[3]) * t + piece[1])
             along_x, along_y = piece[8] + t * piece[10], piece[9] + t * piece[11]
             length = np.sqrt(along_x * along_x + along_y * along_y)
             along_x /= length
             along_y /= length
+            along = dx * along_x + dy * along_y
+            if evaluation >= min(2, newton_steps):
+                settled = np.abs(along) <= tolerance / 2
+                done = moving[settled]
+                s[done] = arc[settled]
+                height[done] = self.orientation * (dx * along_y - dy * along_x)[settled]
+                going = np.flatnonzero(~settled)
+                moving = moving[going]
+                if not len(moving) or evaluation == newton_steps:
+                    break
+                px, py, arc, t, dx, dy, along_x, along_y, length, along = (
+                    value.take(going) for value in (px, py, arc, t, dx, dy, along_x, along_y, length, along))
+                piece = piece.take(going, axis=1)
             # d/ds of the position, and of the unit tangent: the blend's change less its part along the tangent
             speed_x = ((3 * piece[6] * t + 2 * piece[4]) * t + piece[2]) * piece[13]
             speed_y = ((3 * piece[7] * t + 2 * piece[5]) * t + piece[3]) * piece[13]
             turn = (along_x * piece[10] + along_y * piece[11])
             bend_x = (piece[10] - turn * along_x) * piece[13] / length
             bend_y = (piece[11] - turn * along_y) * piece[13] / length
-            along = dx * along_x + dy * along_y
             # -d/ds of the offset's part along the tangent: 1 - h kappa on a smooth curve, kept from falling below 1/2
             # (beyond half the radius of curvature, on the inner side of a tight bend or corner) so that the step
             # stays toward the nearer foot and at most twice that part
             step = along / np.maximum(speed_x * along_x + speed_y * along_y - dx * bend_x - dy * bend_y, 0.5)
-            s = s + step
-            moving = ~(np.abs(step) <= tolerance)
-            if not moving.any():
-                break
-            moved = (t + step * piece[13] < 0) | (t + step * piece[13] > 1)
-            if moved.any():
-                s[moved] = np.mod(s[moved], self.perimeter)
-                piece[:, moved] = self._pieces.take(self._interval(s[moved]), axis=1)
-        height = self.orientation * (dx * along_y - dy * along_x)
-        s = np.mod(s, self.perimeter)
-        if moving.any():
+            arc += step
+            moved = np.flatnonzero((t + step * piece[13] < 0) | (t + step * piece[13] > 1))
+            if len(moved):
+                arc[moved] = modulo(arc[moved], self.perimeter)
+                piece[:, moved] = self._pieces.take(self._interval(arc[moved]), axis=1, mode="clip")
+        s = modulo(s, self.perimeter)
+        if len(moving):
             s[moving], height[moving] = self._nearest_foot(points[moving], tolerance)
         return s, height
 

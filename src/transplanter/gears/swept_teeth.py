@@ -30,9 +30,7 @@ from transplanter.gears.pair import GearPairDesign, driven_angle
 from transplanter.gears.pinion_cutter import shaper_cutter
 from transplanter.gears.rack_teeth import ADDENDUM, DEDENDUM, PitchTable
 from transplanter.geometry.outline_thinning import thinned
-from transplanter.geometry.poses import rotate_about
-
-ORIGIN = (0.0, 0.0)
+from transplanter.geometry.planar import TWO_PI, modulo
 
 #: Width of the pitch-arc bins (modules): a few micrometres at gear sizes.
 BIN_MODULES = 0.002
@@ -55,10 +53,27 @@ def _polar(points: np.ndarray):
     return np.arctan2(points[..., 1], points[..., 0]), points[..., 0] ** 2 + points[..., 1] ** 2
 
 
+def _rigid_placement(turn: np.ndarray, offset: np.ndarray):
+    """``place(points, rows) -> (rows, W, 2)`` for ``_positions``: points turned by ``turn[k]`` (rad, ccw) about the
+    origin, then moved by ``offset[k]`` (mm), at each position k of ``rows``."""
+    cos, sin = np.cos(turn), np.sin(turn)
+
+    def place(points: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        x, y = points[:, 0], points[:, 1]
+        c, s = cos[rows, None], sin[rows, None]
+        placed = np.empty((len(rows), len(points), 2))
+        placed[..., 0] = c * x - s * y + offset[rows, 0, None]
+        placed[..., 1] = s * x + c * y + offset[rows, 1, None]
+        return placed
+
+    return place
+
+
 def _positions(points: np.ndarray, facing: np.ndarray, reach: float, place, chunk: int = 24):
     """``points``, a closed outline, placed at its positions (``place(points, rows) -> (rows, W, 2)``) a chunk of
-    positions at a time, with the outline's edges among the placed vertices (column pairs) and how many of the
-    chunk's rows keep them: chunks share their last and first rows, whose edges count once, in the later chunk.
+    positions at a time, with the outline's edges among the placed vertices: the flat indices (into rows x W) of
+    both ends of each edge the chunk keeps. Chunks share their last and first rows, whose edges count once, in
+    the later chunk.
 
     Between positions k and k + 1 the region the outline sweeps is the outline at k together with the
     quadrilaterals its edges sweep: its boundary lies on the edges at k and on each vertex's chord from k to
@@ -71,12 +86,13 @@ def _positions(points: np.ndarray, facing: np.ndarray, reach: float, place, chun
         rows = np.arange(first, min(first + chunk, last) + 1)
         middle = (facing[rows].max() + facing[rows].min()) / 2
         half = (facing[rows].max() - facing[rows].min()) / 2 + reach
-        near = np.abs(np.mod(angle - middle + np.pi, 2 * np.pi) - np.pi) <= half
+        near = np.abs(modulo(angle - middle + np.pi, 2 * np.pi) - np.pi) <= half
         index = np.flatnonzero(near)
         edge = np.flatnonzero(near & np.roll(near, -1))
         edged = len(rows) - (rows[-1] != last)          # the last position also keeps its edges
-        yield (place(points[index], rows), np.searchsorted(index, edge),
-               np.searchsorted(index, (edge + 1) % len(points)), edged)
+        row_start = len(index) * np.arange(edged)[:, None]
+        yield (place(points[index], rows), (row_start + np.searchsorted(index, edge)).ravel(),
+               (row_start + np.searchsorted(index, (edge + 1) % len(points))).ravel())
 
 
 def _short_edges(outline: np.ndarray, table: PitchTable, module: float) -> np.ndarray:
@@ -99,7 +115,7 @@ def _radial_arc(table: PitchTable):
     angle = table.orientation * np.unwrap(np.arctan2(table.points[:, 1], table.points[:, 0]))
 
     def arc(polar_angle: np.ndarray) -> np.ndarray:
-        return np.interp(angle[0] + np.mod(table.orientation * polar_angle - angle[0], 2 * np.pi), angle, table.arc)
+        return np.interp(angle[0] + modulo(table.orientation * polar_angle - angle[0], 2 * np.pi), angle, table.arc)
 
     return arc
 
@@ -127,35 +143,45 @@ def _cut(at_edge: np.ndarray, lowest: np.ndarray, width: float, perimeter: float
     runs = _run_maxima(lowest, RUN_LEVELS)
     for block in range(0, ends.shape[1], SEGMENT_BLOCK):
         s_a, h_a, s_b, h_b = ends[:, block:block + SEGMENT_BLOCK]
-        run = np.mod(s_b - s_a + perimeter / 2, perimeter) - perimeter / 2
+        run = modulo(s_b - s_a + perimeter / 2, perimeter) - perimeter / 2   # the short way round
         back = run < 0
-        s_a, h_a, h_b = np.where(back, s_b, s_a), np.where(back, h_b, h_a), np.where(back, h_a, h_b)
+        start = np.where(back, s_b, s_a)
         run = np.abs(run)
-        first = np.floor(s_a / width).astype(int)
-        crossed = np.floor((s_a + run) / width).astype(int) - first       # bin edges crossed
+        first = np.floor(start / width).astype(int)
+        crossed = np.floor((start + run) / width).astype(int) - first     # bin edges crossed
         low = np.mod(first, count)                                         # bins low to low + crossed
-        level = np.minimum(np.log2(crossed + 1).astype(int), RUN_LEVELS - 1)
-        high = np.minimum(low + crossed - 2 ** level + 1, count - 1)       # inf where the run passes the end
-        reached = np.maximum(runs[level, low], runs[level, high])
+        level = np.minimum(np.frexp(crossed + 1)[1] - 1, RUN_LEVELS - 1)   # floor(log2(crossed + 1))
+        high = np.minimum(low + crossed - np.left_shift(1, level) + 1, count - 1)  # inf where past the end
+        reached = np.maximum(runs.take(level * count + low), runs.take(level * count + high))
         some = np.flatnonzero((crossed > 0) & ((crossed >= 2 ** RUN_LEVELS - 1) | (np.minimum(h_a, h_b) < reached)))
-        slope = (h_b[some] - h_a[some]) / run[some]                        # run > 0 where an edge is crossed
-        s_a, h_a, first, crossed = s_a[some], h_a[some], first[some], crossed[some]
-        segment = np.repeat(np.arange(len(some)), crossed)
+        back, h_a, h_b = back[some], h_a[some], h_b[some]
+        h_a, h_b = np.where(back, h_b, h_a), np.where(back, h_a, h_b)
+        slope = (h_b - h_a) / run[some]                                    # run > 0 where an edge is crossed
+        start, first, crossed = start[some], first[some], crossed[some]
         edge = np.arange(crossed.sum()) + np.repeat(first + 1 - (np.cumsum(crossed) - crossed), crossed)
-        np.minimum.at(at_edge, edge % count, h_a[segment] + (edge * width - s_a[segment]) * slope[segment])
+        np.minimum.at(at_edge, edge % count, np.repeat(h_a, crossed) + (edge * width - np.repeat(start, crossed))
+                      * np.repeat(slope, crossed))
 
 
-def _with_segment_ends(near: np.ndarray, at: np.ndarray, after: np.ndarray, edged: int) -> np.ndarray:
+def _with_segment_ends(near: np.ndarray, first_ends: np.ndarray, second_ends: np.ndarray) -> np.ndarray:
     """``near`` (positions x vertices, from ``_positions``) grown by both ends of every segment that may cut: an
-    edge (vertex columns ``at``, ``after``) of the first ``edged`` positions, or a vertex's chord to the next
-    position, with one end near."""
-    touching, chord = near[:edged, at] | near[:edged, after], near[:-1] | near[1:]
+    edge (flat indices of its ends ``first_ends``, ``second_ends``) or a vertex's chord to the next position,
+    with one end near."""
+    flat = near.ravel()
+    touching = np.flatnonzero(flat.take(first_ends) | flat.take(second_ends))
+    chord = near[:-1] | near[1:]
     grown = near.copy()
-    grown[:edged, at] |= touching
-    grown[:edged, after] |= touching
+    grown.ravel()[first_ends.take(touching)] = True
+    grown.ravel()[second_ends.take(touching)] = True
     grown[:-1] |= chord
     grown[1:] |= chord
     return grown
+
+
+def _cutting(h_a: np.ndarray, h_b: np.ndarray, tip_height: float) -> np.ndarray:
+    """Indices of the segments, with end heights ``h_a`` and ``h_b`` (infinite where not projected), that may cut:
+    both ends projected, one below the blank's tip."""
+    return np.flatnonzero((np.minimum(h_a, h_b) < tip_height) & (np.maximum(h_a, h_b) < np.inf))
 
 
 def _lower_envelope(table: PitchTable, tip_height: float, module: float, positions) -> np.ndarray:
@@ -172,26 +198,35 @@ def _lower_envelope(table: PitchTable, tip_height: float, module: float, positio
     width = perimeter / count
     height, at_edge = np.full(count, tip_height), np.full(count, tip_height)
     radial_arc, tolerance = _radial_arc(table), CONVERGED_MODULES * module
-    # polar radius of the blank's tip, a little grown: points beyond it cut nothing
-    tip = table.points + (tip_height + MARGIN_MODULES * module) * table.normals
-    tip_angle, tip_squared = _polar(tip)
+    # polar radius of the blank's tip, a little grown: points beyond it cut nothing; tabulated over one turn of
+    # angle from 0, a sample beyond each end
+    tip_angle, tip_squared = _polar(table.points + (tip_height + MARGIN_MODULES * module) * table.normals)
+    tip_angle = modulo(tip_angle, TWO_PI)
     order = np.argsort(tip_angle)
-    edges, chords = [], []
-    for cloud, at, after, edged in positions:
+    tip_angle = np.r_[tip_angle[order[-1]] - TWO_PI, tip_angle[order], tip_angle[order[0]] + TWO_PI]
+    tip_squared = tip_squared[np.r_[order[-1], order, order[0]]]
+    edges: list[np.ndarray] = []
+    chords: list[np.ndarray] = []
+    for cloud, first_ends, second_ends in positions:
         angle, squared = _polar(cloud)
-        near = squared < np.interp(angle, tip_angle[order], tip_squared[order], period=2 * np.pi)
-        grown = _with_segment_ends(near, at, after, edged)
-        s, h = np.zeros(near.shape), np.full(near.shape, np.inf)
-        s[grown], h[grown] = table.normal_coordinates(cloud[grown], radial_arc(angle[grown]), tolerance)
-        keep = h < tip_height
-        np.minimum.at(height, np.minimum((s[keep] / width).astype(int), count - 1), h[keep])
-        # a segment with an end never projected (outside the grown tip by the polar test, though made
-        # near by another segment of its other end) cuts only at that other end, recorded above
-        cuts = (keep[:edged, at] | keep[:edged, after]) & grown[:edged, at] & grown[:edged, after]
-        edges.append(np.stack([s[:edged, at][cuts], h[:edged, at][cuts], s[:edged, after][cuts],
-                               h[:edged, after][cuts]]))
-        cuts = (keep[:-1] | keep[1:]) & grown[:-1] & grown[1:]
-        chords.append(np.stack([s[:-1][cuts], h[:-1][cuts], s[1:][cuts], h[1:][cuts]]))
+        near = squared < np.interp(modulo(angle, TWO_PI), tip_angle, tip_squared)
+        projected = np.flatnonzero(_with_segment_ends(near, first_ends, second_ends))
+        # s and h of every placed vertex (flat), h infinite where not projected
+        s, h = np.zeros(near.size), np.full(near.size, np.inf)
+        s[projected], h[projected] = table.normal_coordinates(cloud.reshape(-1, 2)[projected],
+                                                              radial_arc(angle.ravel().take(projected)), tolerance)
+        kept = np.flatnonzero(h < tip_height)
+        np.minimum.at(height, np.minimum((s.take(kept) / width).astype(int), count - 1), h.take(kept))
+        # the segments that may cut (``_cutting``); one with an end never projected (outside the grown tip by the
+        # polar test, though made near by another segment of its other end) cuts only at that other end, recorded
+        # above
+        h_a, h_b = h.take(first_ends), h.take(second_ends)
+        cuts = _cutting(h_a, h_b, tip_height)
+        first, second = first_ends.take(cuts), second_ends.take(cuts)
+        edges.append(np.stack([s.take(first), h_a.take(cuts), s.take(second), h_b.take(cuts)]))
+        row = near.shape[1]             # a chord joins a vertex to itself one row on
+        cuts = _cutting(h[:-row], h[row:], tip_height)
+        chords.append(np.stack([s.take(cuts), h.take(cuts), s.take(cuts + row), h.take(cuts + row)]))
     # the chords against the heights the vertices reach, then the edges against those and the chords' (most
     # edges lie inside the swept region and cut nothing)
     for segments in (chords, edges):
@@ -225,11 +260,8 @@ def shaper_profile(table: PitchTable, module: float, alpha: float, cutter_teeth:
     local_facing = np.unwrap(psi) - turn
     reach = 2.5 * (ADDENDUM + DEDENDUM) * module / radius
 
-    def place(points, rows):
-        return center[rows, None, :] + rotate_about(points[None], ORIGIN, turn[rows, None])
-
-    return _lower_envelope(table, ADDENDUM * module, module,
-                           _positions(_short_edges(cutter, table, module), local_facing, reach, place))
+    return _lower_envelope(table, ADDENDUM * module, module, _positions(
+        _short_edges(cutter, table, module), local_facing, reach, _rigid_placement(turn, center)))
 
 
 def mate_profile(design: GearPairDesign, driver_outline: np.ndarray, driven: PitchTable, module: float,
@@ -244,11 +276,9 @@ def mate_profile(design: GearPairDesign, driver_outline: np.ndarray, driven: Pit
     reach = 2.5 * (ADDENDUM + DEDENDUM) * module / design.radius[0].min()
     phi2 = driven_angle(design, phi1)
 
-    def place(points, rows):
-        # driver points near the line of centres
-        world = rotate_about(points[None], ORIGIN, -phi1[rows, None])
-        return rotate_about(world - [design.center_distance, 0.0], ORIGIN, -phi2[rows, None])
-
+    # driver points near the line of centres: turned by -phi1 about the driver's centre, then seen from the driven
+    # gear (its centre at the center distance, turned by -phi2)
+    place = _rigid_placement(-phi1 - phi2, -design.center_distance * np.c_[np.cos(phi2), -np.sin(phi2)])
     # the driver's one-per-bin vertices, thinned where they stay within a hair of their chords
     cutter = _short_edges(thinned(driver_outline, SIMPLIFY_MODULES * module), driven, module)
     return _lower_envelope(driven, ADDENDUM * module, module, _positions(cutter, phi1, reach, place))
