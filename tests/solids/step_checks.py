@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from scipy.interpolate import BSpline
 from scipy.spatial import cKDTree
 
 from transplanter.shafts.keyed_bore import KeyedBore
@@ -58,7 +59,7 @@ def check_solid(solid, outline: np.ndarray, area: float, height: float, holes: i
     assert np.allclose([box.min.X, box.min.Y, box.max.X, box.max.Y], [*outline.min(axis=0), *outline.max(axis=0)],
                        rtol=0, atol=within)
     assert abs(box.size.Z - height) < within
-    assert len(solid.faces().sort_by(kernel().Axis.Z)[-1].inner_wires()) == holes
+    assert len(faces[-1].inner_wires()) == holes
 
 
 def keyed_hole_area(bore: KeyedBore) -> float:
@@ -80,16 +81,32 @@ def face_area(face) -> float:
 
 def edge_samples(solid, spacing: float) -> list[np.ndarray]:
     """The outer edges of the solid's top face, each sampled (M, 2) at parameters about ``spacing`` mm apart (the
-    solids' curves take the arc length of their points for parameter) by OpenCASCADE's curve evaluation."""
+    solids' curves take the arc length of their points for parameter) by ``curve_samples``."""
     from OCP.BRepAdaptor import BRepAdaptor_Curve
 
     top = solid.faces().sort_by(kernel().Axis.Z)[-1]
-    samples = []
-    for edge in top.outer_wire().edges():
-        curve = BRepAdaptor_Curve(edge.wrapped)
-        count = max(2, int(np.ceil(edge.length / spacing)) + 1)
-        points = [curve.Value(u) for u in np.linspace(curve.FirstParameter(), curve.LastParameter(), count)]
-        samples.append(np.array([(point.X(), point.Y()) for point in points]))
+    return [curve_samples(BRepAdaptor_Curve(edge.wrapped), max(2, int(np.ceil(edge.length / spacing)) + 1))
+            for edge in top.outer_wire().edges()]
+
+
+def curve_samples(curve, count: int) -> np.ndarray:
+    """``count`` points (M, 2) of an edge's curve as OpenCASCADE read it, at evenly spaced parameters: a line's
+    between its ends, a B-spline's by scipy from its poles, knots and degree (the solids' edges are of these two
+    kinds), all at once rather than a call into OpenCASCADE per point; both ends are held to OpenCASCADE's own."""
+    from OCP.GeomAbs import GeomAbs_BSplineCurve, GeomAbs_Line
+
+    first, last = curve.FirstParameter(), curve.LastParameter()
+    ends = np.array([(point.X(), point.Y()) for point in (curve.Value(first), curve.Value(last))])
+    along = np.linspace(0.0, 1.0, count)[:, None]
+    if curve.GetType() == GeomAbs_Line:
+        return ends[0] + along * (ends[1] - ends[0])
+    assert curve.GetType() == GeomAbs_BSplineCurve, curve.GetType()
+    spline = curve.BSpline()
+    assert not spline.IsRational() and not spline.IsPeriodic()
+    poles = np.array([(pole.X(), pole.Y()) for pole in spline.Poles()])
+    knots = np.repeat(list(spline.Knots()), list(spline.Multiplicities()))
+    samples = BSpline(knots, poles, spline.Degree())(first + along[:, 0] * (last - first))
+    np.testing.assert_allclose(samples[[0, -1]], ends, rtol=0, atol=1e-9)
     return samples
 
 
@@ -101,15 +118,15 @@ def distance_to_lines(points: np.ndarray, lines: list[np.ndarray], spacing: floa
     vertices = np.vstack(dense)
     line_end = np.cumsum([len(line) for line in dense]) - 1
     nearest = cKDTree(vertices).query(points, k=NEAREST)[1]
-    best = np.hypot(*(points - vertices[nearest[:, 0]]).T)
-    for first in (nearest - 1, nearest):
-        valid = (first >= 0) & ~np.isin(first, line_end)
-        rows, columns = np.nonzero(valid)
-        a = vertices[first[rows, columns]]
-        b = vertices[first[rows, columns] + 1]
-        along = np.clip(np.einsum("ij,ij->i", points[rows] - a, b - a) / np.einsum("ij,ij->i", b - a, b - a), 0, 1)
-        np.minimum.at(best, rows, np.hypot(*(points[rows] - a - along[:, None] * (b - a)).T))
-    return best
+    first = np.hstack([nearest - 1, nearest])       # (N, 2 NEAREST): the segments first -> first + 1
+    segment = (first >= 0) & ~np.isin(first, line_end)
+    first[~segment] = 0
+    (x, y), (px, py) = vertices.T, points.T[:, :, None]
+    ax, ay = x[first] - px, y[first] - py            # from the point to each segment's start, and along it
+    dx, dy = x[first + 1] - x[first], y[first + 1] - y[first]
+    along = np.clip(-(ax * dx + ay * dy) / (dx * dx + dy * dy), 0, 1)
+    squared = np.where(segment, (ax + along * dx) ** 2 + (ay + along * dy) ** 2, np.inf)
+    return np.sqrt(np.minimum(squared.min(axis=1), ((points - vertices[nearest[:, 0]]) ** 2).sum(axis=1)))
 
 
 def _cut(line: np.ndarray, spacing: float) -> np.ndarray:
