@@ -91,11 +91,16 @@ def _say(line: str, warned: list):
 _ESCAPES = {code: repr(chr(code))[1:-1] for code in [*range(32), 127, 0x85, 0x2028, 0x2029] if code != 9}
 
 
+#: zlib level of the PNG figures: the five-bar's ten saved in 2.3-2.4 s at level 1 against 2.9 s at matplotlib's 6,
+#: for 1,048 KB against 947 (the figures are the last step of the main job to finish).
+PNG_COMPRESSION = 1
+
+
 def _save_figures(figures: dict, out: Path, dpi: int = 120) -> list[str]:
     """Save each Figure as ``<stem>.png`` in ``out``; the names written."""
     out.mkdir(parents=True, exist_ok=True)
     for stem, figure in figures.items():
-        figure.savefig(out / f"{stem}.png", dpi=dpi)
+        figure.savefig(out / f"{stem}.png", dpi=dpi, pil_kwargs={"compress_level": PNG_COMPRESSION})
     return [f"{stem}.png" for stem in figures]
 
 
