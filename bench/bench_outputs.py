@@ -1,4 +1,4 @@
-"""Time the main job's drawings.pdf and animation against the former writers, kept below.
+"""Time the main job's drawings.pdf, animation and figures against the former writers, kept below.
 
     python bench/bench_outputs.py
 
@@ -11,7 +11,10 @@ best of three on the same nine sheets and the same design:
   patch per filled shape, each widening the axes' limits);
 - the animation with the main job's teeth: ``fivebar.animation.write_animation`` against the former frames
   (the same figure with the former's per-frame work: each gear's turn evaluated per frame and per artist, the
-  whole clock text redrawn each frame), written by the same GIF writer.
+  whole clock text redrawn each frame), written by the same GIF writer;
+- the figures (the ten PNGs of ``draw_figures``, drawn and laid out once): saved as the command line saves
+  them (``cli``'s PNGs at zlib level ``PNG_COMPRESSION``) against matplotlib's default level (6), the sides in
+  turn, with both sides' sizes.
 
 It prints both ratios and the absolute times (target: drawings.pdf under 1 s), and ``write_drawings`` whole.
 """
@@ -31,7 +34,7 @@ from ezdxf.addons.drawing.matplotlib import MatplotlibBackend
 from matplotlib.backends.backend_pdf import PdfPages
 from matplotlib.figure import Figure
 
-from transplanter import fivebar
+from transplanter import cli, fivebar
 from transplanter.drawing.pdf import PAGE_INCHES, write_pdf
 from transplanter.fivebar import animation
 from transplanter.fivebar.drawings import write_drawings
@@ -41,6 +44,8 @@ from transplanter.moving_picture import blitted_frames, write_gif
 
 ROOT = Path(__file__).resolve().parents[1]
 REPEAT = 3
+#: Rounds of the figures' comparison (each side once a round).
+FIGURE_ROUNDS = 6
 
 
 # --- the former writers, the baselines ---
@@ -89,6 +94,15 @@ def _former_clock_text(c):
 
 # --- the comparison ---
 
+def former_save_figures(figures: dict, folder: Path) -> None:
+    for stem, figure in figures.items():
+        figure.savefig(folder / f"{stem}.png", dpi=120)
+
+
+def _size_kb(folder: Path) -> float:
+    return sum(path.stat().st_size for path in folder.glob("*.png")) / 1024
+
+
 def _row(what: str, package_s: float, former_s: float) -> None:
     print(f"{what:<14} package {package_s:6.3f} s   former {former_s:6.3f} s   "
           f"former/package {former_s / package_s:5.1f}x")
@@ -106,9 +120,24 @@ def main():
         former_pdf_s, _ = best_time(partial(former_write_pdf, sheets, folder / "former.pdf"), REPEAT)
         animation_s, _ = best_time(partial(animation.write_animation, result, folder, teeth), REPEAT)
         former_animation_s, _ = best_time(partial(former_write_animation, result, folder, teeth), REPEAT)
+        figures = result.draw_figures()
+        (folder / "package").mkdir()
+        (folder / "former").mkdir()
+        former_save_figures(figures, folder / "former")     # the first save lays the figures out, for both sides
+        # sides in turn, round by round: this machine's speed drifts by tens of percent within a minute
+        rounds = [(best_time(partial(cli._save_figures, figures, folder / "package"), 1)[0],
+                   best_time(partial(former_save_figures, figures, folder / "former"), 1)[0])
+                  for _ in range(FIGURE_ROUNDS)]
+        figures_s, former_figures_s = np.min(rounds, axis=0)
+        faster = sum(package < former for package, former in rounds)
+        sizes = _size_kb(folder / "package"), _size_kb(folder / "former")
     print(f"main job's outputs, best of {REPEAT} each, one process ({len(sheets)} sheets, {animation.FRAMES} frames)")
     _row("drawings.pdf", pdf_s, former_pdf_s)
     _row("animation", animation_s, former_animation_s)
+    _row("figures (PNG)", figures_s, former_figures_s)
+    print(f"  best of {FIGURE_ROUNDS} rounds, the sides in turn; the package faster in {faster} of them")
+    print(f"  {len(figures)} PNGs: package {sizes[0]:.0f} KB (zlib level {cli.PNG_COMPRESSION}), "
+          f"former {sizes[1]:.0f} KB (level 6)")
     print(f"write_drawings whole (sheets, SVGs, drawings.pdf, parts.csv, tables): {drawings_s:.3f} s")
 
 

@@ -91,8 +91,8 @@ def _say(line: str, warned: list):
 _ESCAPES = {code: repr(chr(code))[1:-1] for code in [*range(32), 127, 0x85, 0x2028, 0x2029] if code != 9}
 
 
-#: zlib level of the PNG figures: the five-bar's ten saved in 2.3-2.4 s at level 1 against 2.9 s at matplotlib's 6,
-#: for 1,048 KB against 947 (the figures are the last step of the main job to finish).
+#: zlib level of the PNG figures: the five-bar's ten save in 2.26-2.58 s at level 1 against 2.47-2.74 s at
+#: matplotlib's 6, for 1,049 KB against 948 (``bench/bench_outputs.py``; the figures are the main job's last step).
 PNG_COMPRESSION = 1
 
 
