@@ -9,8 +9,8 @@ its Hessian in x is, by the chain rule,
 (the last term vanishes for the quantities affine in x). d2L/dz2 is sparse in v (a row's block is the
 few quantities of its own point), where the Hessian CasADi forms directly in x differentiates every row in
 every variable its quantities reach. The result is the same matrix to rounding (tested against CasADi's).
-On the five-bar's design NLP: 492,898 operations per evaluation against CasADi's 886,285, about half the
-time (``bench/bench_fivebar.py`` prints both).
+On the five-bar's design NLP: 284,478 operations per evaluation against CasADi's 469,253, 2.0 ms against
+3.1 (``bench/bench_fivebar.py`` prints both).
 
 The matrix is left written in z and evaluated as two functions, v = h(x, p) and then the Hessian at (x, v):
 writing it in x alone (substituting h into it) cost 0.48 s of the five-bar NLP's 1.39 s build, for the
