@@ -27,7 +27,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
-from typing import Any, NoReturn
+from typing import TYPE_CHECKING, Any, NoReturn
 
 from transplanter import __version__, burmester, cam, fivebar, gears, parallelogram, pickup, progress, reverse
 from transplanter.command_result import CommandResult
@@ -41,7 +41,10 @@ from transplanter.output_folder import (
     staged,
     staged_file,
 )
-from transplanter.side_process import side_by_side
+from transplanter.shared_calls import share_calls
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 #: What ``--plot`` may be named (the formats matplotlib writes without extra packages).
 PLOT_SUFFIXES = {".png", ".pdf", ".svg", ".jpg", ".jpeg", ".eps", ".ps", ".tif", ".tiff", ".webp"}
@@ -96,12 +99,8 @@ _ESCAPES = {code: repr(chr(code))[1:-1] for code in [*range(32), 127, 0x85, 0x20
 PNG_COMPRESSION = 1
 
 
-def _save_figures(figures: dict, out: Path, dpi: int = 120) -> list[str]:
-    """Save each Figure as ``<stem>.png`` in ``out``; the names written."""
-    out.mkdir(parents=True, exist_ok=True)
-    for stem, figure in figures.items():
-        figure.savefig(out / f"{stem}.png", dpi=dpi, pil_kwargs={"compress_level": PNG_COMPRESSION})
-    return [f"{stem}.png" for stem in figures]
+def _save_figure(figure: Figure, path: Path, dpi: int) -> None:
+    figure.savefig(path, dpi=dpi, pil_kwargs={"compress_level": PNG_COMPRESSION})
 
 
 def _run_command(command: Command, args) -> int:
@@ -112,25 +111,29 @@ def _run_command(command: Command, args) -> int:
     result = command.run(command, problem, args)
     files: list[str] = []
     with staged_file(plot) if plot else contextlib.nullcontext() as partial:
+        drawers = result.figure_drawers()
 
-        def figures() -> list[str]:
-            """The figures drawn and saved where this runs (a side process draws its own: no figure of this one's)."""
-            with progress.step("figures"):
-                drawn = result.draw_figures()
-                if partial and command.plot:
-                    drawn[command.plot].savefig(partial, dpi=command.dpi)
-                return _save_figures(drawn, args.folder, dpi=command.dpi) if args.folder else []
+        def saved(stem: str) -> str:
+            """Figure ``stem`` drawn and saved (as ``--plot`` too when it is that one): its file name."""
+            figure = drawers[stem]()
+            if partial and stem == command.plot:
+                figure.savefig(partial, dpi=command.dpi)
+            _save_figure(figure, args.folder / f"{stem}.png", command.dpi)
+            return f"{stem}.png"
 
         def written() -> list[str]:
             return [path.name for path in result.write_files(
                 args.folder, animation=not getattr(args, "no_animation", False),
                 solids=not getattr(args, "no_step", False))]
 
-        if args.folder:     # the figures in a side process while the files are written here
-            figure_files, other_files = side_by_side(figures, written)
+        if args.folder:     # the figures shared between a side process and this one, once its files are written
+            args.folder.mkdir(parents=True, exist_ok=True)
+            with progress.step("figures"):
+                figure_files, other_files = share_calls(saved, [(stem,) for stem in drawers], written)
             files = figure_files + other_files
-        elif plot:
-            figures()
+        elif partial and command.plot:
+            with progress.step("figures"):
+                drawers[command.plot]().savefig(partial, dpi=command.dpi)
     return _publish(args, result, files)
 
 

@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from transplanter.api_arguments import require_file_switches
+from transplanter.figure_conventions import FigureDrawer, drawn
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -56,9 +57,14 @@ class CommandResult(ABC):
         """The report on a terminal: the Markdown without files, its title a plain line."""
         return self.to_markdown().removeprefix("# ")
 
-    def draw_figures(self) -> dict[str, Figure]:
-        """The report's figures (matplotlib) by file stem; none unless the result draws some."""
+    def figure_drawers(self) -> dict[str, FigureDrawer]:
+        """The report's figures by file stem, each drawn when its drawer is called (the command line shares them
+        out between two processes); none unless the result draws some."""
         return {}
+
+    def draw_figures(self) -> dict[str, Figure]:
+        """The report's figures (matplotlib) by file stem."""
+        return drawn(self.figure_drawers())
 
     def write_files(self, folder: str | Path, animation: bool = True, solids: bool = True) -> list[Path]:
         """Write the files beyond the report and the figures into ``folder`` (drawings, tables, the STEP solids

@@ -192,7 +192,7 @@ def test_gear_with_self_crossing_teeth_exits_1_with_failed_files(tmp_path, capsy
     monkeypatch.setattr(gears, "synthesize", lambda problem: real)
     monkeypatch.setattr(gears.GearResult, "failures", property(lambda self: crossing_failures))
     monkeypatch.setattr(gears.GearResult, "write_files", lambda result, folder, animation=True, solids=True: [])
-    monkeypatch.setattr(gears.GearResult, "draw_figures", lambda result: {"gears": Figure(figsize=(1, 1))})
+    monkeypatch.setattr(gears.GearResult, "figure_drawers", lambda result: {"gears": lambda: Figure(figsize=(1, 1))})
     out = tmp_path / "out"
     assert main(["gear", str(EXAMPLES / "gear_ellipse.toml"), "--out", str(out), "--quiet", "--no-step"]) == 1
     assert "tooth outlines cross themselves" in capsys.readouterr().err
@@ -208,7 +208,8 @@ def test_a_given_design_that_violates_a_condition_exits_1(capsys):
 
 
 def _small_burmester_figures(monkeypatch):
-    monkeypatch.setattr(burmester.Synthesis, "draw_figures", lambda result: {"burmester": Figure(figsize=(1, 1))})
+    monkeypatch.setattr(burmester.Synthesis, "figure_drawers",
+                        lambda result: {"burmester": lambda: Figure(figsize=(1, 1))})
 
 
 def test_interrupt_leaves_no_output_and_one_line(tmp_path, capsys, monkeypatch):
@@ -227,10 +228,10 @@ def test_a_write_that_fails_midway_is_one_line_and_keeps_the_earlier_output(tmp_
     assert main(["burmester", str(EXAMPLES / "burmester_4poses.toml"), "--out", str(out), "--quiet"]) == 0
     earlier = {p.name: p.read_bytes() for p in out.iterdir()}
 
-    def disk_full(figures, folder, dpi=120):
-        raise OSError(28, "No space left on device", str(folder / "burmester.png"))
+    def disk_full(figure, path, dpi):
+        raise OSError(28, "No space left on device", str(path))
     import transplanter.cli as cli
-    monkeypatch.setattr(cli, "_save_figures", disk_full)
+    monkeypatch.setattr(cli, "_save_figure", disk_full)
     assert main(["burmester", str(EXAMPLES / "burmester_4poses.toml"), "--out", str(out), "--quiet"]) == 2
     line = capsys.readouterr().err.strip()
     assert line.endswith(f"burmester.png: No space left on device; {out} is left as it was")

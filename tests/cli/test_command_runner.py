@@ -33,8 +33,8 @@ class _Made(CommandResult):
     def to_markdown(self, files=()):
         return "# Made to order\n\n" + "".join(f"![{name}]({name})\n" for name in files if name.endswith(".png"))
 
-    def draw_figures(self):
-        return {"made": Figure(figsize=(1, 1))}
+    def figure_drawers(self):
+        return {"made": lambda: Figure(figsize=(1, 1))}
 
     def write_files(self, folder, animation=True, solids=True):
         (folder / "made.csv").write_text("a\n")

@@ -1,4 +1,4 @@
-"""A command's figures drawn and saved in a side process while its files are written: the same files and bytes
+"""A command's figures shared between a side process and the process writing its files: the same files and bytes
 as in turn, ``--plot`` as before, a figure's error the same one line and exit code, Ctrl-C ending both."""
 from __future__ import annotations
 
@@ -37,31 +37,20 @@ def _run(folder: Path) -> dict[str, bytes]:
     return {**written, "--plot": plot.read_bytes()}
 
 
-def test_figures_drawn_in_a_side_process_are_the_files_drawn_here(tmp_path, monkeypatch, two_cores):
-    drawn_by = []
-    draw = Synthesis.draw_figures
-
-    def recorded(self):
-        (tmp_path / "drawn_by").write_text(str(os.getpid()))
-        return draw(self)
-
-    monkeypatch.setattr(Synthesis, "draw_figures", recorded)
+def test_figures_shared_with_a_side_process_are_the_files_drawn_here(tmp_path, monkeypatch, two_cores):
     beside = _run(tmp_path / "beside")
-    drawn_by.append(int((tmp_path / "drawn_by").read_text()))
     monkeypatch.setattr(side_process, "FORKS", False)
     here = _run(tmp_path / "here")
-    drawn_by.append(int((tmp_path / "drawn_by").read_text()))
-    assert drawn_by[0] != os.getpid() and drawn_by[1] == os.getpid()
     assert beside.keys() == here.keys() and "burmester.png" in beside
     assert [name for name in beside if beside[name] != here[name]] == []
 
 
 @pytest.mark.parametrize("forks", [True, False], ids=["beside", "here"])
 def test_an_error_drawing_a_figure_is_one_line_and_exit_2(tmp_path, monkeypatch, capsys, two_cores, forks):
-    def broken(self):
+    def broken():
         raise TransplanterError("the figure cannot be drawn")
 
-    monkeypatch.setattr(Synthesis, "draw_figures", broken)
+    monkeypatch.setattr(Synthesis, "figure_drawers", lambda self: {"burmester": broken})
     if not forks:
         monkeypatch.setattr(side_process, "FORKS", False)
     assert main(["burmester", PROBLEM, "--out", str(tmp_path / "out"), "--quiet"]) == 2
@@ -76,28 +65,31 @@ from transplanter import cli, side_process
 from transplanter.burmester.result import Synthesis
 
 side_process.usable_cores = lambda: 2
-marker = Path(sys.argv[1])
+markers = Path(sys.argv[1])
 
-def slow(self):
-    marker.write_text(str(os.getpid()))
+def slow():
+    (markers / str(os.getpid())).touch()
     time.sleep(60)
 
-Synthesis.draw_figures = slow
+Synthesis.figure_drawers = lambda self: {f"slow{k}": slow for k in range(4)}
 sys.argv = ["transplanter", "burmester", sys.argv[2], "--out", sys.argv[3]]
 cli.console()
 """
 
 
 def test_ctrl_c_while_the_figures_are_drawn_ends_both_processes_and_leaves_nothing(tmp_path):
-    marker, out = tmp_path / "drawing", tmp_path / "out"
-    run = subprocess.Popen([sys.executable, "-c", SLOW_FIGURES, str(marker), PROBLEM, str(out)], cwd=ROOT,
+    """Four slow figures: the side process takes the first, the run's own process the last once its files are
+    written; Ctrl-C while both draw."""
+    markers, out = tmp_path / "drawing", tmp_path / "out"
+    markers.mkdir()
+    run = subprocess.Popen([sys.executable, "-c", SLOW_FIGURES, str(markers), PROBLEM, str(out)], cwd=ROOT,
                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
     deadline = time.monotonic() + 120
-    while not marker.exists() and run.poll() is None and time.monotonic() < deadline:
+    while len(os.listdir(markers)) < 2 and run.poll() is None and time.monotonic() < deadline:
         time.sleep(0.05)
-    assert marker.exists(), run.communicate()[1]
-    side = int(marker.read_text())
-    assert side != run.pid
+    drawing = sorted(int(name) for name in os.listdir(markers))
+    assert len(drawing) == 2 and run.pid in drawing, run.communicate()[1]
+    side = next(pid for pid in drawing if pid != run.pid)
     os.killpg(run.pid, signal.SIGINT)           # Ctrl-C reaches the whole process group
     _, err = run.communicate(timeout=30)
     assert run.returncode == 130

@@ -26,8 +26,7 @@ PROBLEM = str(ROOT / "examples" / "burmester_3poses.toml")
 @pytest.fixture
 def quick_runs(monkeypatch):
     """Runs without their figure (a third of a second each): the publishing is what is under test."""
-    monkeypatch.setattr(cli, "_save_figures", lambda figures, out, dpi=120: [])
-    monkeypatch.setattr(Synthesis, "draw_figures", lambda self: {})
+    monkeypatch.setattr(Synthesis, "figure_drawers", lambda self: {})
 
 
 def _earlier_output(out: Path) -> set[str]:

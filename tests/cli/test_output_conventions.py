@@ -21,11 +21,11 @@ PROBLEM = str(Path(__file__).resolve().parents[2] / "examples/burmester_4poses.t
 @pytest.fixture(autouse=True)
 def small_figures(monkeypatch):
     """One small figure instead of the real ones: these tests are about the files, not the pictures."""
-    def draw(result):
+    def draw():
         fig = Figure(figsize=(1, 1))
         fig.subplots().plot([0, 1])
-        return {"burmester": fig}
-    monkeypatch.setattr(burmester.Synthesis, "draw_figures", draw)
+        return fig
+    monkeypatch.setattr(burmester.Synthesis, "figure_drawers", lambda result: {"burmester": draw})
 
 
 def _listed(folder: Path) -> set[str]:
@@ -50,12 +50,12 @@ def test_files_are_grouped_by_kind():
 def _break_figures(monkeypatch):
     """The run writes a file into the folder, then fails."""
     import transplanter.cli as cli
-    original = cli._save_figures
+    original = cli._save_figure
 
-    def save_then_fail(figures, out, dpi=120):
-        original({"half": Figure(figsize=(1, 1))}, out, dpi)
+    def save_then_fail(figure, path, dpi):
+        original(Figure(figsize=(1, 1)), path.with_name("half.png"), dpi)
         raise ProblemError("figures: made to fail")
-    monkeypatch.setattr(cli, "_save_figures", save_then_fail)
+    monkeypatch.setattr(cli, "_save_figure", save_then_fail)
 
 
 def test_a_failing_run_leaves_no_half_folder(tmp_path, monkeypatch, capsys):
@@ -72,14 +72,14 @@ def test_sigterm_ends_a_run_as_ctrl_c_does(tmp_path, monkeypatch, capsys):
     import signal
 
     import transplanter.cli as cli
-    original = cli._save_figures
+    original = cli._save_figure
 
     run = os.getpid()       # the run's process (the figures may be saved in a side process of it)
 
-    def save_then_terminate(figures, out, dpi=120):
-        original(figures, out, dpi)
+    def save_then_terminate(figure, path, dpi):
+        original(figure, path, dpi)
         os.kill(run, signal.SIGTERM)
-    monkeypatch.setattr(cli, "_save_figures", save_then_terminate)
+    monkeypatch.setattr(cli, "_save_figure", save_then_terminate)
     before = signal.getsignal(signal.SIGTERM)
     assert main(["burmester", PROBLEM, "--out", str(tmp_path / "out"), "--quiet"]) == 130
     assert capsys.readouterr().err.strip() == f"transplanter: interrupted; {tmp_path / 'out'} is left as it was"

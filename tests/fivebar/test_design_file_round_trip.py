@@ -32,7 +32,8 @@ ROUND_TRIP_KEYS = ("design", "key_pose_position_errors_mm", "key_pose_angle_erro
 def run(example_result, tmp_path_factory, monkeypatch_module):
     """The main job's run with --out (the synthesis is the session's; one small figure, no animation)."""
     monkeypatch_module.setattr(fivebar, "synthesize", lambda problem, **options: example_result)
-    monkeypatch_module.setattr(fivebar.FiveBarResult, "draw_figures", lambda result: {"plain": Figure((1, 1))})
+    monkeypatch_module.setattr(fivebar.FiveBarResult, "figure_drawers",
+                               lambda result: {"plain": lambda: Figure((1, 1))})
     out = tmp_path_factory.mktemp("run") / "out"
     assert main(["fivebar", str(EXAMPLE), "--out", str(out), "--no-animation", "--no-step", "--quiet"]) == 0
     return out

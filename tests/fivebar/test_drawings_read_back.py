@@ -267,7 +267,8 @@ def quick_command(example_result_from_synthesize, example_result_drawings_copied
     def stand_in(result, folder, teeth=None):
         (folder / "animation.gif").write_bytes(b"GIF89a")
         return [folder / "animation.gif"]
-    monkeypatch.setattr(fivebar.FiveBarResult, "draw_figures", lambda result: {"trajectory": Figure(figsize=(1, 1))})
+    monkeypatch.setattr(fivebar.FiveBarResult, "figure_drawers",
+                        lambda result: {"trajectory": lambda: Figure(figsize=(1, 1))})
     monkeypatch.setattr(output_files, "write_animation", stand_in)
 
 

@@ -2,12 +2,14 @@
 a notebook shows it, the command saves it)."""
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 from matplotlib.figure import Figure
 
 from transplanter.api_arguments import require_result
 from transplanter.burmester.result import Synthesis
-from transplanter.figure_conventions import LEGEND_BESIDE, PROBLEM_TITLE
+from transplanter.figure_conventions import LEGEND_BESIDE, PROBLEM_TITLE, FigureDrawer, drawn
 from transplanter.geometry.curve_trace import CurveTrace
 
 #: How many dyads of a 4-pose family are drawn as links (all of them would hide the curves).
@@ -64,6 +66,11 @@ def draw_synthesis(result: Synthesis) -> Figure:
     return fig
 
 
+def figure_drawers(result: Synthesis) -> dict[str, FigureDrawer]:
+    """``draw_figures``'s figure by file stem, drawn when called."""
+    require_result(result, Synthesis, "burmester")
+    return {"burmester": partial(draw_synthesis, result)}
+
 def draw_figures(result: Synthesis) -> dict[str, Figure]:
     """The figures of a synthesis by file stem: ``{"burmester": Figure}``.
 
@@ -77,5 +84,4 @@ def draw_figures(result: Synthesis) -> dict[str, Figure]:
     dict of str to matplotlib.figure.Figure
         Save with ``figure.savefig(f"{stem}.png")`` or show in a notebook.
     """
-    require_result(result, Synthesis, "burmester")
-    return {"burmester": draw_synthesis(result)}
+    return drawn(figure_drawers(result))

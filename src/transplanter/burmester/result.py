@@ -11,7 +11,7 @@ from transplanter.geometry.curve_trace import CurveTrace
 from transplanter.geometry.dyad import Dyad
 
 if TYPE_CHECKING:
-    from matplotlib.figure import Figure
+    from transplanter.figure_conventions import FigureDrawer
 
 
 @dataclass(frozen=True)
@@ -73,7 +73,7 @@ class Synthesis(CommandResult):
 
         return to_text(self)
 
-    def draw_figures(self) -> dict[str, Figure]:
-        from transplanter.burmester.figures import draw_figures
+    def figure_drawers(self) -> dict[str, FigureDrawer]:
+        from transplanter.burmester.figures import figure_drawers
 
-        return draw_figures(self)
+        return figure_drawers(self)

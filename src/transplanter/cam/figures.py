@@ -2,13 +2,15 @@
 diagrams, the pressure angle, and the profile with the follower drawn at several cam angles."""
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 from matplotlib.figure import Figure
 
 from transplanter.api_arguments import require_result
 from transplanter.cam.kinematics import segment_starts
 from transplanter.cam.result import CamResult
-from transplanter.figure_conventions import LEGEND_BESIDE
+from transplanter.figure_conventions import LEGEND_BESIDE, FigureDrawer, drawn
 from transplanter.geometry.poses import rotate_about
 
 
@@ -103,6 +105,13 @@ def draw_profile(result: CamResult, positions: int = 4) -> Figure:
     return fig
 
 
+def figure_drawers(result: CamResult) -> dict[str, FigureDrawer]:
+    """``draw_figures``'s figures by file stem, each drawn when called."""
+    require_result(result, CamResult, "cam")
+    return {"cam_motion": partial(draw_motion, result), "cam_pressure_angle": partial(draw_pressure_angle, result),
+            "cam_profile": partial(draw_profile, result)}
+
+
 def draw_figures(result: CamResult) -> dict[str, Figure]:
     """The figures of a cam by file stem: ``cam_motion``, ``cam_pressure_angle``, ``cam_profile``.
 
@@ -115,6 +124,4 @@ def draw_figures(result: CamResult) -> dict[str, Figure]:
     -------
     dict of str to matplotlib.figure.Figure
     """
-    require_result(result, CamResult, "cam")
-    return {"cam_motion": draw_motion(result), "cam_pressure_angle": draw_pressure_angle(result),
-            "cam_profile": draw_profile(result)}
+    return drawn(figure_drawers(result))

@@ -15,7 +15,7 @@ from transplanter.cam.problem import CamProblem
 from transplanter.command_result import CommandResult
 
 if TYPE_CHECKING:
-    from matplotlib.figure import Figure
+    from transplanter.figure_conventions import FigureDrawer
 
 
 @dataclass(frozen=True)
@@ -78,10 +78,10 @@ class CamResult(CommandResult):
 
         return to_markdown(self, files)
 
-    def draw_figures(self) -> dict[str, Figure]:
-        from transplanter.cam.figures import draw_figures
+    def figure_drawers(self) -> dict[str, FigureDrawer]:
+        from transplanter.cam.figures import figure_drawers
 
-        return draw_figures(self)
+        return figure_drawers(self)
 
     def _write_files(self, folder: Path, animation: bool, solids: bool) -> list[Path]:
         """The profile as CSV, DXF and SVG (``cam.write_drawings``), design.toml (``design_toml``) and, unless

@@ -5,14 +5,15 @@ shows them, the command saves them)."""
 from __future__ import annotations
 
 import textwrap
+from functools import partial
 
 import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.layout_engine import ConstrainedLayoutEngine
 
 from transplanter.api_arguments import require_result
-from transplanter.cam.figures import draw_figures as draw_cam_figures
-from transplanter.figure_conventions import LEGEND_BESIDE, PROBLEM_TITLE
+from transplanter.cam.figures import figure_drawers as cam_figure_drawers
+from transplanter.figure_conventions import LEGEND_BESIDE, PROBLEM_TITLE, FigureDrawer, drawn
 from transplanter.fivebar.gears_on_carrier import gears_on_carrier, tooth_outlines
 from transplanter.fivebar.load_figures import draw_load_figure
 from transplanter.fivebar.result import FiveBarResult
@@ -213,6 +214,23 @@ def draw_pressure_angle(result: FiveBarResult) -> Figure:
     return fig
 
 
+def figure_drawers(result: FiveBarResult) -> dict[str, FigureDrawer]:
+    """``draw_figures``'s figures by file stem, each drawn when called."""
+    require_result(result, FiveBarResult, "fivebar")
+    drawers: dict[str, FigureDrawer] = {
+        "region": partial(draw_region, result), "relative_angle": partial(draw_relative_angle, result),
+        "gears": partial(draw_gears, result), "trajectory": partial(draw_trajectory, result),
+        "tradeoff": partial(draw_tradeoff, result),
+        "loads": partial(draw_load_figure, result.loads, result.problem.title),
+        "pressure_angle": partial(draw_pressure_angle, result)}
+    if result.support is not None:
+        drawers["support"] = partial(draw_support, result.support)
+        drawers.update(cam_figure_drawers(result.support.cam))
+    if result.tolerance is not None:
+        drawers.update(result.tolerance.figure_drawers())
+    return drawers
+
+
 def draw_figures(result: FiveBarResult) -> dict[str, Figure]:
     """The figures of a five-bar design by file stem: ``region``, ``relative_angle``, ``gears``, ``trajectory``,
     ``tradeoff``, ``loads``, ``pressure_angle``, with a seedling support ``support`` and the cam's own
@@ -229,14 +247,4 @@ def draw_figures(result: FiveBarResult) -> dict[str, Figure]:
     dict of str to matplotlib.figure.Figure
         Save with ``figure.savefig(f"{stem}.png")`` or show in a notebook.
     """
-    require_result(result, FiveBarResult, "fivebar")
-    figures = {"region": draw_region(result), "relative_angle": draw_relative_angle(result),
-               "gears": draw_gears(result), "trajectory": draw_trajectory(result), "tradeoff": draw_tradeoff(result),
-               "loads": draw_load_figure(result.loads, result.problem.title),
-               "pressure_angle": draw_pressure_angle(result)}
-    if result.support is not None:
-        figures["support"] = draw_support(result.support)
-        figures.update(draw_cam_figures(result.support.cam))
-    if result.tolerance is not None:
-        figures.update(result.tolerance.draw_figures())
-    return figures
+    return drawn(figure_drawers(result))

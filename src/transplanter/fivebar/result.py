@@ -25,7 +25,7 @@ from transplanter.trains.pressure_angle import StagePressureAngles
 from transplanter.trains.toothed_train import ToothedTrain
 
 if TYPE_CHECKING:
-    from matplotlib.figure import Figure
+    from transplanter.figure_conventions import FigureDrawer
 
 
 @dataclass(frozen=True)
@@ -130,10 +130,10 @@ class FiveBarResult(CommandResult):
 
         return to_markdown(self, files)
 
-    def draw_figures(self) -> dict[str, Figure]:
-        from transplanter.fivebar.figures import draw_figures
+    def figure_drawers(self) -> dict[str, FigureDrawer]:
+        from transplanter.fivebar.figures import figure_drawers
 
-        return draw_figures(self)
+        return figure_drawers(self)
 
     def _write_files(self, folder: Path, animation: bool, solids: bool) -> list[Path]:
         """``fivebar.write_files``: drawings, tables, the STEP solids unless ``solids`` is False and, unless

@@ -2,12 +2,14 @@
 kinematics, curvature (no pyplot, no backend chosen: a notebook shows them, the command saves them)."""
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 from matplotlib.collections import PolyCollection
 from matplotlib.figure import Figure
 
 from transplanter.api_arguments import require_result
-from transplanter.figure_conventions import LEGEND_BESIDE, PROBLEM_TITLE
+from transplanter.figure_conventions import LEGEND_BESIDE, PROBLEM_TITLE, FigureDrawer, drawn
 from transplanter.gears.composite_teeth import CompositeTeeth
 from transplanter.gears.drawings import outlines
 from transplanter.gears.rack_teeth import ADDENDUM
@@ -79,6 +81,18 @@ def draw_curvature(result: GearResult) -> Figure:
     return fig
 
 
+def figure_drawers(result: GearResult) -> dict[str, FigureDrawer]:
+    """``draw_figures``'s figures by file stem, each drawn when called."""
+    require_result(result, GearResult, "gears")
+    drawers: dict[str, FigureDrawer] = {"gear_mesh": partial(draw_mesh, result),
+                                        "gear_kinematics": partial(draw_kinematics, result),
+                                        "gear_curvature": partial(draw_curvature, result)}
+    if isinstance(result.teeth, CompositeTeeth):
+        from transplanter.gears.cusp_figures import draw_cusps
+
+        drawers["gear_cusps"] = partial(draw_cusps, result, result.teeth)
+    return drawers
+
 def draw_figures(result: GearResult) -> dict[str, Figure]:
     """The figures of a gear pair by file stem: ``gear_mesh``, ``gear_kinematics``, ``gear_curvature``.
 
@@ -93,11 +107,4 @@ def draw_figures(result: GearResult) -> dict[str, Figure]:
         With composite teeth also ``gear_cusps`` (each corner zoomed). Save with
         ``figure.savefig(f"{stem}.png")`` or show in a notebook.
     """
-    require_result(result, GearResult, "gears")
-    figures = {"gear_mesh": draw_mesh(result), "gear_kinematics": draw_kinematics(result),
-               "gear_curvature": draw_curvature(result)}
-    if isinstance(result.teeth, CompositeTeeth):
-        from transplanter.gears.cusp_figures import draw_cusps
-
-        figures["gear_cusps"] = draw_cusps(result, result.teeth)
-    return figures
+    return drawn(figure_drawers(result))

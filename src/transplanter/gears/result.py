@@ -17,7 +17,7 @@ from transplanter.gears.rack_teeth import ADDENDUM
 from transplanter.gears.teeth import PairTeeth
 
 if TYPE_CHECKING:
-    from matplotlib.figure import Figure
+    from transplanter.figure_conventions import FigureDrawer
 
 
 @dataclass(frozen=True)
@@ -134,10 +134,10 @@ class GearResult(CommandResult):
 
         return to_markdown(self, files)
 
-    def draw_figures(self) -> dict[str, Figure]:
-        from transplanter.gears.figures import draw_figures
+    def figure_drawers(self) -> dict[str, FigureDrawer]:
+        from transplanter.gears.figures import figure_drawers
 
-        return draw_figures(self)
+        return figure_drawers(self)
 
     def _write_files(self, folder: Path, animation: bool, solids: bool) -> list[Path]:
         """The pitch curves and tooth outlines as CSV, SVG and DXF (``gears.write_drawings``), and the cut gears'

@@ -3,11 +3,13 @@ trajectory with the planting window, velocity and acceleration of the planting p
 Pareto front of the search."""
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 from matplotlib.figure import Figure
 
 from transplanter.api_arguments import require_result
-from transplanter.figure_conventions import LEGEND_BESIDE
+from transplanter.figure_conventions import LEGEND_BESIDE, FigureDrawer, drawn
 from transplanter.parallelogram.kinematics import mechanisms
 from transplanter.parallelogram.problem import ParallelogramProblem
 from transplanter.parallelogram.result import ParallelogramResult, objective_values
@@ -68,10 +70,16 @@ def draw_acceleration(problem: ParallelogramProblem, design: dict) -> Figure:
     return _time_plot(problem, design, lambda p: p.acceleration, "ax", "ay", "mm s⁻²")
 
 
+def design_figure_drawers(problem: ParallelogramProblem, design: dict) -> dict[str, FigureDrawer]:
+    """Trajectory, velocity and acceleration of one design, by file stem, each drawn when called."""
+    return {"trajectory": partial(draw_trajectory, problem, design),
+            "velocity": partial(draw_velocity, problem, design),
+            "acceleration": partial(draw_acceleration, problem, design)}
+
+
 def draw_design_figures(problem: ParallelogramProblem, design: dict) -> dict[str, Figure]:
     """Trajectory, velocity and acceleration of one design, by file stem."""
-    return {"trajectory": draw_trajectory(problem, design), "velocity": draw_velocity(problem, design),
-            "acceleration": draw_acceleration(problem, design)}
+    return drawn(design_figure_drawers(problem, design))
 
 
 def draw_pareto(result) -> Figure:
@@ -102,11 +110,17 @@ def draw_pareto(result) -> Figure:
     return fig
 
 
+def figure_drawers(result: ParallelogramResult) -> dict[str, FigureDrawer]:
+    """``draw_figures``'s figures by file stem, each drawn when called."""
+    require_result(result, ParallelogramResult, "parallelogram")
+    drawers: dict[str, FigureDrawer] = {"pareto": partial(draw_pareto, result),
+                                        **design_figure_drawers(result.problem, result.final)}
+    if result.tolerance is not None:
+        drawers.update(result.tolerance.figure_drawers())
+    return drawers
+
+
 def draw_figures(result: ParallelogramResult) -> dict[str, Figure]:
     """Pareto front, and the final design's (polished, else chosen) trajectory, velocity and acceleration;
     with a tolerance analysis ``tolerance_trajectory``, ``tolerance_band`` and ``tolerance_contributions``."""
-    require_result(result, ParallelogramResult, "parallelogram")
-    figures = {"pareto": draw_pareto(result), **draw_design_figures(result.problem, result.final)}
-    if result.tolerance is not None:
-        figures.update(result.tolerance.draw_figures())
-    return figures
+    return drawn(figure_drawers(result))

@@ -16,7 +16,7 @@ from transplanter.parallelogram.search import SearchResult
 from transplanter.tolerance import ToleranceAnalysis, ToleranceModel
 
 if TYPE_CHECKING:
-    from matplotlib.figure import Figure
+    from transplanter.figure_conventions import FigureDrawer
 
 
 @dataclass(frozen=True)
@@ -56,13 +56,13 @@ class DesignReport(CommandResult):
 
         return evaluation_markdown(self, files)
 
-    def draw_figures(self) -> dict[str, Figure]:
-        """The design's trajectory, velocity and acceleration (``draw_design_figures``), and with a tolerance
+    def figure_drawers(self) -> dict[str, FigureDrawer]:
+        """The design's trajectory, velocity and acceleration (``design_figure_drawers``), and with a tolerance
         analysis its figures."""
-        from transplanter.parallelogram.figures import draw_design_figures
+        from transplanter.parallelogram.figures import design_figure_drawers
 
-        figures = draw_design_figures(self.problem, self.given.design)
-        return {**figures, **self.tolerance.draw_figures()} if self.tolerance is not None else figures
+        drawers = design_figure_drawers(self.problem, self.given.design)
+        return {**drawers, **self.tolerance.figure_drawers()} if self.tolerance is not None else drawers
 
 
 def objective_values(problem: ParallelogramProblem, evaluation: Evaluation) -> np.ndarray:
@@ -172,10 +172,10 @@ class ParallelogramResult(CommandResult):
 
         return to_markdown(self, files)
 
-    def draw_figures(self) -> dict[str, Figure]:
-        from transplanter.parallelogram.figures import draw_figures
+    def figure_drawers(self) -> dict[str, FigureDrawer]:
+        from transplanter.parallelogram.figures import figure_drawers
 
-        return draw_figures(self)
+        return figure_drawers(self)
 
     def _write_files(self, folder: Path, animation: bool, solids: bool) -> list[Path]:
         """``parallelogram.write_files``: the tables, the gear drawings, their STEP solids unless ``solids`` is False

@@ -2,11 +2,13 @@
 picks and pushes, and the tip speed over a carrier turn."""
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 from matplotlib.figure import Figure
 
 from transplanter.api_arguments import require_result
-from transplanter.figure_conventions import LEGEND_BESIDE, PROBLEM_TITLE
+from transplanter.figure_conventions import LEGEND_BESIDE, PROBLEM_TITLE, FigureDrawer, drawn
 from transplanter.pickup.result import PickupResult
 
 
@@ -49,7 +51,11 @@ def draw_speed(result: PickupResult) -> Figure:
     return fig
 
 
+def figure_drawers(result: PickupResult) -> dict[str, FigureDrawer]:
+    """``draw_figures``'s figures by file stem, each drawn when called."""
+    require_result(result, PickupResult, "pickup")
+    return {"pickup_path": partial(draw_path, result), "pickup_speed": partial(draw_speed, result)}
+
 def draw_figures(result: PickupResult) -> dict[str, Figure]:
     """``pickup_path`` and ``pickup_speed`` by file stem."""
-    require_result(result, PickupResult, "pickup")
-    return {"pickup_path": draw_path(result), "pickup_speed": draw_speed(result)}
+    return drawn(figure_drawers(result))

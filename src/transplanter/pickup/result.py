@@ -27,7 +27,7 @@ from transplanter.gears.pair import GearPairDesign
 from transplanter.pickup.problem import PickupProblem
 
 if TYPE_CHECKING:
-    from matplotlib.figure import Figure
+    from transplanter.figure_conventions import FigureDrawer
 
 #: Closure of each stage and of the tip after one carrier turn, per mm of the reach L1 + L2 + S (the gears close
 #: to 1e-15 rad, about 1e-13 mm on the bundled example; ``gears.pair`` refuses a pair beyond 1e-6 rad).
@@ -137,10 +137,10 @@ class PickupResult(CommandResult):
 
         return to_markdown(self, files)
 
-    def draw_figures(self) -> dict[str, Figure]:
-        from transplanter.pickup.figures import draw_figures
+    def figure_drawers(self) -> dict[str, FigureDrawer]:
+        from transplanter.pickup.figures import figure_drawers
 
-        return draw_figures(self)
+        return figure_drawers(self)
 
     def _write_files(self, folder: Path, animation: bool, solids: bool) -> list[Path]:
         """``pickup.gif``, one carrier turn (``pickup.write_animation``), unless ``animation`` is False."""

@@ -3,11 +3,13 @@ ratios along the cycle, and the pitch curves on the carrier, as matplotlib ``Fig
 pyplot, no backend chosen: a notebook shows them, the command saves them)."""
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 from matplotlib.figure import Figure
 
 from transplanter.api_arguments import require_result
-from transplanter.figure_conventions import LEGEND_BESIDE
+from transplanter.figure_conventions import LEGEND_BESIDE, FigureDrawer, drawn
 from transplanter.geometry.planar import TWO_PI
 from transplanter.reverse.idler_train import IdlerTrain
 from transplanter.reverse.result import ReverseResult
@@ -102,6 +104,16 @@ def draw_gears(result: ReverseResult) -> Figure:
     return fig
 
 
+def figure_drawers(result: ReverseResult) -> dict[str, FigureDrawer]:
+    """``draw_figures``'s figures by file stem, each drawn when called."""
+    require_result(result, ReverseResult, "reverse")
+    drawers: dict[str, FigureDrawer] = {"path": partial(draw_path, result), "motion": partial(draw_motion, result)}
+    if result.train is not None:
+        drawers["gears"] = partial(draw_gears, result)
+    if result.tolerance is not None:
+        drawers.update(result.tolerance.figure_drawers())
+    return drawers
+
 def draw_figures(result: ReverseResult) -> dict[str, Figure]:
     """The figures of a reverse design by file stem: ``path``, ``motion``, ``gears`` when it has a train, and with
     a tolerance analysis ``tolerance_trajectory``, ``tolerance_band`` and ``tolerance_contributions``.
@@ -116,10 +128,4 @@ def draw_figures(result: ReverseResult) -> dict[str, Figure]:
     dict of str to matplotlib.figure.Figure
         Save with ``figure.savefig(f"{stem}.png")`` or show in a notebook.
     """
-    require_result(result, ReverseResult, "reverse")
-    figures = {"path": draw_path(result), "motion": draw_motion(result)}
-    if result.train is not None:
-        figures["gears"] = draw_gears(result)
-    if result.tolerance is not None:
-        figures.update(result.tolerance.draw_figures())
-    return figures
+    return drawn(figure_drawers(result))

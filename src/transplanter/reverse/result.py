@@ -20,7 +20,7 @@ from transplanter.trains.planetary import PlanetaryTrain
 from transplanter.trains.toothed_train import ToothedTrain
 
 if TYPE_CHECKING:
-    from matplotlib.figure import Figure
+    from transplanter.figure_conventions import FigureDrawer
 
 #: A train whose rolled tip strays further than this fraction of the reach s + l from the path fails the result
 #: (2.5e-6 mm on the rice path; the misses measured are 1e-11 to 1e-10 of it at scales 1e-3 to 1e6).
@@ -149,7 +149,7 @@ class ReverseResult(CommandResult):
                 written += write_solids(self.toothed, self.problem, Path(folder))
         return written
 
-    def draw_figures(self) -> dict[str, Figure]:
-        from transplanter.reverse.figures import draw_figures
+    def figure_drawers(self) -> dict[str, FigureDrawer]:
+        from transplanter.reverse.figures import figure_drawers
 
-        return draw_figures(self)
+        return figure_drawers(self)

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any, Protocol
 import numpy as np
 
 from transplanter.errors import SolverError
+from transplanter.figure_conventions import FigureDrawer, drawn
 from transplanter.tolerance.allocation import Allocation, allocate
 from transplanter.tolerance.bands import (
     position_covariance,
@@ -107,10 +108,14 @@ class ToleranceAnalysis:
 
         return tolerance_markdown(self)
 
-    def draw_figures(self) -> dict[str, Figure]:
-        from transplanter.tolerance.figures import draw_figures
+    def figure_drawers(self) -> dict[str, FigureDrawer]:
+        """The figures by file stem, each drawn when called."""
+        from transplanter.tolerance.figures import figure_drawers
 
-        return draw_figures(self)
+        return figure_drawers(self)
+
+    def draw_figures(self) -> dict[str, Figure]:
+        return drawn(self.figure_drawers())
 
 
 def _settings(tolerances: ToleranceSettings | Mapping[str, float] | None) -> ToleranceSettings:

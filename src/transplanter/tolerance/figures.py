@@ -3,12 +3,13 @@ the 3-sigma band over the turn with the ellipses about the key poses, and the di
 (matplotlib ``Figure`` objects, no pyplot)."""
 from __future__ import annotations
 
+from functools import partial
 from typing import TYPE_CHECKING
 
 import numpy as np
 from matplotlib.figure import Figure
 
-from transplanter.figure_conventions import LEGEND_BESIDE, PROBLEM_TITLE
+from transplanter.figure_conventions import LEGEND_BESIDE, PROBLEM_TITLE, FigureDrawer
 from transplanter.tolerance.bands import position_covariance
 
 if TYPE_CHECKING:
@@ -140,7 +141,8 @@ def draw_contributions(analysis: ToleranceAnalysis) -> Figure:
     return fig
 
 
-def draw_figures(analysis: ToleranceAnalysis) -> dict[str, Figure]:
-    """``tolerance_trajectory``, ``tolerance_band`` and ``tolerance_contributions``."""
-    return {"tolerance_trajectory": draw_trajectory_band(analysis), "tolerance_band": draw_band(analysis),
-            "tolerance_contributions": draw_contributions(analysis)}
+def figure_drawers(analysis: ToleranceAnalysis) -> dict[str, FigureDrawer]:
+    """``tolerance_trajectory``, ``tolerance_band`` and ``tolerance_contributions``, each drawn when called."""
+    return {"tolerance_trajectory": partial(draw_trajectory_band, analysis),
+            "tolerance_band": partial(draw_band, analysis),
+            "tolerance_contributions": partial(draw_contributions, analysis)}
