@@ -2,8 +2,10 @@
 
 Samples are drawn by a seeded generator (``uniform``: nominal + t U(-1, 1); ``normal``: nominal + t / 3 N(0, 1))
 and the mechanism's ``sampled`` motion closes them in arrays, ``CHUNK`` mechanisms per pass, with no loop
-over samples. Deviations are taken from the nominal motion (plate angles wrapped to (-pi, pi]); a mechanism
-that does not close (NaN) is counted and left out of the statistics, and violates the closure condition.
+over samples; the chunks are shared between this process and a side process where the machine gives a
+second core (``shared_calls``). Deviations are taken from the nominal motion (plate angles wrapped to (-pi, pi]);
+a mechanism that does not close (NaN) is counted and left out of the statistics, and violates the closure
+condition.
 """
 from __future__ import annotations
 
@@ -11,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from transplanter.shared_calls import shared_map
 from transplanter.tolerance.bands import largest_eigenvalue
 from transplanter.tolerance.model import ToleranceModel
 
@@ -41,7 +44,8 @@ def draw(model: ToleranceModel, samples: int, seed: int, distribution: str) -> n
 
 def monte_carlo(model: ToleranceModel, samples: int, seed: int, distribution: str) -> MonteCarlo:
     dimensions = draw(model, samples, seed, distribution)
-    motion = np.concatenate([model.sampled(part) for part in np.array_split(dimensions, -(-samples // CHUNK))])
+    parts = np.array_split(dimensions, -(-samples // CHUNK))
+    motion = np.concatenate(shared_map(model.sampled, [(part,) for part in parts]))
     nominal = model.sampled(model.nominal[None])[0]
     position = motion[:, :2] - nominal[:2]
     angle = np.angle(np.exp(1j * (motion[:, 2] - nominal[2])))
