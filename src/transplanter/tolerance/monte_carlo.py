@@ -9,7 +9,9 @@ condition.
 """
 from __future__ import annotations
 
+import operator
 from dataclasses import dataclass
+from functools import partial, reduce
 
 import numpy as np
 
@@ -42,18 +44,45 @@ def draw(model: ToleranceModel, samples: int, seed: int, distribution: str) -> n
     return model.nominal + model.tolerances * unit
 
 
+@dataclass(frozen=True)
+class _Tally:
+    """What a chunk of built mechanisms adds to the statistics: how many close, the sums of their deviations
+    (position (2, T), angle (T,)) and of their squares (position products (T, 2, 2), angle (T,)), and how many
+    violate each hard condition."""
+
+    closing: int
+    position: np.ndarray
+    position_products: np.ndarray
+    angle: np.ndarray
+    angle_squares: np.ndarray
+    violations: dict[str, int]
+
+    def __add__(self, other: _Tally) -> _Tally:
+        return _Tally(self.closing + other.closing, self.position + other.position,
+                      self.position_products + other.position_products, self.angle + other.angle,
+                      self.angle_squares + other.angle_squares,
+                      {name: count + other.violations[name] for name, count in self.violations.items()})
+
+
+def _tally(model: ToleranceModel, nominal: np.ndarray, dimensions: np.ndarray) -> _Tally:
+    """Close the built mechanisms of ``dimensions`` (N, n) and tally their deviations from the ``nominal`` motion."""
+    motion = model.sampled(dimensions)
+    closes = np.all(np.isfinite(motion[:, :3]), axis=(1, 2))
+    position = motion[closes, :2] - nominal[:2]
+    angle = np.angle(np.exp(1j * (motion[closes, 2] - nominal[2])))
+    return _Tally(int(closes.sum()), position.sum(axis=0), np.einsum("nit,njt->tij", position, position),
+                  angle.sum(axis=0), (angle ** 2).sum(axis=0),
+                  {name: int(flags.sum()) for name, flags in model.conditions(motion, dimensions).items()})
+
+
 def monte_carlo(model: ToleranceModel, samples: int, seed: int, distribution: str) -> MonteCarlo:
     dimensions = draw(model, samples, seed, distribution)
-    parts = np.array_split(dimensions, -(-samples // CHUNK))
-    motion = np.concatenate(shared_map(model.sampled, [(part,) for part in parts]))
     nominal = model.sampled(model.nominal[None])[0]
-    position = motion[:, :2] - nominal[:2]
-    angle = np.angle(np.exp(1j * (motion[:, 2] - nominal[2])))
-    closes = np.all(np.isfinite(motion[:, :3]), axis=(1, 2))
-    position, angle = position[closes], angle[closes]
-    centred = position - position.mean(axis=0)
-    covariance = np.einsum("nit,njt->tij", centred, centred) / max(len(centred) - 1, 1)
-    violated = model.conditions(motion, dimensions)
-    return MonteCarlo(samples, 3 * np.sqrt(largest_eigenvalue(covariance)), np.degrees(3 * angle.std(axis=0, ddof=1)),
-                      covariance, {name: float(np.mean(flags)) for name, flags in violated.items()},
-                      int(samples - closes.sum()))
+    parts = np.array_split(dimensions, -(-samples // CHUNK))
+    tally = reduce(operator.add, shared_map(partial(_tally, model, nominal), [(part,) for part in parts]))
+    n, mean = tally.closing, tally.position / max(tally.closing, 1)
+    covariance = (tally.position_products - n * np.einsum("it,jt->tij", mean, mean)) / max(n - 1, 1)
+    angle_variance = (tally.angle_squares - tally.angle ** 2 / max(n, 1)) / max(n - 1, 1)
+    return MonteCarlo(samples, 3 * np.sqrt(largest_eigenvalue(covariance)),
+                      np.degrees(3 * np.sqrt(np.maximum(angle_variance, 0))), covariance,
+                      {name: count / samples for name, count in tally.violations.items()}, samples - n)
