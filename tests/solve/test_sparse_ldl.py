@@ -174,5 +174,13 @@ def test_without_the_compiled_file_ipopt_keeps_mumps(monkeypatch):
     monkeypatch.setattr(kkt_solver, "library_path", lambda: None)
     options = ipopt.ipopt_options(ipopt.TOLERANCE, ipopt.MAX_ITERATIONS)
     assert not any(key in options for key in ("ipopt.linear_solver", "ipopt.hsllib", "ipopt.linear_system_scaling"))
+    assert "MUMPS" in kkt_solver.kkt_factorisation()       # what the reports then say
     monkeypatch.undo()
     assert ipopt.ipopt_options(ipopt.TOLERANCE, ipopt.MAX_ITERATIONS)["ipopt.hsllib"] == library_path()
+    assert kkt_solver.kkt_factorisation().startswith("the package's sparse LDL^T")
+
+
+def test_the_main_job_report_names_the_factorisation(example_result):
+    named = kkt_solver.kkt_factorisation()
+    assert example_result.to_json()["nlp"]["kkt_factorisation"] == named
+    assert f"KKT systems factored by {named}." in example_result.to_markdown()

@@ -15,6 +15,7 @@ from transplanter.fivebar.load_report import load_json, load_markdown
 from transplanter.fivebar.nlp import BENDING_WEIGHT
 from transplanter.fivebar.shaft_report import shafts_json, shafts_markdown
 from transplanter.fivebar.solid_files import solids_note
+from transplanter.solve.kkt_solver import kkt_factorisation
 from transplanter.trains.planetary import printed_correction
 from transplanter.trains.report import toothed_train_json, train_size_json, worst_mesh
 from transplanter.trains.toothed_train import TrainSize
@@ -166,7 +167,7 @@ def fivebar_result_json(result: FiveBarResult) -> dict:
                    "start_min_closure_margin": result.start.min_margin},
         "nlp": {"status": design.status, "iterations": design.iterations, "objective": design.objective,
                 "bending_weight": BENDING_WEIGHT, "curvature_floor": design.curvature_floor,
-                "convexity_note": design.convexity_note},
+                "convexity_note": design.convexity_note, "kkt_factorisation": kkt_factorisation()},
         "chosen_key_poses": chosen_key_poses_json(result),
         "key_pose_sets": [{"poses": pose_rows_json(trial.poses, trial.carrier_turns),
                            "feasible_five_bars": trial.feasible, "emptied_by": trial.binding or None}
@@ -280,7 +281,8 @@ def to_markdown(result: FiveBarResult, files: Sequence[str] = ()) -> str:
               f"{int(region.carrier.kept.sum())} of {len(region.carrier.fixed)} A-F dyads within ranges; "
               f"{len(region.feasible)} of {len(region.candidates)} five-bars feasible (removed by: "
               f"{region.pair_defects}).", "",
-              f"NLP: {design.status} in {design.iterations} iterations.", ""]
+              f"NLP: {design.status} in {design.iterations} iterations; KKT systems factored by "
+              f"{kkt_factorisation()}.", ""]
     lines += _chosen_poses_markdown(result)
     lines += ["## Loads (quasi-static, frictionless hinges, a lossless train)", "", *load_markdown(result.loads), "",
               result.pressure.summary(), ""]

@@ -31,3 +31,11 @@ def kkt_solver_options() -> dict[str, str]:
     if path is None:
         return {}
     return {"ipopt.linear_solver": "ma27", "ipopt.hsllib": path, "ipopt.linear_system_scaling": "none"}
+
+
+def kkt_factorisation() -> str:
+    """Which factorisation IPOPT uses in this install, in words: reports name it, since a run without the compiled
+    one is slower."""
+    if library_path() is None:
+        return "IPOPT's bundled MUMPS (the package's own factorisation was not compiled at install)"
+    return "the package's sparse LDL^T (compiled at install)"
