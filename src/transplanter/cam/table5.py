@@ -22,7 +22,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from scipy.optimize import brentq
 
 from transplanter.cam.kinematics import oscillating_start
 from transplanter.cam.support_linkage import ASSEMBLIES, SupportLinkage, support_swing
@@ -74,6 +73,8 @@ def datum_for_swing(assembly: int, swing: float = SWING) -> float | None:
     if not crossings.size:
         return None
     k = crossings[np.argmin(np.abs(grid[crossings]))]          # the datum nearest y = 0
+    from scipy.optimize import brentq  # here: every five-bar run imports this module, few reach this line
+
     return float(brentq(excess, grid[k], grid[k + 1], xtol=1e-12))
 
 
