@@ -96,7 +96,7 @@ class Solver:
     def __init__(self, name: str, layout: NLPLayout, tolerance: float = TOLERANCE,
                  max_iterations: int = MAX_ITERATIONS, stall: StallRule | None = None):
         self.layout, self.name = layout, name
-        self.watch = IterationWatch(layout.x.shape[0], layout.g.shape[0], stall)
+        self.watch = IterationWatch(layout.g.shape[0], stall)
         self.options = {**ipopt_options(tolerance, max_iterations), "iteration_callback": self.watch}
         self.function = self._nlpsol(name, self.options)
         self._warm_function: ca.Function | None = None

@@ -35,9 +35,9 @@ class IterationWatch(ca.Callback):
     """Stops IPOPT after ``limit`` iterations (None: never) or on a stall by ``rule`` (None: never);
     ``watch`` arms it for one solve, ``stalled``, ``count`` and ``stall_text`` say afterwards what happened."""
 
-    def __init__(self, variables: int, rows: int, rule: StallRule | None):
+    def __init__(self, rows: int, rule: StallRule | None):
         ca.Callback.__init__(self)
-        self.variables, self.rows, self.rule = variables, rows, rule
+        self.rows, self.rule = rows, rule
         self.limit: int | None = None
         self.count, self.stalled, self.infeasible_run, self.next_look = 0, False, 0, 0
         self.lbg = self.ubg = self.scales = np.empty(0)
@@ -86,12 +86,8 @@ class IterationWatch(ca.Callback):
         return "stop"
 
     def get_sparsity_in(self, i):
-        name = ca.nlpsol_out(i)
-        if name == "f":
-            return ca.Sparsity.scalar()
-        if name in ("x", "lam_x"):
-            return ca.Sparsity.dense(self.variables)
-        if name in ("g", "lam_g"):
+        """The rows' values g only: an empty input is one CasADi neither converts nor passes each iteration."""
+        if ca.nlpsol_out(i) == "g":
             return ca.Sparsity.dense(self.rows)
         return ca.Sparsity(0, 0)
 
