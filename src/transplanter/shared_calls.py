@@ -18,9 +18,9 @@ Here = TypeVar("Here")
 
 def share_calls(work: Callable[..., Call], calls: Sequence[tuple], here: Callable[[], Here]
                 ) -> tuple[list[Call], Here]:
-    """``work(*call)`` for each of ``calls`` and ``here()``, on two cores where the machine
-    gives a second (module docstring), else in turn here; the calls' results in their order, and ``here()``'s. An
-    exception of either is raised here (the side process then stopped)."""
+    """``work(*call)`` for each of ``calls`` and ``here()``, on two cores where the machine gives a second (module
+    docstring), else in turn here; the calls' results in their order, and ``here()``'s. An exception of either is
+    raised here (the side process then stopped)."""
     started = start_side_process(work, calls)
     if started is None:
         return [work(*call) for call in calls], here()
