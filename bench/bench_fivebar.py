@@ -13,10 +13,10 @@ before numpy loads, for this process and the fresh one of part 4).
 3. Design NLP per region candidate, same problem (the first exchange round: the fixed grid,
    from the candidate itself) and the same objective: the package (IPOPT, exact Hessian)
    against scipy SLSQP given casadi's exact gradient and constraint Jacobian (each evaluated once per
-   point), for two first-round NLPs (``FIRST_ROUNDS``: the curvature rows off, and the main job's
-   refinements' own first solve); each side's failures are timed and counted, and left out of the
-   medians; where a package solve's time goes (evaluations, iteration callback, IPOPT's own work).
-   Then the package's whole refinement of each candidate (every exchange round).
+   point), for two first-round NLPs (``FIRST_ROUNDS``: the curvature rows off, where both sides solve the NLP
+   built without them, and the main job's refinements' own first solve); each side's failures are timed and
+   counted, and left out of the medians; where a package solve's time goes (evaluations, iteration callback,
+   IPOPT's own work). Then the package's whole refinement of each candidate (every exchange round).
 4. The whole main job as the CLI runs it (region, every candidate refined in the two lanes of
    ``fivebar.lanes``, the toothed gears cut and mesh-checked, verification, report, figures,
    drawings and the animation), in a fresh process including start-up; the target is
@@ -177,7 +177,9 @@ def per_candidate(problem, parts: set[int]) -> None:
     nlp = solver.nlp
     hessian_evaluations(nlp.layout, region.feasible[0], nlp, problem)
     for label, (floor, closure) in FIRST_ROUNDS.items():
-        first_rounds(solver, baseline, region.feasible[:CANDIDATES], label, floor, closure)
+        # SLSQP solves the NLP the package solves in that round (without the curvature rows where they are off)
+        round_baseline = baseline if floor is not None else SlsqpBaseline(solver.nlp_for(floor).layout)
+        first_rounds(solver, round_baseline, region.feasible[:CANDIDATES], label, floor, closure)
     refines = []
     for candidate in region.feasible[:CANDIDATES]:
         begin = time.perf_counter()
@@ -197,7 +199,7 @@ def first_rounds(solver: DesignSolver, baseline: SlsqpBaseline, candidates, labe
     """The first round of each candidate, by the package (IPOPT) and by SLSQP from the same start: the fixed
     grid, the curvature rows holding a kappa >= ``floor`` (None: off), t held below the closure margin's
     sin^2 too when ``closure``. A start either side fails from is timed on both and left out of the medians."""
-    nlp, problem = solver.nlp, solver.problem
+    nlp, problem, ipopt = solver.nlp_for(floor), solver.problem, solver.solver_for(floor)
     layout, unit = nlp.layout, length_unit(problem)
     ours, theirs, totals, failed = [], [], [0.0, 0.0], [0, 0]
     print(f"first round, {label}:")
@@ -207,9 +209,9 @@ def first_rounds(solver: DesignSolver, baseline: SlsqpBaseline, candidates, labe
             design = solver.solve(candidate, curvature_floor=floor, closure_in_quality=closure)
             failure, iterations = None, design.iterations
         except SolverError as error:
-            failure, iterations = f"package ended with {error.status}", solver.solver.watch.count
+            failure, iterations = f"package ended with {error.status}", ipopt.watch.count
         package = time.perf_counter() - begin
-        split = ipopt_split(solver.solver.function.stats(), package)
+        split = ipopt_split(ipopt.function.stats(), package)
         values = nlp.start(candidate.mech, candidate.relative_angle, candidate.stroke, problem.return_points,
                            problem.poses, problem.carrier_turns)
         bounds = nlp.bounds(0, floor, values["least_curvature"], closure)

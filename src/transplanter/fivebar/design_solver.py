@@ -1,6 +1,7 @@
 """The design NLP of one problem as one IPOPT solver, reused for every start and exchange round: the
 refinement of a region candidate, its attempt at convex pitch curves and the move of a return point to
-another pass of P.
+another pass of P. The solves that hold no curvature (``without_hold``'s) take a second solver, built at the
+first of them, of the NLP without the curvature rows.
 
 Between grid points the quality, rho' and the curvatures may dip: each solve is checked on
 ``whole_turn``'s fine grid by independent forward kinematics and the library's quadrature of k, and
@@ -27,7 +28,6 @@ from transplanter.fivebar.nlp import (
     ADDED_CAPACITY,
     CONCAVITY_LIMIT,
     CURVATURE_FLOOR,
-    GRID_BLOCKS,
     DesignNLP,
     DesignSolution,
     build_nlp,
@@ -82,6 +82,7 @@ class DesignSolver:
     def _build(self, capacity: int) -> None:
         self.nlp: DesignNLP = build_nlp(self.problem, capacity)
         self.solver = Solver("fivebar_design", self.nlp.layout, stall=STALL)
+        self._without_curvature: tuple[DesignNLP, Solver] | None = None      # built at its first solve
         self.builds += 1
         self.reached: tuple[ReachedOptimum, ...] = ()     # this solver's refinements (``refine``)
         self.repeats = 0                                   # refinements taken from an earlier one
@@ -102,7 +103,7 @@ class DesignSolver:
         added_turns = np.asarray(added_turns, float)
         while len(added_turns) > self.nlp.capacity:
             self._build(2 * self.nlp.capacity)
-        nlp, branch = self.nlp, float(start.mech.branch)
+        nlp, solver, branch = self.nlp_for(curvature_floor), self.solver_for(curvature_floor), float(start.mech.branch)
         if warm is None:
             assert start.relative_angle is not None and start.stroke is not None, "a feasible region candidate"
             poses, turns = start.key_poses(self.problem)
@@ -110,13 +111,29 @@ class DesignSolver:
         else:
             values = nlp.start(warm.mech, warm.relative_angle, warm.stroke, warm.reached_return_points, warm.poses,
                                warm.carrier_turns)
-        solution = self.solver.solve(
+        solution = solver.solve(
             values, nlp.bounds(len(added_turns), curvature_floor, float(values["least_curvature"]), closure_in_quality),
             nlp.parameters(branch, added_turns), iteration_limit,
             failure=f"{self.problem.source}: the design NLP did not converge from the region candidate",
             continues=warm.multipliers if continues and warm is not None and warm.multipliers is not None
             and warm.multipliers.fits(nlp.layout) else None)
         return nlp.design(solution, branch, curvature_floor)
+
+    def nlp_for(self, curvature_floor: float | None) -> DesignNLP:
+        """The NLP a solve with ``curvature_floor`` takes: without the curvature rows where it is None."""
+        return self._nlp_and_solver(curvature_floor)[0]
+
+    def solver_for(self, curvature_floor: float | None) -> Solver:
+        """The IPOPT solver of ``nlp_for(curvature_floor)``."""
+        return self._nlp_and_solver(curvature_floor)[1]
+
+    def _nlp_and_solver(self, curvature_floor: float | None) -> tuple[DesignNLP, Solver]:
+        if curvature_floor is not None:
+            return self.nlp, self.solver
+        if self._without_curvature is None:
+            nlp = build_nlp(self.problem, self.nlp.capacity, curvature_rows=False)
+            self._without_curvature = nlp, Solver("fivebar_design_without_curvature", nlp.layout, stall=STALL)
+        return self._without_curvature
 
     def refine(self, start: Candidate) -> DesignSolution:
         """The largest smallest transmission angle from ``start`` with every pitch curve a shaper can cut:
@@ -211,8 +228,8 @@ class DesignSolver:
 
         solution, added = exchange(solve, worst_turns, self.exchange_turns, EXCHANGE_ROUNDS, warm, first)
         assert solution.solved is not None, "a solve's design carries its solution"
-        self.exchange_turns = handed_turns(solution.solved, GRID_BLOCKS, self.nlp.fixed_points, added,
-                                           self.nlp.capacity // 2)
+        nlp = self.nlp_for(curvature_floor)
+        self.exchange_turns = handed_turns(solution.solved, nlp.grid_blocks, nlp.fixed_points, added, nlp.capacity // 2)
         # a lane's result leaves the solution (and the NLP) behind; its multipliers, plain arrays, go with it
         return dataclasses.replace(solution, solved=None)
 
