@@ -23,6 +23,11 @@ Two uses:
 """
 from __future__ import annotations
 
+import contextlib
+from collections.abc import Iterator
+from contextvars import ContextVar
+from functools import partial
+
 import numpy as np
 import shapely
 
@@ -31,6 +36,7 @@ from transplanter.gears.pinion_cutter import shaper_cutter
 from transplanter.gears.rack_teeth import ADDENDUM, DEDENDUM, PitchTable
 from transplanter.geometry.outline_thinning import thinned
 from transplanter.geometry.planar import TWO_PI, modulo
+from transplanter.side_process import Twin
 
 #: Width of the pitch-arc bins (modules): a few micrometres at gear sizes.
 BIN_MODULES = 0.002
@@ -46,6 +52,20 @@ CONVERGED_MODULES = 1e-12
 SEGMENT_BLOCK = 16384
 #: Levels of run maxima that decide whether a segment can cut (runs of up to 2^(levels - 1) bins).
 RUN_LEVELS = 11
+
+#: The twin process cutting the same envelopes in step (``shared_with``), or None.
+_twin: ContextVar[Twin | None] = ContextVar("twin", default=None)
+
+
+@contextlib.contextmanager
+def shared_with(twin: Twin | None) -> Iterator[None]:
+    """Within it, each envelope is cut half here and half by ``twin``'s other process, which cuts the same envelopes
+    in the same order (``side_process.twinned``), to the outline one process cuts; with None, all here."""
+    token = _twin.set(twin)
+    try:
+        yield
+    finally:
+        _twin.reset(token)
 
 
 def _polar(points: np.ndarray):
@@ -69,11 +89,12 @@ def _rigid_placement(turn: np.ndarray, offset: np.ndarray):
     return place
 
 
-def _positions(points: np.ndarray, facing: np.ndarray, reach: float, place, chunk: int = 24):
+def _positions(points: np.ndarray, facing: np.ndarray, reach: float, place, chunks: slice = slice(None),
+               chunk: int = 24):
     """``points``, a closed outline, placed at its positions (``place(points, rows) -> (rows, W, 2)``) a chunk of
-    positions at a time, with the outline's edges among the placed vertices: the flat indices (into rows x W) of
-    both ends of each edge the chunk keeps. Chunks share their last and first rows, whose edges count once, in
-    the later chunk.
+    positions at a time (the chunks ``chunks`` selects), with the outline's edges among the placed vertices: the
+    flat indices (into rows x W) of both ends of each edge the chunk keeps. Chunks share their last and first
+    rows, whose edges count once, in the later chunk.
 
     Between positions k and k + 1 the region the outline sweeps is the outline at k together with the
     quadrilaterals its edges sweep: its boundary lies on the edges at k and on each vertex's chord from k to
@@ -82,7 +103,7 @@ def _positions(points: np.ndarray, facing: np.ndarray, reach: float, place, chun
     """
     angle, _ = _polar(points)
     last = len(facing) - 1
-    for first in range(0, last, chunk):
+    for first in range(0, last, chunk)[chunks]:
         rows = np.arange(first, min(first + chunk, last) + 1)
         middle = (facing[rows].max() + facing[rows].min()) / 2
         half = (facing[rows].max() - facing[rows].min()) / 2 + reach
@@ -186,7 +207,8 @@ def _cutting(h_a: np.ndarray, h_b: np.ndarray, tip_height: float) -> np.ndarray:
 
 def _lower_envelope(table: PitchTable, tip_height: float, module: float, positions) -> np.ndarray:
     """Blank (heights up to ``tip_height`` over the pitch curve) cut down by the region an outline sweeps through
-    ``positions`` (``_positions``, in the gear frame), in the pitch curve's normal coordinates (s, h).
+    ``positions`` (``_positions``, in the gear frame), in the pitch curve's normal coordinates (s, h): the height
+    left on each bin of arc length.
 
     Each bin of arc length keeps the lowest height any bounding segment (an edge at a position, a vertex's
     chord between positions) reaches over it, taken at the segment's ends and where it crosses the bin's
@@ -232,8 +254,20 @@ def _lower_envelope(table: PitchTable, tip_height: float, module: float, positio
     for segments in (chords, edges):
         lowest = np.minimum(height, np.minimum(at_edge, np.roll(at_edge, -1)))      # a bin meets both its edges
         _cut(at_edge, lowest, width, perimeter, np.concatenate(segments, axis=1))
-    height = np.minimum(height, np.minimum(at_edge, np.roll(at_edge, -1)))
-    point, _, normal = table.at((np.arange(count) + 0.5) * width)
+    return np.minimum(height, np.minimum(at_edge, np.roll(at_edge, -1)))
+
+
+def _envelope(table: PitchTable, tip_height: float, module: float, positions) -> np.ndarray:
+    """Outline of the blank cut down by the outline ``positions(chunks=...)`` sweeps (``_positions``): the lowest
+    height of each bin (``_lower_envelope``) over all chunks, or, within ``shared_with``, over every other chunk
+    here and the rest in the twin process, the lower of the two (a bin's height is the least over positions)."""
+    twin = _twin.get()
+    if twin is None:
+        height = _lower_envelope(table, tip_height, module, positions(chunks=slice(None)))
+    else:
+        mine = _lower_envelope(table, tip_height, module, positions(chunks=slice(twin.index, None, 2)))
+        height = np.minimum(mine, twin.swap(mine))
+    point, _, normal = table.at((np.arange(len(height)) + 0.5) * (table.perimeter / len(height)))
     return point + height[:, None] * normal
 
 
@@ -260,8 +294,8 @@ def shaper_profile(table: PitchTable, module: float, alpha: float, cutter_teeth:
     local_facing = np.unwrap(psi) - turn
     reach = 2.5 * (ADDENDUM + DEDENDUM) * module / radius
 
-    return _lower_envelope(table, ADDENDUM * module, module, _positions(
-        _short_edges(cutter, table, module), local_facing, reach, _rigid_placement(turn, center)))
+    return _envelope(table, ADDENDUM * module, module, partial(
+        _positions, _short_edges(cutter, table, module), local_facing, reach, _rigid_placement(turn, center)))
 
 
 def mate_profile(design: GearPairDesign, driver_outline: np.ndarray, driven: PitchTable, module: float,
@@ -281,4 +315,4 @@ def mate_profile(design: GearPairDesign, driver_outline: np.ndarray, driven: Pit
     place = _rigid_placement(-phi1 - phi2, -design.center_distance * np.c_[np.cos(phi2), -np.sin(phi2)])
     # the driver's one-per-bin vertices, thinned where they stay within a hair of their chords
     cutter = _short_edges(thinned(driver_outline, SIMPLIFY_MODULES * module), driven, module)
-    return _lower_envelope(driven, ADDENDUM * module, module, _positions(cutter, phi1, reach, place))
+    return _envelope(driven, ADDENDUM * module, module, partial(_positions, cutter, phi1, reach, place))
