@@ -127,7 +127,7 @@ class _AloneTwin:
 
 @pytest.mark.parametrize("gear", ["shaper-cut driver", "driven gear swept by the driver"])
 def test_halves_cut_by_twins_merge_to_the_whole_cut(gear):
-    """Each twin cuts every other chunk of an envelope's positions; on each bin (along the same normal) the lower
+    """Each twin cuts half the chunks of an envelope's positions; on each bin (along the same normal) the lower
     of the two halves' outlines is the outline one process cuts, to the last bit, and neither half is it alone."""
     design = _ellipse_pair()
     tables = driver_table(design), driven_table(design)

@@ -52,6 +52,9 @@ CONVERGED_MODULES = 1e-12
 SEGMENT_BLOCK = 16384
 #: Levels of run maxima that decide whether a segment can cut (runs of up to 2^(levels - 1) bins).
 RUN_LEVELS = 11
+#: The level of run maxima for a segment crossing n bin edges: floor(log2(n + 1)), at most RUN_LEVELS - 1 (taken
+#: clipped, for any n).
+_RUN_LEVEL = np.minimum(np.floor(np.log2(np.arange(1, 2 ** RUN_LEVELS + 1))), RUN_LEVELS - 1).astype(np.intp)
 
 #: The twin process cutting the same envelopes in step (``shared_with``), or None.
 _twin: ContextVar[Twin | None] = ContextVar("twin", default=None)
@@ -89,12 +92,12 @@ def _rigid_placement(turn: np.ndarray, offset: np.ndarray):
     return place
 
 
-def _positions(points: np.ndarray, facing: np.ndarray, reach: float, place, chunks: slice = slice(None),
+def _positions(points: np.ndarray, facing: np.ndarray, reach: float, place, share: tuple[int, int] = (0, 1),
                chunk: int = 24):
     """``points``, a closed outline, placed at its positions (``place(points, rows) -> (rows, W, 2)``) a chunk of
-    positions at a time (the chunks ``chunks`` selects), with the outline's edges among the placed vertices: the
-    flat indices (into rows x W) of both ends of each edge the chunk keeps. Chunks share their last and first
-    rows, whose edges count once, in the later chunk.
+    positions at a time, with the outline's edges among the placed vertices: the flat indices (into rows x W) of
+    both ends of each edge the chunk keeps. Chunks share their last and first rows, whose edges count once, in
+    the later chunk. ``share`` = (part, parts): the chunks of that part of as many runs of consecutive chunks.
 
     Between positions k and k + 1 the region the outline sweeps is the outline at k together with the
     quadrilaterals its edges sweep: its boundary lies on the edges at k and on each vertex's chord from k to
@@ -103,7 +106,9 @@ def _positions(points: np.ndarray, facing: np.ndarray, reach: float, place, chun
     """
     angle, _ = _polar(points)
     last = len(facing) - 1
-    for first in range(0, last, chunk)[chunks]:
+    starts = range(0, last, chunk)
+    part, parts = share
+    for first in starts[len(starts) * part // parts:len(starts) * (part + 1) // parts]:
         rows = np.arange(first, min(first + chunk, last) + 1)
         middle = (facing[rows].max() + facing[rows].min()) / 2
         half = (facing[rows].max() - facing[rows].min()) / 2 + reach
@@ -171,9 +176,10 @@ def _cut(at_edge: np.ndarray, lowest: np.ndarray, width: float, perimeter: float
         first = np.floor(start / width).astype(int)
         crossed = np.floor((start + run) / width).astype(int) - first     # bin edges crossed
         low = np.mod(first, count)                                         # bins low to low + crossed
-        level = np.minimum(np.frexp(crossed + 1)[1] - 1, RUN_LEVELS - 1)   # floor(log2(crossed + 1))
+        level = _RUN_LEVEL.take(crossed, mode="clip")
         high = np.minimum(low + crossed - np.left_shift(1, level) + 1, count - 1)  # inf where past the end
-        reached = np.maximum(runs.take(level * count + low), runs.take(level * count + high))
+        row = level * count
+        reached = np.maximum(runs.take(row + low), runs.take(row + high))
         some = np.flatnonzero((crossed > 0) & ((crossed >= 2 ** RUN_LEVELS - 1) | (np.minimum(h_a, h_b) < reached)))
         back, h_a, h_b = back[some], h_a[some], h_b[some]
         h_a, h_b = np.where(back, h_b, h_a), np.where(back, h_a, h_b)
@@ -258,14 +264,16 @@ def _lower_envelope(table: PitchTable, tip_height: float, module: float, positio
 
 
 def _envelope(table: PitchTable, tip_height: float, module: float, positions) -> np.ndarray:
-    """Outline of the blank cut down by the outline ``positions(chunks=...)`` sweeps (``_positions``): the lowest
-    height of each bin (``_lower_envelope``) over all chunks, or, within ``shared_with``, over every other chunk
-    here and the rest in the twin process, the lower of the two (a bin's height is the least over positions)."""
+    """Outline of the blank cut down by the outline ``positions(share=...)`` sweeps (``_positions``): the lowest
+    height of each bin (``_lower_envelope``) over all chunks, or, within ``shared_with``, over one half of the
+    chunks here and the other in the twin process, the lower of the two (a bin's height is the least over
+    positions). Halves of consecutive chunks, not every other chunk: a segment that cannot lower the bins it
+    crosses is passed over (``_cut``), and each half's heights reach low over its own stretch of the curve."""
     twin = _twin.get()
     if twin is None:
-        height = _lower_envelope(table, tip_height, module, positions(chunks=slice(None)))
+        height = _lower_envelope(table, tip_height, module, positions(share=(0, 1)))
     else:
-        mine = _lower_envelope(table, tip_height, module, positions(chunks=slice(twin.index, None, 2)))
+        mine = _lower_envelope(table, tip_height, module, positions(share=(twin.index, 2)))
         height = np.minimum(mine, twin.swap(mine))
     point, _, normal = table.at((np.arange(len(height)) + 0.5) * (table.perimeter / len(height)))
     return point + height[:, None] * normal
