@@ -178,7 +178,9 @@ def twinned(work: Callable[[Twin | None], Here]) -> Here:
     """``work(twin)`` here and in a side process at once (``twin.index`` 0 and 1), in step; this process's result.
     The side process's result, warnings and progress lines are dropped (this process gives its own); its error,
     where it ends before a swap, is raised here. Where no side process may run, ``work(None)`` here."""
-    here, there = multiprocessing.get_context("fork").Pipe()
+    if not may_fork():
+        return work(None)
+    here, there = multiprocessing.Pipe()
     started = start_side_process(partial(_twin_there, work, there, here), [()])
     there.close()                   # the side process holds its own end: its ending closes the pipe
     if started is None:

@@ -114,7 +114,7 @@ def _positions(points: np.ndarray, facing: np.ndarray, reach: float, place, shar
         half = (facing[rows].max() - facing[rows].min()) / 2 + reach
         near = np.abs(modulo(angle - middle + np.pi, 2 * np.pi) - np.pi) <= half
         index = np.flatnonzero(near)
-        edge = np.flatnonzero(near & np.roll(near, -1))
+        edge = np.flatnonzero(near & np.append(near[1:], near[0]))
         edged = len(rows) - (rows[-1] != last)          # the last position also keeps its edges
         row_start = len(index) * np.arange(edged)[:, None]
         yield (place(points[index], rows), (row_start + np.searchsorted(index, edge)).ravel(),
