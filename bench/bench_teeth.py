@@ -75,6 +75,10 @@ def former_cut(at_edge, width, perimeter, ends):
     np.minimum.at(at_edge, edge % len(at_edge), h_a[segment] + (edge * width - s_a[segment]) * slope[segment])
 
 
+def former_polar(points):
+    return np.arctan2(points[..., 1], points[..., 0]), points[..., 0] ** 2 + points[..., 1] ** 2
+
+
 def former_lower_envelope(table, tip_height, module, positions):
     perimeter = table.perimeter
     count = int(np.ceil(perimeter / (swept_teeth.BIN_MODULES * module)))
@@ -82,10 +86,10 @@ def former_lower_envelope(table, tip_height, module, positions):
     height, at_edge = np.full(count, tip_height), np.full(count, tip_height)
     samples = cKDTree(table.points[:-1])
     tip = table.points + (tip_height + swept_teeth.MARGIN_MODULES * module) * table.normals
-    tip_angle, tip_squared = swept_teeth._polar(tip)
+    tip_angle, tip_squared = former_polar(tip)
     order = np.argsort(tip_angle)
     for cloud, first_ends, second_ends in positions:
-        angle, squared = swept_teeth._polar(cloud)
+        angle, squared = former_polar(cloud)
         near = squared < np.interp(angle, tip_angle[order], tip_squared[order], period=2 * np.pi)
         grown = swept_teeth._with_segment_ends(near, first_ends, second_ends)
         s, h = np.zeros(near.shape), np.full(near.shape, np.inf)

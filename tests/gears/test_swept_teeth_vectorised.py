@@ -65,7 +65,8 @@ def _per_position_heights(table, tip_height, outline, place, positions):
         for end in (0, 1):
             projected[pairs[:, end][inside[pairs].any(axis=1)]] = True
         s, h = np.zeros(len(points)), np.full(len(points), np.inf)
-        s[projected], h[projected] = table.normal_coordinates(points[projected], radial_arc(angle[projected]),
+        s[projected], h[projected] = table.normal_coordinates(points[projected],
+                                                              radial_arc(swept_teeth._polar(points[projected])[0]),
                                                               swept_teeth.CONVERGED_MODULES * MODULE)
         below = h < tip_height
         for j in np.flatnonzero(below):

@@ -35,7 +35,7 @@ from transplanter.gears.pair import GearPairDesign, driven_angle
 from transplanter.gears.pinion_cutter import shaper_cutter
 from transplanter.gears.rack_teeth import ADDENDUM, DEDENDUM, PitchTable
 from transplanter.geometry.outline_thinning import thinned
-from transplanter.geometry.planar import TWO_PI, modulo
+from transplanter.geometry.planar import DIAMOND_TURN, diamond_angle, modulo
 from transplanter.side_process import Twin
 
 #: Width of the pitch-arc bins (modules): a few micrometres at gear sizes.
@@ -72,8 +72,10 @@ def shared_with(twin: Twin | None) -> Iterator[None]:
 
 
 def _polar(points: np.ndarray):
-    """Polar angle (rad, -pi to pi) and squared radius of points (..., 2)."""
-    return np.arctan2(points[..., 1], points[..., 0]), points[..., 0] ** 2 + points[..., 1] ** 2
+    """Diamond angle (``planar.diamond_angle``, -1 to 3, in the order of the polar angle) and squared radius of
+    points (..., 2)."""
+    x, y = points[..., 0], points[..., 1]
+    return diamond_angle(x, y), x * x + y * y
 
 
 def _rigid_placement(turn: np.ndarray, offset: np.ndarray):
@@ -104,7 +106,7 @@ def _positions(points: np.ndarray, facing: np.ndarray, reach: float, place, shar
     k + 1 (the fold inside a swept edge, where the envelope touches, is met to second order in the step).
     Only the vertices whose polar angle (own frame) is within ``reach`` of ``facing`` take part.
     """
-    angle, _ = _polar(points)
+    angle = np.arctan2(points[:, 1], points[:, 0])
     last = len(facing) - 1
     starts = range(0, last, chunk)
     part, parts = share
@@ -135,13 +137,13 @@ def _short_edges(outline: np.ndarray, table: PitchTable, module: float) -> np.nd
 
 
 def _radial_arc(table: PitchTable):
-    """Arc length on the pitch curve of a polar angle (rad): where the ray at that angle meets the curve (a pitch
-    curve turns about its centre, so each ray meets it once). Near the curve this is close to the foot of a
-    point's normal, a start for ``PitchTable.normal_coordinates``."""
-    angle = table.orientation * np.unwrap(np.arctan2(table.points[:, 1], table.points[:, 0]))
+    """Arc length on the pitch curve of a direction (its diamond angle, ``_polar``): where the ray that way meets
+    the curve (a pitch curve turns about its centre, so each ray meets it once), interpolated between the samples.
+    Near the curve this is close to the foot of a point's normal, a start for ``PitchTable.normal_coordinates``."""
+    angle = table.orientation * np.unwrap(_polar(table.points)[0], period=DIAMOND_TURN)
 
-    def arc(polar_angle: np.ndarray) -> np.ndarray:
-        return np.interp(angle[0] + modulo(table.orientation * polar_angle - angle[0], 2 * np.pi), angle, table.arc)
+    def arc(direction: np.ndarray) -> np.ndarray:
+        return np.interp(angle[0] + modulo(table.orientation * direction - angle[0], DIAMOND_TURN), angle, table.arc)
 
     return arc
 
@@ -227,17 +229,17 @@ def _lower_envelope(table: PitchTable, tip_height: float, module: float, positio
     height, at_edge = np.full(count, tip_height), np.full(count, tip_height)
     radial_arc, tolerance = _radial_arc(table), CONVERGED_MODULES * module
     # polar radius of the blank's tip, a little grown: points beyond it cut nothing; tabulated over one turn of
-    # angle from 0, a sample beyond each end
+    # direction from 0, a sample beyond each end
     tip_angle, tip_squared = _polar(table.points + (tip_height + MARGIN_MODULES * module) * table.normals)
-    tip_angle = modulo(tip_angle, TWO_PI)
+    tip_angle = modulo(tip_angle, DIAMOND_TURN)
     order = np.argsort(tip_angle)
-    tip_angle = np.r_[tip_angle[order[-1]] - TWO_PI, tip_angle[order], tip_angle[order[0]] + TWO_PI]
+    tip_angle = np.r_[tip_angle[order[-1]] - DIAMOND_TURN, tip_angle[order], tip_angle[order[0]] + DIAMOND_TURN]
     tip_squared = tip_squared[np.r_[order[-1], order, order[0]]]
     edges: list[np.ndarray] = []
     chords: list[np.ndarray] = []
     for cloud, first_ends, second_ends in positions:
         angle, squared = _polar(cloud)
-        near = squared < np.interp(modulo(angle, TWO_PI), tip_angle, tip_squared)
+        near = squared < np.interp(modulo(angle, DIAMOND_TURN), tip_angle, tip_squared)
         projected = np.flatnonzero(_with_segment_ends(near, first_ends, second_ends))
         # s and h of every placed vertex (flat), h infinite where not projected
         s, h = np.zeros(near.size), np.full(near.size, np.inf)
