@@ -153,7 +153,7 @@ class Twin:
     def __init__(self, index: int, connection: Connection, side: Future | None = None):
         self.index = index
         self._connection = connection
-        self._side = side           # here: the side process's call, whose error ends a swap it left
+        self._side = side           # here: the side process's call, whose error a broken swap raises
 
     def swap(self, value: Any) -> Any:
         """The other process's ``value`` for this one's, both at the same step of their work. This process sends
