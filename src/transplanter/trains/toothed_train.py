@@ -424,7 +424,8 @@ def cut_stages(stages: tuple[GearPairDesign, GearPairDesign], module: float, pre
     stages' sizes (all here where no side process may run). Processes, not threads: the cut is many small numpy
     operations, and between them two threads wait for the interpreter lock (on the main job's stages two threads
     took longer than one after the other, 1.95 s against 1.47). A stage to each process left one core idle while
-    the larger stage (77 teeth against 57 on the main job) was cut."""
+    the larger stage (77 teeth against 57 on the main job) was cut: 0.92-1.10 s in quiet moments, where the
+    envelopes shared take 0.79-0.92 s."""
 
     def cut_both(twin: Twin | None) -> tuple[PairTeeth, PairTeeth]:
         with shared_with(twin):
