@@ -4,9 +4,10 @@
 
 The stages are those of the five-bar example's planetary train (examples/vegetable_planting.toml: 57 and 77
 shaper-cut teeth of module 1.5 in today's design, a 16-tooth shaper). Both sides run from this process on the
-same pitch curves through ``generate_teeth``, both stages at once as the main job cuts them
-(``trains.toothed_train.cut_stages``: stage two in a forked side process, on Linux with a second core; the
-former cut is patched in before the fork), best of three each (CPU time: both processes'):
+same pitch curves through ``generate_teeth``, both stages as the main job cuts them
+(``trains.toothed_train.cut_stages``: here and in a forked side process at once, on Linux with a second core,
+each envelope's positions shared between the two; the former cut is patched in before the fork), best of three
+each (CPU time: both processes'):
 
 - the package: every point's normal foot converged by Newton's method from where the ray through the gear's
   centre meets the pitch curve; segments cut after all positions are projected, passed over where they stay
@@ -74,6 +75,10 @@ def former_cut(at_edge, width, perimeter, ends):
     np.minimum.at(at_edge, edge % len(at_edge), h_a[segment] + (edge * width - s_a[segment]) * slope[segment])
 
 
+def former_polar(points):
+    return np.arctan2(points[..., 1], points[..., 0]), points[..., 0] ** 2 + points[..., 1] ** 2
+
+
 def former_lower_envelope(table, tip_height, module, positions):
     perimeter = table.perimeter
     count = int(np.ceil(perimeter / (swept_teeth.BIN_MODULES * module)))
@@ -81,10 +86,10 @@ def former_lower_envelope(table, tip_height, module, positions):
     height, at_edge = np.full(count, tip_height), np.full(count, tip_height)
     samples = cKDTree(table.points[:-1])
     tip = table.points + (tip_height + swept_teeth.MARGIN_MODULES * module) * table.normals
-    tip_angle, tip_squared = swept_teeth._polar(tip)
+    tip_angle, tip_squared = former_polar(tip)
     order = np.argsort(tip_angle)
     for cloud, first_ends, second_ends in positions:
-        angle, squared = swept_teeth._polar(cloud)
+        angle, squared = former_polar(cloud)
         near = squared < np.interp(angle, tip_angle[order], tip_squared[order], period=2 * np.pi)
         grown = swept_teeth._with_segment_ends(near, first_ends, second_ends)
         s, h = np.zeros(near.shape), np.full(near.shape, np.inf)
@@ -96,9 +101,7 @@ def former_lower_envelope(table, tip_height, module, positions):
         former_cut(at_edge, width, perimeter, (s[at][cuts], h[at][cuts], s[after][cuts], h[after][cuts]))
         cuts = (keep[:-1] | keep[1:]) & grown[:-1] & grown[1:]
         former_cut(at_edge, width, perimeter, (s[:-1][cuts], h[:-1][cuts], s[1:][cuts], h[1:][cuts]))
-    height = np.minimum(height, np.minimum(at_edge, np.roll(at_edge, -1)))
-    point, _, normal = table.at((np.arange(count) + 0.5) * width)
-    return point + height[:, None] * normal
+    return np.minimum(height, np.minimum(at_edge, np.roll(at_edge, -1)))
 
 
 def former(function):

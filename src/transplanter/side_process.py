@@ -9,6 +9,10 @@ parallelism), or where the system refuses the process or its semaphores
 (a sandbox), it gives None and the caller does the work here, in turn. The fork copies this process as it is,
 so ``work`` may be a closure over objects that do not pickle (CasADi Functions); only calls and results cross.
 
+``twinned(work)`` runs the same ``work`` here and in a side process at once, in step: each shares the work by
+its ``Twin`` (which of the two it is) and swaps what it did for what the other did (``Twin.swap``); this
+process's result is kept.
+
 The forked process ignores Ctrl-C (sent to the whole process group): its parent stops it (``SideProcess.stop``)
 and waits until it has ended, so nothing of it outlives the run or writes after the run has cleaned up.
 """
@@ -24,6 +28,8 @@ import warnings
 from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import BrokenExecutor, Future, ProcessPoolExecutor
 from contextvars import ContextVar
+from functools import partial
+from multiprocessing.connection import Connection
 from multiprocessing.reduction import ForkingPickler
 from typing import Any, TypeVar
 
@@ -138,6 +144,63 @@ def side_by_side(there: Callable[[], There], here: Callable[[], Here]) -> tuple[
         raise
     side.close()
     return result, mine
+
+
+class Twin:
+    """One of the two processes running the same work in step (``twinned``): its ``index`` (0 here, 1 in the side
+    process) and the connection to the other."""
+
+    def __init__(self, index: int, connection: Connection, side: Future | None = None):
+        self.index = index
+        self._connection = connection
+        self._side = side           # here: the side process's call, whose error a broken swap raises
+
+    def swap(self, value: Any) -> Any:
+        """The other process's ``value`` for this one's, both at the same step of their work. This process sends
+        first and the side process receives first, so neither waits to send while the other does. Here, where the
+        side process ended before it swapped, its error is raised."""
+        try:
+            if self.index == 0:
+                self._connection.send(value)
+                return self._connection.recv()
+            theirs = self._connection.recv()
+            self._connection.send(value)
+            return theirs
+        except (EOFError, OSError):
+            if self._side is None:
+                raise
+            outcome(self._side)
+            raise TransplanterError("a side process ended its work without swapping what it did; expected both "
+                                    "processes to run the same steps") from None
+
+
+def twinned(work: Callable[[Twin | None], Here]) -> Here:
+    """``work(twin)`` here and in a side process at once (``twin.index`` 0 and 1), in step; this process's result.
+    The side process's result, warnings and progress lines are dropped (this process gives its own); its error,
+    where it ends before a swap, is raised here. Where no side process may run, ``work(None)`` here."""
+    if not may_fork():
+        return work(None)
+    here, there = multiprocessing.Pipe()
+    started = start_side_process(partial(_twin_there, work, there, here), [()])
+    there.close()                   # the side process holds its own end: its ending closes the pipe
+    if started is None:
+        here.close()
+        return work(None)
+    side, (future,) = started
+    try:
+        return work(Twin(0, here, future))
+    finally:
+        side.stop()                 # what is left of its work repeats this process's
+        here.close()
+
+
+def _twin_there(work: Callable[[Twin], Any], there: Connection, here: Connection) -> None:
+    """In the side process: ``work`` as twin 1, its end of the pipe closed when it returns or raises."""
+    here.close()
+    try:
+        work(Twin(1, there))
+    finally:
+        there.close()
 
 
 def _install(work: Callable[..., Any]) -> None:

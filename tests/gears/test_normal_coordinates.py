@@ -14,6 +14,7 @@ from transplanter.gears.problem import load_problem
 from transplanter.gears.rack_teeth import PitchTable
 from transplanter.gears.synthesis import synthesize
 from transplanter.gears.teeth import driven_table, driver_table
+from transplanter.geometry.planar import DIAMOND_TURN, diamond_angle, modulo
 
 MODULE, ALPHA, CUTTER_TEETH = 2.0, np.radians(20), 16
 #: Half the bisection's first bracket about the nearest sample, in modules.
@@ -101,8 +102,19 @@ def test_points_by_a_corner_get_a_foot_on_their_side_of_the_gear():
     s = np.repeat(corners, 4000) + generator.uniform(-module, module, 4000 * len(corners))
     foot, _, normal = table.at(s)
     points = foot + generator.uniform(-2.5 * module, 1.5 * module, (len(s), 1)) * normal
-    start = swept_teeth._radial_arc(table)(np.arctan2(points[:, 1], points[:, 0]))
+    start = swept_teeth._radial_arc(table)(swept_teeth._polar(points)[0])
     arc, height = table.normal_coordinates(points, start, 1e-12 * module)
     foot, _, normal = table.at(arc)
     assert np.abs(foot + height[:, None] * normal - points).max() < 1e-9
     assert (np.abs(height) < np.hypot(table.points[:, 0], table.points[:, 1]).min()).all()
+
+
+def test_the_diamond_angle_orders_directions_as_the_polar_angle():
+    """Round a turn of directions from -x (at any distance) the diamond angle rises by one turn, a quarter turn
+    from each axis to the next; the radial arc's interpolation needs only that order."""
+    angle = np.linspace(-np.pi, np.pi, 20001)[:-1]
+    distance = np.random.default_rng(3).uniform(0.1, 100, angle.size)
+    diamond = diamond_angle(distance * np.cos(angle), distance * np.sin(angle))
+    rise = np.diff(np.r_[diamond, diamond[0] + DIAMOND_TURN] - diamond[0])
+    assert (modulo(rise, DIAMOND_TURN) > 0).all() and np.isclose(modulo(rise, DIAMOND_TURN).sum(), DIAMOND_TURN)
+    assert diamond_angle(np.array([1.0, 0.0, -1.0, 0.0]), np.array([0.0, 2.0, 0.0, -3.0])).tolist() == [0, 1, 2, -1]

@@ -65,7 +65,8 @@ def _per_position_heights(table, tip_height, outline, place, positions):
         for end in (0, 1):
             projected[pairs[:, end][inside[pairs].any(axis=1)]] = True
         s, h = np.zeros(len(points)), np.full(len(points), np.inf)
-        s[projected], h[projected] = table.normal_coordinates(points[projected], radial_arc(angle[projected]),
+        s[projected], h[projected] = table.normal_coordinates(points[projected],
+                                                              radial_arc(swept_teeth._polar(points[projected])[0]),
                                                               swept_teeth.CONVERGED_MODULES * MODULE)
         below = h < tip_height
         for j in np.flatnonzero(below):
@@ -113,3 +114,38 @@ def test_envelope_matches_the_per_position_reference(gear, monkeypatch):
     foot, _, normal = table.at((np.arange(len(height)) + 0.5) * width)
     assert np.abs(outline - (foot + height[:, None] * normal)).max() < 1e-9
     assert height.min() < 0      # the teeth were cut, not the bare blank
+
+
+class _AloneTwin:
+    """A twin whose other process cut nothing: each half's own cut comes out."""
+
+    def __init__(self, index: int):
+        self.index = index
+
+    def swap(self, value):
+        return np.full_like(value, np.inf)
+
+
+@pytest.mark.parametrize("gear", ["shaper-cut driver", "driven gear swept by the driver"])
+def test_halves_cut_by_twins_merge_to_the_whole_cut(gear):
+    """Each twin cuts half the chunks of an envelope's positions; on each bin (along the same normal) the lower
+    of the two halves' outlines is the outline one process cuts, to the last bit, and neither half is it alone."""
+    design = _ellipse_pair()
+    tables = driver_table(design), driven_table(design)
+    driver = swept_teeth.shaper_profile(tables[0], MODULE, ALPHA, CUTTER_TEETH)
+
+    def cut():
+        if gear == "shaper-cut driver":
+            return swept_teeth.shaper_profile(tables[0], MODULE, ALPHA, CUTTER_TEETH)
+        return swept_teeth.mate_profile(design, driver, tables[1], MODULE)
+
+    whole = cut()
+    halves = []
+    for index in (0, 1):
+        with swept_teeth.shared_with(_AloneTwin(index)):
+            halves.append(cut())
+    table = tables[0] if gear == "shaper-cut driver" else tables[1]
+    foot, _, normal = table.at((np.arange(len(whole)) + 0.5) * (table.perimeter / len(whole)))
+    first, second = (np.sum((half - foot) * normal, axis=1) for half in halves)
+    assert not any(np.allclose(half, whole) for half in halves)
+    assert np.array_equal(np.where((first <= second)[:, None], *halves), whole)

@@ -2,15 +2,17 @@
 layout, where each gear sits, the rack/shaper choice with its numbers, and bad [gears] input."""
 import dataclasses
 import math
+import os
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from transplanter import side_process
-from transplanter.errors import ProblemError
+from transplanter.errors import InfeasibleError, ProblemError
 from transplanter.fivebar.problem import load_problem, parse_problem
 from transplanter.fivebar.relative_angle import RelativeAngle
+from transplanter.gears import swept_teeth
 from transplanter.gears.pair import arc_lengths
 from transplanter.gears.teeth import generate_teeth
 from transplanter.trains.planetary import design_train
@@ -148,20 +150,43 @@ def test_report_json(smooth):
     assert all(g["module"] == 1.5 and g["cutter"] == "rack" for g in report["gears"])
 
 
-@pytest.mark.parametrize("cores", [1, 2])
-def test_both_stages_cut_beside_each_other_are_each_cut_alone(smooth, cores, monkeypatch):
-    """With a second core stage two is cut in a side process, on one core after stage one here: either way each
-    stage's outlines equal those of cutting it alone, in the stages' order (theirs differ, so a swap would show)."""
-    monkeypatch.setattr(side_process, "usable_cores", lambda: cores)
+@pytest.mark.parametrize("cutter", ["rack", "shaper"])
+@pytest.mark.parametrize("cores", ["two", "one", "two, the side process refused"])
+def test_both_stages_cut_by_twin_processes_are_each_cut_alone(smooth, cores, cutter, monkeypatch):
+    """With a second core both stages are cut here and in a side process at once, each envelope (of a shaper and
+    of the teeth it cuts) shared between the two; on one core, or where the system refuses the process, all here.
+    Either way each stage's outlines equal those of cutting it alone in one process, in the stages' order (theirs
+    differ, so a swap would show)."""
+    monkeypatch.setattr(side_process, "usable_cores", lambda: 1 if cores == "one" else 2)
+    if cores.endswith("refused"):       # a sandbox without semaphores or fork
+        def refused(*args, **kwargs):
+            raise OSError(38, "Function not implemented")
+        monkeypatch.setattr(side_process, "ProcessPoolExecutor", refused)
     stages = (smooth.train.stage_one, smooth.train.stage_two)
-    cutters = (smooth.teeth[0].cutter, smooth.teeth[1].cutter)
     alone = [generate_teeth(stage, smooth.module, smooth.pressure_angle, "test", cutter, Gearing().shaper_teeth)
-             for stage, cutter in zip(stages, cutters, strict=True)]
+             for stage in stages]
     assert alone[0].counts != alone[1].counts
-    cut = cut_stages(stages, smooth.module, smooth.pressure_angle, cutters, Gearing().shaper_teeth, "test")
+    cut = cut_stages(stages, smooth.module, smooth.pressure_angle, (cutter, cutter), Gearing().shaper_teeth, "test")
     for mine, expected in zip(cut, alone, strict=True):
         assert mine.counts == expected.counts
         assert all(np.array_equal(a, b) for a, b in zip(mine.outlines, expected.outlines, strict=True))
+
+
+def test_an_error_of_the_side_process_is_raised_here(smooth, monkeypatch):
+    """Where the side process fails in an envelope, this process raises its error (class and message) where the
+    two would have swapped their halves, instead of waiting for them."""
+    monkeypatch.setattr(side_process, "usable_cores", lambda: 2)
+    here, envelope = os.getpid(), swept_teeth._lower_envelope
+
+    def failing_there(*args):
+        if os.getpid() != here:
+            raise InfeasibleError("the side process could not cut")
+        return envelope(*args)
+
+    monkeypatch.setattr(swept_teeth, "_lower_envelope", failing_there)
+    stages = (smooth.train.stage_one, smooth.train.stage_two)
+    with pytest.raises(InfeasibleError, match="the side process could not cut"):
+        cut_stages(stages, smooth.module, smooth.pressure_angle, ("shaper", "shaper"), Gearing().shaper_teeth, "test")
 
 
 def test_concave_stretch_sends_a_stage_to_the_shaper_with_the_numbers():

@@ -156,7 +156,8 @@ class PitchTable:
             # stays toward the nearer foot and at most twice that part
             step = along / np.maximum(speed_x * along_x + speed_y * along_y - dx * bend_x - dy * bend_y, 0.5)
             arc += step
-            moved = np.flatnonzero((t + step * piece[13] < 0) | (t + step * piece[13] > 1))
+            ahead = t + step * piece[13]
+            moved = np.flatnonzero((ahead < 0) | (ahead > 1))
             if len(moved):
                 arc[moved] = modulo(arc[moved], self.perimeter)
                 piece[:, moved] = self._pieces.take(self._interval(arc[moved]), axis=1, mode="clip")

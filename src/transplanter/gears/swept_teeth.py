@@ -23,6 +23,11 @@ Two uses:
 """
 from __future__ import annotations
 
+import contextlib
+from collections.abc import Iterator
+from contextvars import ContextVar
+from functools import partial
+
 import numpy as np
 import shapely
 
@@ -30,7 +35,8 @@ from transplanter.gears.pair import GearPairDesign, driven_angle
 from transplanter.gears.pinion_cutter import shaper_cutter
 from transplanter.gears.rack_teeth import ADDENDUM, DEDENDUM, PitchTable
 from transplanter.geometry.outline_thinning import thinned
-from transplanter.geometry.planar import TWO_PI, modulo
+from transplanter.geometry.planar import DIAMOND_TURN, diamond_angle, modulo
+from transplanter.side_process import Twin
 
 #: Width of the pitch-arc bins (modules): a few micrometres at gear sizes.
 BIN_MODULES = 0.002
@@ -46,11 +52,30 @@ CONVERGED_MODULES = 1e-12
 SEGMENT_BLOCK = 16384
 #: Levels of run maxima that decide whether a segment can cut (runs of up to 2^(levels - 1) bins).
 RUN_LEVELS = 11
+#: The level of run maxima for a segment crossing n bin edges: floor(log2(n + 1)), at most RUN_LEVELS - 1 (taken
+#: clipped, for any n).
+_RUN_LEVEL = np.minimum(np.floor(np.log2(np.arange(1, 2 ** RUN_LEVELS + 1))), RUN_LEVELS - 1).astype(np.intp)
+
+#: The twin process cutting the same envelopes in step (``shared_with``), or None.
+_twin: ContextVar[Twin | None] = ContextVar("twin", default=None)
+
+
+@contextlib.contextmanager
+def shared_with(twin: Twin | None) -> Iterator[None]:
+    """Within it, each envelope is cut half here and half by ``twin``'s other process, which cuts the same envelopes
+    in the same order (``side_process.twinned``), to the outline one process cuts; with None, all here."""
+    token = _twin.set(twin)
+    try:
+        yield
+    finally:
+        _twin.reset(token)
 
 
 def _polar(points: np.ndarray):
-    """Polar angle (rad, -pi to pi) and squared radius of points (..., 2)."""
-    return np.arctan2(points[..., 1], points[..., 0]), points[..., 0] ** 2 + points[..., 1] ** 2
+    """Diamond angle (``planar.diamond_angle``, -1 to 3, in the order of the polar angle) and squared radius of
+    points (..., 2)."""
+    x, y = points[..., 0], points[..., 1]
+    return diamond_angle(x, y), x * x + y * y
 
 
 def _rigid_placement(turn: np.ndarray, offset: np.ndarray):
@@ -69,26 +94,29 @@ def _rigid_placement(turn: np.ndarray, offset: np.ndarray):
     return place
 
 
-def _positions(points: np.ndarray, facing: np.ndarray, reach: float, place, chunk: int = 24):
+def _positions(points: np.ndarray, facing: np.ndarray, reach: float, place, share: tuple[int, int] = (0, 1),
+               chunk: int = 24):
     """``points``, a closed outline, placed at its positions (``place(points, rows) -> (rows, W, 2)``) a chunk of
     positions at a time, with the outline's edges among the placed vertices: the flat indices (into rows x W) of
     both ends of each edge the chunk keeps. Chunks share their last and first rows, whose edges count once, in
-    the later chunk.
+    the later chunk. ``share`` = (part, parts): the chunks of that part of as many runs of consecutive chunks.
 
     Between positions k and k + 1 the region the outline sweeps is the outline at k together with the
     quadrilaterals its edges sweep: its boundary lies on the edges at k and on each vertex's chord from k to
     k + 1 (the fold inside a swept edge, where the envelope touches, is met to second order in the step).
     Only the vertices whose polar angle (own frame) is within ``reach`` of ``facing`` take part.
     """
-    angle, _ = _polar(points)
+    angle = np.arctan2(points[:, 1], points[:, 0])
     last = len(facing) - 1
-    for first in range(0, last, chunk):
+    starts = range(0, last, chunk)
+    part, parts = share
+    for first in starts[len(starts) * part // parts:len(starts) * (part + 1) // parts]:
         rows = np.arange(first, min(first + chunk, last) + 1)
         middle = (facing[rows].max() + facing[rows].min()) / 2
         half = (facing[rows].max() - facing[rows].min()) / 2 + reach
         near = np.abs(modulo(angle - middle + np.pi, 2 * np.pi) - np.pi) <= half
         index = np.flatnonzero(near)
-        edge = np.flatnonzero(near & np.roll(near, -1))
+        edge = np.flatnonzero(near & np.append(near[1:], near[0]))
         edged = len(rows) - (rows[-1] != last)          # the last position also keeps its edges
         row_start = len(index) * np.arange(edged)[:, None]
         yield (place(points[index], rows), (row_start + np.searchsorted(index, edge)).ravel(),
@@ -109,13 +137,13 @@ def _short_edges(outline: np.ndarray, table: PitchTable, module: float) -> np.nd
 
 
 def _radial_arc(table: PitchTable):
-    """Arc length on the pitch curve of a polar angle (rad): where the ray at that angle meets the curve (a pitch
-    curve turns about its centre, so each ray meets it once). Near the curve this is close to the foot of a
-    point's normal, a start for ``PitchTable.normal_coordinates``."""
-    angle = table.orientation * np.unwrap(np.arctan2(table.points[:, 1], table.points[:, 0]))
+    """Arc length on the pitch curve of a direction (its diamond angle, ``_polar``): where the ray that way meets
+    the curve (a pitch curve turns about its centre, so each ray meets it once), interpolated between the samples.
+    Near the curve this is close to the foot of a point's normal, a start for ``PitchTable.normal_coordinates``."""
+    angle = table.orientation * np.unwrap(_polar(table.points)[0], period=DIAMOND_TURN)
 
-    def arc(polar_angle: np.ndarray) -> np.ndarray:
-        return np.interp(angle[0] + modulo(table.orientation * polar_angle - angle[0], 2 * np.pi), angle, table.arc)
+    def arc(direction: np.ndarray) -> np.ndarray:
+        return np.interp(angle[0] + modulo(table.orientation * direction - angle[0], DIAMOND_TURN), angle, table.arc)
 
     return arc
 
@@ -150,9 +178,10 @@ def _cut(at_edge: np.ndarray, lowest: np.ndarray, width: float, perimeter: float
         first = np.floor(start / width).astype(int)
         crossed = np.floor((start + run) / width).astype(int) - first     # bin edges crossed
         low = np.mod(first, count)                                         # bins low to low + crossed
-        level = np.minimum(np.frexp(crossed + 1)[1] - 1, RUN_LEVELS - 1)   # floor(log2(crossed + 1))
+        level = _RUN_LEVEL.take(crossed, mode="clip")
         high = np.minimum(low + crossed - np.left_shift(1, level) + 1, count - 1)  # inf where past the end
-        reached = np.maximum(runs.take(level * count + low), runs.take(level * count + high))
+        row = level * count
+        reached = np.maximum(runs.take(row + low), runs.take(row + high))
         some = np.flatnonzero((crossed > 0) & ((crossed >= 2 ** RUN_LEVELS - 1) | (np.minimum(h_a, h_b) < reached)))
         back, h_a, h_b = back[some], h_a[some], h_b[some]
         h_a, h_b = np.where(back, h_b, h_a), np.where(back, h_a, h_b)
@@ -186,7 +215,8 @@ def _cutting(h_a: np.ndarray, h_b: np.ndarray, tip_height: float) -> np.ndarray:
 
 def _lower_envelope(table: PitchTable, tip_height: float, module: float, positions) -> np.ndarray:
     """Blank (heights up to ``tip_height`` over the pitch curve) cut down by the region an outline sweeps through
-    ``positions`` (``_positions``, in the gear frame), in the pitch curve's normal coordinates (s, h).
+    ``positions`` (``_positions``, in the gear frame), in the pitch curve's normal coordinates (s, h): the height
+    left on each bin of arc length.
 
     Each bin of arc length keeps the lowest height any bounding segment (an edge at a position, a vertex's
     chord between positions) reaches over it, taken at the segment's ends and where it crosses the bin's
@@ -199,17 +229,17 @@ def _lower_envelope(table: PitchTable, tip_height: float, module: float, positio
     height, at_edge = np.full(count, tip_height), np.full(count, tip_height)
     radial_arc, tolerance = _radial_arc(table), CONVERGED_MODULES * module
     # polar radius of the blank's tip, a little grown: points beyond it cut nothing; tabulated over one turn of
-    # angle from 0, a sample beyond each end
+    # direction from 0, a sample beyond each end
     tip_angle, tip_squared = _polar(table.points + (tip_height + MARGIN_MODULES * module) * table.normals)
-    tip_angle = modulo(tip_angle, TWO_PI)
+    tip_angle = modulo(tip_angle, DIAMOND_TURN)
     order = np.argsort(tip_angle)
-    tip_angle = np.r_[tip_angle[order[-1]] - TWO_PI, tip_angle[order], tip_angle[order[0]] + TWO_PI]
+    tip_angle = np.r_[tip_angle[order[-1]] - DIAMOND_TURN, tip_angle[order], tip_angle[order[0]] + DIAMOND_TURN]
     tip_squared = tip_squared[np.r_[order[-1], order, order[0]]]
     edges: list[np.ndarray] = []
     chords: list[np.ndarray] = []
     for cloud, first_ends, second_ends in positions:
         angle, squared = _polar(cloud)
-        near = squared < np.interp(modulo(angle, TWO_PI), tip_angle, tip_squared)
+        near = squared < np.interp(modulo(angle, DIAMOND_TURN), tip_angle, tip_squared)
         projected = np.flatnonzero(_with_segment_ends(near, first_ends, second_ends))
         # s and h of every placed vertex (flat), h infinite where not projected
         s, h = np.zeros(near.size), np.full(near.size, np.inf)
@@ -232,8 +262,22 @@ def _lower_envelope(table: PitchTable, tip_height: float, module: float, positio
     for segments in (chords, edges):
         lowest = np.minimum(height, np.minimum(at_edge, np.roll(at_edge, -1)))      # a bin meets both its edges
         _cut(at_edge, lowest, width, perimeter, np.concatenate(segments, axis=1))
-    height = np.minimum(height, np.minimum(at_edge, np.roll(at_edge, -1)))
-    point, _, normal = table.at((np.arange(count) + 0.5) * width)
+    return np.minimum(height, np.minimum(at_edge, np.roll(at_edge, -1)))
+
+
+def _envelope(table: PitchTable, tip_height: float, module: float, positions) -> np.ndarray:
+    """Outline of the blank cut down by the outline ``positions(share=...)`` sweeps (``_positions``): the lowest
+    height of each bin (``_lower_envelope``) over all chunks, or, within ``shared_with``, over one half of the
+    chunks here and the other in the twin process, the lower of the two (a bin's height is the least over
+    positions). Halves of consecutive chunks, not every other chunk: a segment that cannot lower the bins it
+    crosses is passed over (``_cut``), and each half's heights reach low over its own stretch of the curve."""
+    twin = _twin.get()
+    if twin is None:
+        height = _lower_envelope(table, tip_height, module, positions(share=(0, 1)))
+    else:
+        mine = _lower_envelope(table, tip_height, module, positions(share=(twin.index, 2)))
+        height = np.minimum(mine, twin.swap(mine))
+    point, _, normal = table.at((np.arange(len(height)) + 0.5) * (table.perimeter / len(height)))
     return point + height[:, None] * normal
 
 
@@ -260,8 +304,8 @@ def shaper_profile(table: PitchTable, module: float, alpha: float, cutter_teeth:
     local_facing = np.unwrap(psi) - turn
     reach = 2.5 * (ADDENDUM + DEDENDUM) * module / radius
 
-    return _lower_envelope(table, ADDENDUM * module, module, _positions(
-        _short_edges(cutter, table, module), local_facing, reach, _rigid_placement(turn, center)))
+    return _envelope(table, ADDENDUM * module, module, partial(
+        _positions, _short_edges(cutter, table, module), local_facing, reach, _rigid_placement(turn, center)))
 
 
 def mate_profile(design: GearPairDesign, driver_outline: np.ndarray, driven: PitchTable, module: float,
@@ -281,4 +325,4 @@ def mate_profile(design: GearPairDesign, driver_outline: np.ndarray, driven: Pit
     place = _rigid_placement(-phi1 - phi2, -design.center_distance * np.c_[np.cos(phi2), -np.sin(phi2)])
     # the driver's one-per-bin vertices, thinned where they stay within a hair of their chords
     cutter = _short_edges(thinned(driver_outline, SIMPLIFY_MODULES * module), driven, module)
-    return _lower_envelope(driven, ADDENDUM * module, module, _positions(cutter, phi1, reach, place))
+    return _envelope(driven, ADDENDUM * module, module, partial(_positions, cutter, phi1, reach, place))

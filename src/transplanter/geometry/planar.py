@@ -1,6 +1,6 @@
 """Plane vectors, in numpy (x, y on the last axis, broadcasting) and as CasADi 2-element columns:
-the unit vector at an angle, a counterclockwise rotation and the scalar cross product (radians); and a
-periodic value's remainder, cheaper than numpy's."""
+the unit vector at an angle, a counterclockwise rotation and the scalar cross product (radians); a
+periodic value's remainder, cheaper than numpy's; and a stand-in for the polar angle, cheaper than np.arctan2."""
 from __future__ import annotations
 
 import casadi as ca
@@ -8,6 +8,8 @@ import numpy as np
 
 #: One whole turn (rad).
 TWO_PI = 2 * np.pi
+#: One whole turn of ``diamond_angle``.
+DIAMOND_TURN = 4.0
 
 
 def modulo(value, period: float) -> np.ndarray:
@@ -16,6 +18,15 @@ def modulo(value, period: float) -> np.ndarray:
     rounding beyond; within rounding of a multiple of the period it may give period, or a rounding error below
     0, for np.mod's 0 (or period)."""
     return value - period * np.floor(value / period)
+
+
+def diamond_angle(x, y) -> np.ndarray:
+    """A stand-in for the polar angle of the points (x, y) that increases with it, ``DIAMOND_TURN`` a turn:
+    y / (|x| + |y|) where x >= 0 (-1 toward -y, 0 toward +x, 1 toward +y), 2 less that where x < 0 (3 toward -y).
+    For what needs only the order of directions (an interpolation over them): a few cheap operations, where
+    np.arctan2 takes tens of nanoseconds a point. NaN at the origin."""
+    side = y / (np.abs(x) + np.abs(y))
+    return np.where(x < 0, 2 - side, side)
 
 
 def unit(angle) -> np.ndarray:
