@@ -1,3 +1,4 @@
+import dataclasses
 import shutil
 from pathlib import Path
 
@@ -47,10 +48,46 @@ RICE = Path(__file__).resolve().parents[1] / "examples/rice_hoe_reverse.toml"
 @pytest.fixture(scope="session")
 def rice_result():
     """The rice hoe's reverse train, examples/rice_hoe_reverse.toml, synthesised without the tolerance analysis once
-    per test process for the files that only read it (each synthesis takes seconds)."""
+    per test process for the files that only read it (each synthesis takes seconds). Made by ``reverse.synthesize``
+    itself, not the package's name for it, which ``rice_result_from_synthesize`` replaces by one that reads this."""
+    from transplanter.reverse import load_problem
+    from transplanter.reverse.synthesis import synthesize
+
+    return synthesize(load_problem(RICE), tolerance=False)
+
+
+@pytest.fixture(scope="session")
+def rice_full_result():
+    """The rice hoe's reverse train as ``reverse.synthesize`` gives it by default (with the tolerance analysis),
+    synthesised once per test process for the files that read it or run the README's call of it (made as
+    ``rice_result`` is)."""
+    from transplanter.reverse import load_problem
+    from transplanter.reverse.synthesis import synthesize
+
+    return synthesize(load_problem(RICE))
+
+
+@pytest.fixture
+def rice_result_from_synthesize(monkeypatch, request):
+    """``reverse.synthesize`` of examples/rice_hoe_reverse.toml's problem as the file gives it (any source name that
+    resolves to the file) returns ``rice_result`` without the tolerance analysis and ``rice_full_result`` with it
+    (deterministic, and tested on their own) instead of synthesising the same train again. Any other problem, a
+    changed field of the file's included, runs as it is."""
+    import pickle
+
     from transplanter import reverse
 
-    return reverse.synthesize(reverse.load_problem(RICE), tolerance=False)
+    synthesize = reverse.synthesize
+    as_read = pickle.dumps(reverse.load_problem(RICE))
+
+    def once(problem, tolerance=True):
+        source = getattr(problem, "source", None)
+        same = (isinstance(source, str) and Path(source).resolve() == RICE
+                and pickle.dumps(dataclasses.replace(problem, source=str(RICE))) == as_read)
+        if same and tolerance in (True, False):
+            return request.getfixturevalue("rice_full_result" if tolerance else "rice_result")
+        return synthesize(problem, tolerance=tolerance)
+    monkeypatch.setattr(reverse, "synthesize", once)
 
 
 PICKUP = Path(__file__).resolve().parents[1] / "examples/pickup_arm_reverse.toml"
