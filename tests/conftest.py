@@ -144,20 +144,26 @@ def example_result_drawings_copied(monkeypatch, example_result, example_result_d
         return [Path(shutil.copy2(path, Path(folder) / path.name)) for path in example_result_drawings]
     monkeypatch.setattr(output_files, "write_drawings", copied)
 
+#: The session's shared results (and the fixtures named after them): a file that names one is a reader.
+SHARED_RESULTS = ("example_result", "rice_result", "rice_full_result", "pickup_result")
+
+
 def pytest_xdist_make_scheduler(config, log):
-    """``--dist loadfile``, with every file that reads ``example_result`` (or a fixture named after it) in one
-    unit: one worker synthesises the example for all of them (about 17 s of CPU), and the other takes the rest
-    file by file."""
+    """``--dist loadfile``, with every file that reads a shared result (``SHARED_RESULTS``) in one unit: one
+    worker synthesises the five-bar example (about 14 s of CPU) and the reverse examples (the rice hoe's with and
+    without the tolerance analysis, the pick-up arm's: 3-7 s each) once for all of them, where two workers each
+    built those the reverse files read, and the other worker takes the rest file by file (the unit is about a
+    third of the suite's CPU, so the two still finish together)."""
     if config.getvalue("dist") != "loadfile":
         return None
     from xdist.scheduler import LoadFileScheduling
 
     readers = {path.relative_to(config.rootpath).as_posix() for path in Path(__file__).parent.rglob("test_*.py")
-               if "example_result" in path.read_text()}
+               if any(name in path.read_text() for name in SHARED_RESULTS)}
 
     class ExampleReadersTogether(LoadFileScheduling):
         def _split_scope(self, nodeid: str) -> str:
             file = super()._split_scope(nodeid)
-            return "example_result readers" if file in readers else file
+            return "shared result readers" if file in readers else file
 
     return ExampleReadersTogether(config, log)
