@@ -43,34 +43,53 @@ def example_result(example_problem):
 
 
 RICE = Path(__file__).resolve().parents[1] / "examples/rice_hoe_reverse.toml"
+PICKUP = Path(__file__).resolve().parents[1] / "examples/pickup_arm_reverse.toml"
+
+
+def _reverse_example(path: Path, tolerance: bool):
+    """``reverse.synthesize`` itself (not the package's name for it, which ``serve_reverse_examples`` replaces) of
+    the example file ``path``."""
+    from transplanter.reverse import load_problem
+    from transplanter.reverse.synthesis import synthesize
+
+    return synthesize(load_problem(path), tolerance=tolerance)
 
 
 @pytest.fixture(scope="session")
 def rice_result():
     """The rice hoe's reverse train, examples/rice_hoe_reverse.toml, synthesised without the tolerance analysis once
-    per test process for the files that only read it (each synthesis takes seconds). Made by ``reverse.synthesize``
-    itself, not the package's name for it, which ``rice_result_from_synthesize`` replaces by one that reads this."""
-    from transplanter.reverse import load_problem
-    from transplanter.reverse.synthesis import synthesize
-
-    return synthesize(load_problem(RICE), tolerance=False)
+    per test process for the files that only read it (each synthesis takes seconds)."""
+    return _reverse_example(RICE, tolerance=False)
 
 
 @pytest.fixture(scope="session")
 def rice_full_result():
     """The rice hoe's reverse train as ``reverse.synthesize`` gives it by default (with the tolerance analysis),
-    synthesised once per test process for the files that read it or run the README's call of it (made as
-    ``rice_result`` is)."""
-    from transplanter.reverse import load_problem
-    from transplanter.reverse.synthesis import synthesize
-
-    return synthesize(load_problem(RICE))
+    synthesised once per test process for the files that read it or run a call of it."""
+    return _reverse_example(RICE, tolerance=True)
 
 
-@pytest.fixture
-def rice_result_from_synthesize(monkeypatch, request):
-    """``reverse.synthesize`` of examples/rice_hoe_reverse.toml's problem as the file gives it (any source name that
-    resolves to the file) returns ``rice_result`` without the tolerance analysis and ``rice_full_result`` with it
+@pytest.fixture(scope="session")
+def pickup_result():
+    """The pick-up arm's reverse train on its bent carrier, examples/pickup_arm_reverse.toml, synthesised without the
+    tolerance analysis once per test process for the files that only read it."""
+    return _reverse_example(PICKUP, tolerance=False)
+
+
+@pytest.fixture(scope="session")
+def pickup_full_result():
+    """The pick-up arm's reverse train with the tolerance analysis (``reverse.synthesize``'s default), synthesised
+    once per test process for the files that read it or run a call of it."""
+    return _reverse_example(PICKUP, tolerance=True)
+
+
+#: The session's result of each reverse example file, without and with the tolerance analysis.
+REVERSE_EXAMPLES = {RICE: ("rice_result", "rice_full_result"), PICKUP: ("pickup_result", "pickup_full_result")}
+
+
+def serve_reverse_examples(monkeypatch, request):
+    """``reverse.synthesize`` of an example file's problem as the file gives it (``REVERSE_EXAMPLES``; any source
+    name that resolves to the file) returns the session's result of it without or with the tolerance analysis
     (deterministic, and tested on their own) instead of synthesising the same train again. Any other problem, a
     changed field of the file's included, runs as it is."""
     import pickle
@@ -78,28 +97,23 @@ def rice_result_from_synthesize(monkeypatch, request):
     from transplanter import reverse
 
     synthesize = reverse.synthesize
-    as_read = pickle.dumps(reverse.load_problem(RICE))
+    as_read = {path: pickle.dumps(reverse.load_problem(path)) for path in REVERSE_EXAMPLES}
 
     def once(problem, tolerance=True):
         source = getattr(problem, "source", None)
-        same = (isinstance(source, str) and Path(source).resolve() == RICE
-                and pickle.dumps(dataclasses.replace(problem, source=str(RICE))) == as_read)
-        if same and tolerance in (True, False):
-            return request.getfixturevalue("rice_full_result" if tolerance else "rice_result")
+        path = Path(source).resolve() if isinstance(source, str) else None
+        if (path in as_read and tolerance in (True, False)
+                and pickle.dumps(dataclasses.replace(problem, source=str(path))) == as_read[path]):
+            return request.getfixturevalue(REVERSE_EXAMPLES[path][tolerance])
         return synthesize(problem, tolerance=tolerance)
     monkeypatch.setattr(reverse, "synthesize", once)
 
 
-PICKUP = Path(__file__).resolve().parents[1] / "examples/pickup_arm_reverse.toml"
-
-
-@pytest.fixture(scope="session")
-def pickup_result():
-    """The pick-up arm's reverse train on its bent carrier, examples/pickup_arm_reverse.toml, synthesised without the
-    tolerance analysis once per test process for the files that only read it."""
-    from transplanter import reverse
-
-    return reverse.synthesize(reverse.load_problem(PICKUP), tolerance=False)
+@pytest.fixture
+def rice_result_from_synthesize(monkeypatch, request):
+    """``serve_reverse_examples`` for one test: ``reverse.synthesize`` of the rice hoe's file (or the pick-up arm's)
+    returns the session's ``rice_result`` or ``rice_full_result`` (``pickup_result``, ``pickup_full_result``)."""
+    serve_reverse_examples(monkeypatch, request)
 
 
 @pytest.fixture
@@ -145,7 +159,7 @@ def example_result_drawings_copied(monkeypatch, example_result, example_result_d
     monkeypatch.setattr(output_files, "write_drawings", copied)
 
 #: The session's shared results (and the fixtures named after them): a file that names one is a reader.
-SHARED_RESULTS = ("example_result", "rice_result", "rice_full_result", "pickup_result")
+SHARED_RESULTS = ("example_result", "rice_result", "rice_full_result", "pickup_result", "pickup_full_result")
 
 
 def pytest_xdist_make_scheduler(config, log):

@@ -66,8 +66,9 @@ def from_dict(job, name: str):
                                        (gears, "gear_limacon.toml"), (reverse, "rice_hoe_reverse.toml"),
                                        (reverse, "pickup_arm_reverse.toml")])
 def test_dict_with_numpy_values_gives_the_report_of_the_file(job, name, request):
-    # the rice hoe's train of the file is the session's (the README's example reads it too)
-    of_file = request.getfixturevalue("rice_full_result") if name == "rice_hoe_reverse.toml" else file_result(job, name)
+    # the reverse trains of the files are the session's (the README's example and the published findings read them)
+    shared = {"rice_hoe_reverse.toml": "rice_full_result", "pickup_arm_reverse.toml": "pickup_full_result"}
+    of_file = request.getfixturevalue(shared[name]) if name in shared else file_result(job, name)
     report = of_file.to_json()
     from_numpy = job.synthesize(from_dict(job, name)).to_json()
     assert without_timings(from_numpy) == without_timings(report)
