@@ -1,3 +1,4 @@
+import dataclasses
 import shutil
 from pathlib import Path
 
@@ -42,27 +43,77 @@ def example_result(example_problem):
 
 
 RICE = Path(__file__).resolve().parents[1] / "examples/rice_hoe_reverse.toml"
+PICKUP = Path(__file__).resolve().parents[1] / "examples/pickup_arm_reverse.toml"
+
+
+def _reverse_example(path: Path, tolerance: bool):
+    """``reverse.synthesize`` itself (not the package's name for it, which ``serve_reverse_examples`` replaces) of
+    the example file ``path``."""
+    from transplanter.reverse import load_problem
+    from transplanter.reverse.synthesis import synthesize
+
+    return synthesize(load_problem(path), tolerance=tolerance)
 
 
 @pytest.fixture(scope="session")
 def rice_result():
     """The rice hoe's reverse train, examples/rice_hoe_reverse.toml, synthesised without the tolerance analysis once
     per test process for the files that only read it (each synthesis takes seconds)."""
-    from transplanter import reverse
-
-    return reverse.synthesize(reverse.load_problem(RICE), tolerance=False)
+    return _reverse_example(RICE, tolerance=False)
 
 
-PICKUP = Path(__file__).resolve().parents[1] / "examples/pickup_arm_reverse.toml"
+@pytest.fixture(scope="session")
+def rice_full_result():
+    """The rice hoe's reverse train as ``reverse.synthesize`` gives it by default (with the tolerance analysis),
+    synthesised once per test process for the files that read it or run a call of it."""
+    return _reverse_example(RICE, tolerance=True)
 
 
 @pytest.fixture(scope="session")
 def pickup_result():
     """The pick-up arm's reverse train on its bent carrier, examples/pickup_arm_reverse.toml, synthesised without the
     tolerance analysis once per test process for the files that only read it."""
+    return _reverse_example(PICKUP, tolerance=False)
+
+
+@pytest.fixture(scope="session")
+def pickup_full_result():
+    """The pick-up arm's reverse train with the tolerance analysis (``reverse.synthesize``'s default), synthesised
+    once per test process for the files that read it or run a call of it."""
+    return _reverse_example(PICKUP, tolerance=True)
+
+
+#: The session's result of each reverse example file, without and with the tolerance analysis.
+REVERSE_EXAMPLES = {RICE: ("rice_result", "rice_full_result"), PICKUP: ("pickup_result", "pickup_full_result")}
+
+
+def serve_reverse_examples(monkeypatch, request):
+    """``reverse.synthesize`` of an example file's problem as the file gives it (``REVERSE_EXAMPLES``; any source
+    name that resolves to the file) returns the session's result of it without or with the tolerance analysis
+    (deterministic, and tested on their own) instead of synthesising the same train again. Any other problem, a
+    changed field of the file's included, runs as it is."""
+    import pickle
+
     from transplanter import reverse
 
-    return reverse.synthesize(reverse.load_problem(PICKUP), tolerance=False)
+    synthesize = reverse.synthesize
+    as_read = {path: pickle.dumps(reverse.load_problem(path)) for path in REVERSE_EXAMPLES}
+
+    def once(problem, tolerance=True):
+        source = getattr(problem, "source", None)
+        path = Path(source).resolve() if isinstance(source, str) else None
+        if (path in as_read and type(tolerance) is bool      # a switch given as 0 or "no" is refused as it is
+                and pickle.dumps(dataclasses.replace(problem, source=str(path))) == as_read[path]):
+            return request.getfixturevalue(REVERSE_EXAMPLES[path][tolerance])
+        return synthesize(problem, tolerance=tolerance)
+    monkeypatch.setattr(reverse, "synthesize", once)
+
+
+@pytest.fixture
+def rice_result_from_synthesize(monkeypatch, request):
+    """``serve_reverse_examples`` for one test: ``reverse.synthesize`` of the rice hoe's file (or the pick-up arm's)
+    returns the session's ``rice_result`` or ``rice_full_result`` (``pickup_result``, ``pickup_full_result``)."""
+    serve_reverse_examples(monkeypatch, request)
 
 
 @pytest.fixture
@@ -107,20 +158,26 @@ def example_result_drawings_copied(monkeypatch, example_result, example_result_d
         return [Path(shutil.copy2(path, Path(folder) / path.name)) for path in example_result_drawings]
     monkeypatch.setattr(output_files, "write_drawings", copied)
 
+#: The session's shared results (and the fixtures named after them): a file that names one is a reader.
+SHARED_RESULTS = ("example_result", "rice_result", "rice_full_result", "pickup_result", "pickup_full_result")
+
+
 def pytest_xdist_make_scheduler(config, log):
-    """``--dist loadfile``, with every file that reads ``example_result`` (or a fixture named after it) in one
-    unit: one worker synthesises the example for all of them (about 17 s of CPU), and the other takes the rest
-    file by file."""
+    """``--dist loadfile``, with every file that reads a shared result (``SHARED_RESULTS``) in one unit: one
+    worker synthesises the five-bar example (about 14 s of CPU) and the reverse examples (the rice hoe's with and
+    without the tolerance analysis, the pick-up arm's: 3-7 s each) once for all of them, where two workers each
+    built those the reverse files read, and the other worker takes the rest file by file (the unit is about a
+    third of the suite's CPU, so the two still finish together)."""
     if config.getvalue("dist") != "loadfile":
         return None
     from xdist.scheduler import LoadFileScheduling
 
     readers = {path.relative_to(config.rootpath).as_posix() for path in Path(__file__).parent.rglob("test_*.py")
-               if "example_result" in path.read_text()}
+               if any(name in path.read_text() for name in SHARED_RESULTS)}
 
     class ExampleReadersTogether(LoadFileScheduling):
         def _split_scope(self, nodeid: str) -> str:
             file = super()._split_scope(nodeid)
-            return "example_result readers" if file in readers else file
+            return "shared result readers" if file in readers else file
 
     return ExampleReadersTogether(config, log)

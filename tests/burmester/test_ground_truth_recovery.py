@@ -13,7 +13,7 @@ from transplanter.burmester.four_poses import circle_cubic
 from transplanter.burmester.problem import DyadProblem
 from transplanter.burmester.synthesis import synthesize
 from transplanter.geometry.dyad import Link, verify_dyad
-from transplanter.geometry.poses import Frame, carry, relative_to_link, rotate_about
+from transplanter.geometry.poses import Frame, carry, relative_to_link, rotate_about, rotation
 
 
 def _has_pair(dyads, center, circle, tol):
@@ -70,8 +70,12 @@ def test_four_poses_curves_contain_the_true_dyad(trial):
 
 def _multistart(poses, starts, rng):
     """Dense multistart Newton on eq (1), independent of the resultant: the reference set."""
+    # ``carry(poses, z[2:])`` with the poses' rotations made once, not at each of the thousands of residuals (the
+    # same einsum of the same matrices: the same bits)
+    turns = rotation(poses[:, 2] - poses[0, 2])
+
     def residual(z):
-        moving = carry(poses, z[2:])
+        moving = poses[:, :2] + np.einsum("nij,...j->...ni", turns, np.asarray(z[2:], float) - poses[0, :2])
         d2 = np.sum((moving - z[:2]) ** 2, axis=1)
         return (d2[1:] - d2[0]) / 2
     found = []

@@ -14,6 +14,7 @@ import pytest
 import sympy as sp
 
 from derivations.gears import driven_rate_for_ratio
+from tests.conftest import serve_reverse_examples
 from tests.published_script import reproduce
 from transplanter.burmester import load_problem, nearest_center, synthesize
 from transplanter.fivebar.relative_angle import RelativeAngle
@@ -50,9 +51,13 @@ TEXT = {"BE_dyad_B": "(-78.90, -31.73) mm"}
 
 
 @pytest.fixture(scope="module")
-def findings():
+def findings(request):
+    """The findings, the pick-up arm's train of its file (``reverse_gear_split``) the session's
+    ``pickup_full_result`` (``serve_reverse_examples``)."""
     sections = [s for s in reproduce.SECTIONS if s is not reproduce.rice_idler_train]
-    return {row.key: row for row in reproduce.findings(sections)}
+    with pytest.MonkeyPatch.context() as monkeypatch:
+        serve_reverse_examples(monkeypatch, request)
+        return {row.key: row for row in reproduce.findings(sections)}
 
 
 @pytest.mark.parametrize("key, column, stated, decimals", STATED)

@@ -37,9 +37,13 @@ def test_every_job_has_an_example():
 @pytest.fixture
 def synthesis_once(request):
     """A block that calls ``fivebar.synthesize`` gets the test process's one synthesis of the bundled example
-    (``example_result_from_synthesize``); the other blocks run without it."""
-    if "fivebar.synthesize(" in request.node.callspec.params["block"]:
+    (``example_result_from_synthesize``), one that calls ``reverse.synthesize`` its one synthesis of the rice hoe
+    (``rice_result_from_synthesize``, shared with test_python_api.py); the other blocks run without them."""
+    block = request.node.callspec.params["block"]
+    if "fivebar.synthesize(" in block:
         request.getfixturevalue("example_result_from_synthesize")
+    if "reverse.synthesize(" in block:
+        request.getfixturevalue("rice_result_from_synthesize")
 
 
 @pytest.mark.parametrize("block", API_BLOCKS, ids=[f"block{k}" for k in range(len(API_BLOCKS))])

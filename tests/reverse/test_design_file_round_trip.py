@@ -13,8 +13,9 @@ ROUND_TRIP_KEYS = ("trajectory", "carrier_length", "arm_length", "direction", "t
                    "contact_gap_max_mm", "center_distances", "correction_factor_k", "stage_one_exponent")
 
 
-def test_design_file_is_written_listed_and_read_back(tmp_path):
-    """Both runs without the tolerance analysis: no key compared reads it."""
+def test_design_file_is_written_listed_and_read_back(tmp_path, rice_result_from_synthesize):
+    """Both runs without the tolerance analysis: no key compared reads it. The first run's train is the session's
+    ``rice_result``; the second, made from design.toml, is synthesised here."""
     run, given = tmp_path / "run", tmp_path / "given"
     assert main(["reverse", str(RICE), "--quiet", "--no-step", "--no-tolerance", "--out", str(run)]) == 0
     assert read_report(run)["files"]["design"] == ["design.toml"]

@@ -66,7 +66,8 @@ def test_a_tooth_outline_that_crosses_itself_fails_the_run(tmp_path, capsys, mon
     assert report["toothed_train"]["mesh_check"]["passed"] is True
 
 
-def test_out_has_gear_sheets_and_pitch_curves_listed_in_the_report(tmp_path, capsys):
+def test_out_has_gear_sheets_and_pitch_curves_listed_in_the_report(tmp_path, capsys, rice_result_from_synthesize):
+    """The command's own --out of the file (its train the session's ``rice_result``, read above)."""
     assert main(["reverse", str(RICE), "--no-tolerance", "--no-step", "--json", "--out", str(tmp_path)]) == 0
     report = json.loads(capsys.readouterr().out)
     listed = {name for names in report["files"].values() for name in names}
