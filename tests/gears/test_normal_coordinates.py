@@ -8,22 +8,16 @@ import pytest
 from scipy.spatial import cKDTree
 
 from transplanter.gears import swept_teeth
-from transplanter.gears.pair import design_pair
-from transplanter.gears.pitch_curves import ellipse
 from transplanter.gears.problem import load_problem
 from transplanter.gears.rack_teeth import PitchTable
 from transplanter.gears.synthesis import synthesize
 from transplanter.gears.teeth import driven_table, driver_table
 from transplanter.geometry.planar import DIAMOND_TURN, diamond_angle, modulo
 
-MODULE, ALPHA, CUTTER_TEETH = 2.0, np.radians(20), 16
+from .ellipse_pair import GEARS, MODULE, driver_outline, ellipse_pair, swept_outline
+
 #: Half the bisection's first bracket about the nearest sample, in modules.
 BRACKET_MODULES = 0.1
-
-
-def _ellipse_pair():
-    curve = ellipse(1.0, 0.25)
-    return design_pair(curve.scaled(20 * np.pi * MODULE / design_pair(curve, 1).perimeters[0]), 1)
 
 
 def bisected_normal_coordinates(table: PitchTable, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -53,7 +47,7 @@ def test_normal_coordinates_equal_bisection(gear):
     """Points from 2.5 modules below to 1.5 above both pitch curves of a 20-tooth ellipse pair, started up to half a
     module off their foot (and some over the curve's start, started just short of its end): s and h equal
     bisection's to 1e-9 mm, and the point is the foot plus h normals."""
-    table = (driver_table, driven_table)[gear](_ellipse_pair())
+    table = (driver_table, driven_table)[gear](ellipse_pair())
     generator = np.random.default_rng(3)
     s = np.r_[generator.uniform(0, table.perimeter, 20000), np.zeros(50)]
     foot, _, normal = table.at(s)
@@ -69,23 +63,16 @@ def test_normal_coordinates_equal_bisection(gear):
     assert np.abs(foot + height[:, None] * normal - points).max() < 1e-9
 
 
-@pytest.mark.parametrize("gear", ["shaper-cut driver", "driven gear swept by the driver"])
+@pytest.mark.parametrize("gear", GEARS)
 def test_swept_outlines_equal_those_on_bisection(gear, monkeypatch):
     """On a 20-tooth ellipse pair of module 2, each swept outline equals the one built with every normal's foot
     found by bisection, to 1e-9 mm."""
-    design = _ellipse_pair()
-    tables = driver_table(design), driven_table(design)
-    driver = swept_teeth.shaper_profile(tables[0], MODULE, ALPHA, CUTTER_TEETH)
-
-    def outline():
-        if gear == "shaper-cut driver":
-            return swept_teeth.shaper_profile(tables[0], MODULE, ALPHA, CUTTER_TEETH)
-        return swept_teeth.mate_profile(design, driver, tables[1], MODULE)
-
-    converged = outline()
+    design = ellipse_pair()
+    driver = driver_outline(design)
+    converged = swept_outline(gear, design, driver)
     monkeypatch.setattr(PitchTable, "normal_coordinates",
                         lambda table, points, start, tolerance: bisected_normal_coordinates(table, points))
-    assert np.abs(converged - outline()).max() < 1e-9
+    assert np.abs(converged - swept_outline(gear, design, driver)).max() < 1e-9
 
 
 def test_points_by_a_corner_get_a_foot_on_their_side_of_the_gear():

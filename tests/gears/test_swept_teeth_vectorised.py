@@ -4,24 +4,17 @@ import numpy as np
 import pytest
 
 from transplanter.gears import swept_teeth
-from transplanter.gears.pair import design_pair
-from transplanter.gears.pitch_curves import ellipse
 from transplanter.gears.teeth import driven_table, driver_table
 from transplanter.geometry.hermite import hermite
 
-MODULE, ALPHA, CUTTER_TEETH = 2.0, np.radians(20), 16
-
-
-def _ellipse_pair():
-    curve = ellipse(1.0, 0.25)
-    return design_pair(curve.scaled(20 * np.pi * MODULE / design_pair(curve, 1).perimeters[0]), 1)
+from .ellipse_pair import ALPHA, CUTTER_TEETH, GEARS, MODULE, driver_outline, ellipse_pair, swept_outline
 
 
 def test_pitch_table_interpolates_as_the_hermite_of_its_samples():
     """Points are the cubic Hermite of the samples with the unit tangents as slopes, tangents the normalised
     linear blend of the sample tangents, normals those turned outward, on both gears of the pair (at and next to
     every sample too, where the interval is looked up)."""
-    design = _ellipse_pair()
+    design = ellipse_pair()
     for table in (driver_table(design), driven_table(design)):
         knots = table.arc[:-1]
         s = np.r_[np.linspace(-table.perimeter, 2 * table.perimeter, 5001), knots, np.nextafter(knots, -1),
@@ -87,11 +80,11 @@ def _per_position_heights(table, tip_height, outline, place, positions):
     return height
 
 
-@pytest.mark.parametrize("gear", ["shaper-cut driver", "driven gear swept by the driver"])
+@pytest.mark.parametrize("gear", GEARS)
 def test_envelope_matches_the_per_position_reference(gear, monkeypatch):
     """On a 20-tooth ellipse pair of module 2, the outline each profile returns lies on the reference's bin heights
     to 1e-9 mm."""
-    design = _ellipse_pair()
+    design = ellipse_pair()
     tables = driver_table(design), driven_table(design)
     driver = swept_teeth.shaper_profile(tables[0], MODULE, ALPHA, CUTTER_TEETH)
     swept = []
@@ -102,7 +95,7 @@ def test_envelope_matches_the_per_position_reference(gear, monkeypatch):
         return chunked(points, facing, reach, place, **options)
 
     monkeypatch.setattr(swept_teeth, "_positions", recording)
-    if gear == "shaper-cut driver":
+    if gear == GEARS[0]:
         table = tables[0]
         outline = swept_teeth.shaper_profile(table, MODULE, ALPHA, CUTTER_TEETH)
     else:
@@ -126,25 +119,18 @@ class _AloneTwin:
         return np.full_like(value, np.inf)
 
 
-@pytest.mark.parametrize("gear", ["shaper-cut driver", "driven gear swept by the driver"])
+@pytest.mark.parametrize("gear", GEARS)
 def test_halves_cut_by_twins_merge_to_the_whole_cut(gear):
     """Each twin cuts half the chunks of an envelope's positions; on each bin (along the same normal) the lower
     of the two halves' outlines is the outline one process cuts, to the last bit, and neither half is it alone."""
-    design = _ellipse_pair()
-    tables = driver_table(design), driven_table(design)
-    driver = swept_teeth.shaper_profile(tables[0], MODULE, ALPHA, CUTTER_TEETH)
-
-    def cut():
-        if gear == "shaper-cut driver":
-            return swept_teeth.shaper_profile(tables[0], MODULE, ALPHA, CUTTER_TEETH)
-        return swept_teeth.mate_profile(design, driver, tables[1], MODULE)
-
-    whole = cut()
+    design = ellipse_pair()
+    driver = driver_outline(design)
+    whole = swept_outline(gear, design, driver)
     halves = []
     for index in (0, 1):
         with swept_teeth.shared_with(_AloneTwin(index)):
-            halves.append(cut())
-    table = tables[0] if gear == "shaper-cut driver" else tables[1]
+            halves.append(swept_outline(gear, design, driver))
+    table = driver_table(design) if gear == GEARS[0] else driven_table(design)
     foot, _, normal = table.at((np.arange(len(whole)) + 0.5) * (table.perimeter / len(whole)))
     first, second = (np.sum((half - foot) * normal, axis=1) for half in halves)
     assert not any(np.allclose(half, whole) for half in halves)
