@@ -9,7 +9,7 @@ import pytest
 
 from transplanter import side_process
 from transplanter.errors import TransplanterError
-from transplanter.shared_calls import share_calls
+from transplanter.shared_calls import share_calls, shared_map
 
 
 @pytest.fixture
@@ -62,3 +62,7 @@ def test_this_process_failing_stops_the_side_process(two_cores):
 
     with pytest.raises(TransplanterError, match="here failed"):
         share_calls(lambda index: time.sleep(60), [(k,) for k in range(2)], here)
+
+
+def test_a_single_call_with_nothing_else_to_do_is_made_here(two_cores):
+    assert shared_map(lambda index: (index, os.getpid()), [(0,)]) == [(0, os.getpid())]

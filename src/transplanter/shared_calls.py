@@ -41,7 +41,10 @@ def share_calls(work: Callable[..., Call], calls: Sequence[tuple], here: Callabl
 
 
 def shared_map(work: Callable[..., Call], calls: Sequence[tuple]) -> list[Call]:
-    """``share_calls`` with nothing else to do here: the calls' results in their order."""
+    """``share_calls`` with nothing else to do here: the calls' results in their order (one call is made here: a
+    side process would only add its start)."""
+    if len(calls) < 2:
+        return [work(*call) for call in calls]
     return share_calls(work, calls, _nothing)[0]
 
 
