@@ -47,7 +47,6 @@ Warned = tuple[Warning | str, type[Warning], str, int]
 _work: Callable[..., Any] | None = None     # set in the side process only, by ``_install``
 
 Here = TypeVar("Here")
-There = TypeVar("There")
 
 
 @contextlib.contextmanager
@@ -127,23 +126,6 @@ def outcome(future: Future) -> Any:
         warnings.warn_explicit(message, category, filename, lineno)
     progress.show(said)
     return result
-
-
-def side_by_side(there: Callable[[], There], here: Callable[[], Here]) -> tuple[There, Here]:
-    """``there()`` in a side process while ``here()`` runs in this one; where none may run, ``there()`` and then
-    ``here()`` here. An exception of either is raised here (the side process then stopped)."""
-    started = start_side_process(there, [()])
-    if started is None:
-        return there(), here()
-    side, (future,) = started
-    try:
-        mine = here()
-        result = outcome(future)
-    except BaseException:
-        side.stop()
-        raise
-    side.close()
-    return result, mine
 
 
 class Twin:

@@ -1,6 +1,7 @@
 """The side process: work beside this process where it may use a second core, in turn here where it may not
 (one core, ``in_this_process``, a system that refuses the process); results, warnings and exceptions come back
-as they were; an interrupt here ends it at once."""
+as they were; an interrupt here ends it at once. Each is shown on one call in a side process beside work here
+(``side_by_side`` below), the way ``shared_calls`` and ``twinned`` start and end theirs."""
 from __future__ import annotations
 
 import io
@@ -10,12 +11,32 @@ import subprocess
 import sys
 import time
 import warnings
+from pathlib import Path
 
 import pytest
 
 from transplanter import progress, side_process
 from transplanter.errors import SolverError
-from transplanter.side_process import in_this_process, side_by_side
+from transplanter.side_process import in_this_process, outcome, start_side_process
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def side_by_side(there, here):
+    """``there()`` in a side process while ``here()`` runs in this one (both here, in turn, where no side process
+    may run); an exception of either raised here, the side process then stopped."""
+    started = start_side_process(there, [()])
+    if started is None:
+        return there(), here()
+    side, (future,) = started
+    try:
+        return_here = here()
+        return_there = outcome(future)
+    except BaseException:
+        side.stop()
+        raise
+    side.close()
+    return return_there, return_here
 
 
 @pytest.fixture
@@ -75,12 +96,13 @@ def test_the_cores_are_the_ones_this_process_may_use():
     cores = sorted(os.sched_getaffinity(0))
     if len(cores) < 2:
         pytest.skip("this process has one core: no second to give")
-    script = ("import os, sys\nfrom transplanter.side_process import may_fork, side_by_side\n"
+    script = ("import os, sys\nfrom transplanter.side_process import may_fork\n"
+              "from tests.cli.test_side_process import side_by_side\n"
               "os.sched_setaffinity(0, {int(c) for c in sys.argv[1:]})\n"
               "there, here = side_by_side(os.getpid, os.getpid)\n"
               "print(may_fork(), there == here)\n")
     seen = [subprocess.run([sys.executable, "-c", script, *map(str, given)], capture_output=True, text=True,
-                           check=True).stdout.split() for given in (cores[:1], cores[:2])]
+                           check=True, cwd=ROOT).stdout.split() for given in (cores[:1], cores[:2])]
     assert seen == [["False", "True"], ["True", "False"]]
 
 
@@ -167,9 +189,10 @@ def test_side_processes_stopped_one_after_another_leave_nothing_that_holds_the_n
     thread). In a child Python with a time limit, so a hang fails the test instead of holding the suite."""
     if len(os.sched_getaffinity(0)) < 2:
         pytest.skip("this process has one core: no side process")
-    script = ("import multiprocessing\nfrom transplanter.side_process import side_by_side\n"
+    script = ("import multiprocessing\nfrom tests.cli.test_side_process import side_by_side\n"
               "def there():\n    raise ValueError('stop')\n"
               "left = 0\nfor _ in range(40):\n    try:\n        side_by_side(there, lambda: None)\n"
               "    except ValueError:\n        pass\n    left += len(multiprocessing.active_children())\nprint(left)\n")
-    child = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120, check=True)
+    child = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120, check=True,
+                           cwd=ROOT)
     assert child.stdout.split() == ["0"]
