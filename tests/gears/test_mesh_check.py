@@ -113,3 +113,25 @@ def test_transmission_error_of_an_involute_pair_is_the_turn_given_to_the_driven_
     assert np.abs(check.transmission_error + turn).max() * radius < 0.2 * ERROR_MODULES * MODULE
     assert np.all(check.play >= -1e-9)
     assert check.passed == (turn_modules == 0.0)
+
+
+def test_segment_grid_gives_every_points_nearest_segment_as_a_search_of_all_segments(pair, rng):
+    """The grid's capped distance and nearest segment equal those of every segment searched (points spread about
+    the tooth outline, so the cells list anything from none to dozens of segments; chunks of 500 points)."""
+    from transplanter.gears.mesh_check import _SegmentGrid
+
+    outline = pair[1].outlines[0]
+    cap = 0.25 * MODULE
+    grid = _SegmentGrid(outline, cap)
+    points = outline[rng.integers(0, len(outline), 4000)] + rng.normal(0, 0.3 * MODULE, (4000, 2))
+    distance, segment = grid.nearest(points, chunk=500)
+    starts, steps = outline, np.roll(outline, -1, axis=0) - outline
+    t = np.clip(np.einsum("psk,sk->ps", points[:, None] - starts, steps) / np.sum(steps ** 2, axis=1), 0, 1)
+    every = np.linalg.norm(points[:, None] - starts - t[..., None] * steps, axis=2)
+    least = every.min(axis=1)
+    near = least < cap
+    assert 0.2 < near.mean() < 0.95          # both kinds of points are there
+    np.testing.assert_allclose(distance[near], least[near], rtol=0, atol=1e-12 * MODULE)
+    assert np.all(distance[~near] == cap) and np.all(segment[~near] == -1)
+    chosen = every[np.flatnonzero(near), segment[near]]          # the segment named is one of the nearest
+    np.testing.assert_allclose(chosen, least[near], rtol=0, atol=1e-12 * MODULE)

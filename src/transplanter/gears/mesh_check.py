@@ -81,24 +81,23 @@ class _SegmentGrid:
         return (cells[:, 0] << 32) + cells[:, 1]
 
     def nearest(self, points: np.ndarray, chunk: int = 8192) -> tuple[np.ndarray, np.ndarray]:
-        """Distance (capped) from each point to the outline and the index of the nearest segment (-1 beyond the cap)."""
+        """Distance (capped) from each point to the outline and the index of the nearest segment (-1 beyond the cap).
+        Points are taken in chunks of like count of listed segments (then by cell), so a chunk's table, as wide as
+        its largest count, holds few unlisted places: by cell alone it held 3-4 times the listed ones."""
         distance, nearest = np.full(len(points), self.cap), np.full(len(points), -1)
         keys = self._key(np.floor(points / self.cap).astype(np.int64))
-        by_cell = np.argsort(keys, kind="stable")           # chunks of neighbouring points list alike
+        cells = np.clip(np.searchsorted(self.keys, keys), 0, len(self.keys) - 1)
+        counts = np.where(self.keys[cells] == keys, self.counts[cells], 0)
+        by_count = np.lexsort((keys, counts))
         ax, ay = self.starts.T
         ex, ey = (self.ends - self.starts).T
         inverse = 1 / np.maximum(ex * ex + ey * ey, 1e-300)
-        for lo in range(0, len(points), chunk):
-            index = by_cell[lo:lo + chunk]
-            key = keys[index]
-            row = np.clip(np.searchsorted(self.keys, key), 0, len(self.keys) - 1)
-            count = np.where(self.keys[row] == key, self.counts[row], 0)
-            width = int(count.max())
-            if width == 0:
-                continue
-            column = np.arange(width)
+        for lo in range(int(np.searchsorted(counts[by_count], 1)), len(points), chunk):
+            index = by_count[lo:lo + chunk]
+            count = counts[index]
+            column = np.arange(int(count[-1]))
             listed = column < count[:, None]
-            candidate = self.segments[np.where(listed, self.first[row][:, None] + column, 0)]
+            candidate = self.segments[np.where(listed, self.first[cells[index]][:, None] + column, 0)]
             ox, oy = points[index, :1] - ax[candidate], points[index, 1:] - ay[candidate]
             cx, cy = ex[candidate], ey[candidate]
             t = np.clip((ox * cx + oy * cy) * inverse[candidate], 0.0, 1.0)
