@@ -28,11 +28,12 @@ def _pointer(array: np.ndarray) -> ctypes.c_void_p:
     return array.ctypes.data_as(ctypes.c_void_p)
 
 
-def factor_and_solve(matrix: np.ndarray, rhs: np.ndarray, workspace: float = 5.0):
-    """INFO(1), the negative eigenvalues (INFO(15)), the solution and MA27's IKEEP (its first n: the nodes kept for
-    the dense tail after a pivot cancelled), with the upper triangle of ``matrix`` given
+def factor_and_solve(matrix: np.ndarray, rhs: np.ndarray, workspace: float = 5.0, recycled: np.ndarray | None = None):
+    """INFO(1), the negative eigenvalues (INFO(15)), the solution, MA27's IKEEP (its first n: the nodes kept for
+    the dense tail after a pivot cancelled) and the last IW, with the upper triangle of ``matrix`` given
     as triplets (diagonal included, zeros kept as entries) and IPOPT's protocol: MA27AD's sizes times
-    ``workspace``, grown as MA27BD asks (INFO(1) -3 or -4)."""
+    ``workspace``, grown as MA27BD asks (INFO(1) -3 or -4). IW is allocated zeroed, or first as a copy of
+    ``recycled`` where that is as long (a block an earlier solve freed, as IPOPT's uncleared allocation can get)."""
     lib = _library()
     n = matrix.shape[0]
     rows, cols = np.nonzero(np.triu(np.ones_like(matrix)) * (np.triu(matrix) != 0) + np.eye(n))
@@ -50,8 +51,10 @@ def factor_and_solve(matrix: np.ndarray, rhs: np.ndarray, workspace: float = 5.0
                 cntl, info, ctypes.byref(ops))
     assert info[0] == 0
     la, liw = _int(max(int(workspace * info[4]), nz)), _int(int(workspace * info[5]))    # IPOPT: la >= nz
-    for _ in range(4):
+    for attempt in range(4):
         iw, a = np.zeros(liw.value, np.int32), np.zeros(la.value)
+        if attempt == 0 and recycled is not None and len(recycled) == liw.value:
+            iw[:] = recycled
         a[:nz] = values
         lib.ma27bd_(ctypes.byref(_int(n)), ctypes.byref(_int(nz)), _pointer(irn), _pointer(icn), _pointer(a),
                     ctypes.byref(la), _pointer(iw), ctypes.byref(liw), _pointer(ikeep), ctypes.byref(nsteps),
@@ -68,7 +71,7 @@ def factor_and_solve(matrix: np.ndarray, rhs: np.ndarray, workspace: float = 5.0
         lib.ma27cd_(ctypes.byref(_int(n)), _pointer(a), ctypes.byref(la), _pointer(iw), ctypes.byref(liw),
                     _pointer(work), ctypes.byref(maxfrt), _pointer(x), _pointer(iw1), ctypes.byref(nsteps), icntl,
                     info)
-    return flag, negative, x, ikeep[:n]
+    return flag, negative, x, ikeep[:n], iw
 
 
 def kkt(variables: int, inequalities: int, equalities: int, per_row: int, seed: int, free: int = 0,
@@ -106,7 +109,7 @@ def kkt(variables: int, inequalities: int, equalities: int, per_row: int, seed: 
 def test_solution_and_inertia_match_a_dense_solve(seed, free, convex):
     matrix = kkt(variables=30, inequalities=200, equalities=12, per_row=6, seed=seed, free=free, convex=convex)
     rhs = np.random.default_rng(100 + seed).normal(size=matrix.shape[0])
-    flag, negative, x, _ = factor_and_solve(matrix, rhs)
+    flag, negative, x, _, _ = factor_and_solve(matrix, rhs)
     eigenvalues = np.linalg.eigvalsh(matrix)
     assert np.abs(eigenvalues).min() > 1e-10 * np.abs(eigenvalues).max()     # the test matrix is regular
     assert flag == 0
@@ -129,7 +132,7 @@ def test_pivots_lost_to_cancellation_send_their_nodes_to_the_dense_tail():
         if np.abs(eigenvalues).min() <= 1e-10 * np.abs(eigenvalues).max():
             continue                                                       # only regular systems compare
         rhs = np.random.default_rng(200 + seed).normal(size=matrix.shape[0])
-        flag, negative, x, kept = factor_and_solve(matrix, rhs)
+        flag, negative, x, kept, _ = factor_and_solve(matrix, rhs)
         kept_somewhere += int(kept.any())
         assert flag == 0
         assert negative == int((eigenvalues < 0).sum())
@@ -140,15 +143,32 @@ def test_pivots_lost_to_cancellation_send_their_nodes_to_the_dense_tail():
 def test_workspace_grows_as_ipopt_grows_it():
     matrix = kkt(variables=40, inequalities=300, equalities=20, per_row=8, seed=7)
     rhs = np.ones(matrix.shape[0])
-    flag, negative, x, _ = factor_and_solve(matrix, rhs, workspace=0.05)      # far below what MA27AD advised
+    flag, negative, x, _, _ = factor_and_solve(matrix, rhs, workspace=0.05)      # far below what MA27AD advised
     assert flag == 0
     assert np.allclose(matrix @ x, rhs, atol=1e-8)
+
+
+def test_a_work_block_holding_an_earlier_solves_order_gives_the_answer_a_cleared_one_gives():
+    """IPOPT allocates IW without clearing it, so a solve's IW can be the block an earlier solve of the same NLP
+    freed, that solve's order whole in it. The order is made from the first matrix's values (its zero diagonals
+    paired), so a solve whose rows have lost their bounds (the same entries, 20 slack diagonals now zero) is
+    ordered again there: the same solution to the last bit as in a cleared block."""
+    earlier_matrix = kkt(variables=30, inequalities=200, equalities=12, per_row=6, seed=11, free=0)
+    matrix = kkt(variables=30, inequalities=200, equalities=12, per_row=6, seed=11, free=20)
+    assert np.count_nonzero(earlier_matrix != matrix) == 20
+    rhs = np.random.default_rng(11).normal(size=matrix.shape[0])
+    *_, earlier = factor_and_solve(earlier_matrix, rhs)
+    flag, negative, cleared, _, _ = factor_and_solve(matrix, rhs)
+    again, negative_again, recycled, _, _ = factor_and_solve(matrix, rhs, recycled=earlier)
+    assert flag == again == 0 and negative == negative_again
+    assert np.abs(matrix @ cleared - rhs).max() / (np.abs(matrix).max() * np.abs(cleared).max()) < 1e-12
+    assert np.array_equal(recycled, cleared)
 
 
 def test_a_singular_matrix_is_reported_singular():
     matrix = kkt(variables=20, inequalities=60, equalities=5, per_row=4, seed=3)
     matrix[:, 0] = matrix[0, :] = 0.0                                       # a variable in no row, no curvature
-    flag, _, _, _ = factor_and_solve(matrix, np.ones(matrix.shape[0]))
+    flag, _, _, _, _ = factor_and_solve(matrix, np.ones(matrix.shape[0]))
     assert flag == 3
 
 

@@ -23,6 +23,12 @@
  * and elimination tree; A the input values (first NZ), then D, the blocks' couplings, L, the permuted matrix and
  * the dense tail. MA27AD only estimates their sizes; MA27BD asks for more (INFO(1) = -3 or -4, IPOPT's protocol)
  * if needed. MA27CD follows a factorisation that succeeded, as IPOPT calls it.
+ *
+ * IPOPT allocates IW without clearing it, once a solve, and a block an earlier solve freed can come back holding
+ * that solve's header and order whole: MA27BD takes the order in IW only where IKEEP(N+1), which MA27AD clears and
+ * MA27BD sets once it has written the order for this structure, says so. (Taking the header alone, a solve now
+ * and then factored in an earlier solve's order, made from another matrix's values: the same designs to about
+ * 1e-14, which then differed from run to run with where the allocator put the block.)
  */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
@@ -34,6 +40,8 @@
 
 #define MAGIC_FIRST 0x4c444c54
 #define MAGIC_LAST 0x6b6b7432
+/* IKEEP(N+1) (of MA27's 3 N) once MA27BD has written the order of MA27AD's structure into IW */
+#define ORDERED 0x6f726472
 /* integer header fields at the start of IW */
 enum {
     H_MAGIC_FIRST, H_N, H_NZ, H_SPARSE, H_TAIL, H_NNZ_L, H_PERM, H_LP, H_LI, H_PARENT, H_AP, H_AI, H_MAP,
@@ -269,6 +277,7 @@ void ma27ad_(int *N, int *NZ, const int *IRN, const int *ICN, int *IW, int *LIW,
     *NSTEPS = 1;
     *OPS = 0.0;
     memset(IKEEP, 0, n * sizeof(int));           /* no node kept for the tail yet (MA27BD) */
+    if (n > 0) IKEEP[n] = 0;                     /* and no order in IW */
     long guess = 2L * nz + 4L * n + 10000;     /* entries of L and of the dense tail; MA27BD asks for more */
     INFO[4] = (int)(2L * nz + n + guess);
     INFO[5] = (int)(HEADER + 5L * n + 2L * nz + guess);
@@ -561,8 +570,8 @@ void ma27bd_(int *N, int *NZ, const int *IRN, const int *ICN, double *A, int *LA
     memset(INFO, 0, 20 * sizeof(int));
     *MAXFRT = n > 0 ? n : 1;
     for (int attempt = 0; attempt <= MOST_REORDERS; attempt++) {
-        int known = *LIW >= HEADER && IW[H_MAGIC_FIRST] == MAGIC_FIRST && IW[H_MAGIC_LAST] == MAGIC_LAST &&
-                    IW[H_N] == n && IW[H_NZ] == nz;
+        int known = n > 0 && IKEEP[n] == ORDERED && *LIW >= HEADER && IW[H_MAGIC_FIRST] == MAGIC_FIRST &&
+                    IW[H_MAGIC_LAST] == MAGIC_LAST && IW[H_N] == n && IW[H_NZ] == nz;
         if (!known) {
             int need_iw, need_a;
             int analysed = analyse(n, nz, IRN, ICN, A, kept, IW, *LIW, *LA, &need_iw, &need_a);
@@ -575,6 +584,7 @@ void ma27bd_(int *N, int *NZ, const int *IRN, const int *ICN, double *A, int *LA
                 INFO[1] = need_iw > *LIW ? need_iw : need_a;
                 return;
             }
+            if (n > 0) IKEEP[n] = ORDERED;
         }
         /* the input values stay in A[0, nz) for a new order: the factor is written after them */
         int negative, outcome = factor(n, nz, A, IW, &negative);
@@ -585,7 +595,7 @@ void ma27bd_(int *N, int *NZ, const int *IRN, const int *ICN, double *A, int *LA
         }
         if (outcome > 0 && attempt < MOST_REORDERS) {
             kept[IW[IW[H_PERM] + outcome - 1]] = 1;
-            IW[H_MAGIC_FIRST] = 0;
+            IKEEP[n] = 0;                        /* ordered again, with that node in the tail */
             continue;
         }
         INFO[14] = negative;
