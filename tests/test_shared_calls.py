@@ -1,5 +1,6 @@
-"""Calls shared between a side process and this one: results in order wherever each ran, the side process taking
-the first calls and this process the last once its own work is done, and every failure raised here."""
+"""Calls shared between a side process and this one: results in order wherever each ran, each call run once, the
+side process taking the first calls and this process the last once its own work is done, and every failure raised
+here."""
 from __future__ import annotations
 
 import os
@@ -27,12 +28,41 @@ def _where(index: int, first_takes: float = 0.0) -> tuple[int, int]:
 
 @pytest.mark.skipif(not side_process.FORKS, reason="a side process is forked on Linux only")
 def test_the_side_process_takes_the_first_calls_and_this_one_the_last(two_cores):
+    """This process's own work (0.5 s) outlasts the side process's start, which claims the first call (1 s); this
+    process then takes the rest, the last first."""
     results, mine = share_calls(lambda index: _where(index, first_takes=1.0), [(k,) for k in range(6)],
-                                lambda: "here")
+                                lambda: time.sleep(0.5) or "here")
     assert mine == "here" and [index for index, _ in results] == list(range(6))
     side = results[0][1]
     assert side != os.getpid() and results[-1][1] == os.getpid()
     assert {pid for _, pid in results} == {side, os.getpid()}
+
+
+@pytest.mark.skipif(not side_process.FORKS, reason="a side process is forked on Linux only")
+def test_two_calls_take_one_process_each(two_cores):
+    """Neither process holds a call it has not started: with two calls (0.3 s each) and 0.1 s of its own work here,
+    the side process takes the first and this one the second, not both queued for the side."""
+    results, _ = share_calls(lambda index: (time.sleep(0.3), index, os.getpid())[1:], [(0,), (1,)],
+                             lambda: time.sleep(0.1))
+    assert results[0][0] == 0 and results[1] == (1, os.getpid()) and results[0][1] != os.getpid()
+
+
+@pytest.mark.skipif(not side_process.FORKS, reason="a side process is forked on Linux only")
+def test_every_call_runs_once(two_cores, tmp_path):
+    """Forty calls of uneven length, each writing its index to a log as it runs: each is there once, and both
+    processes took some."""
+    log = tmp_path / "calls.log"
+
+    def work(index: int) -> tuple[int, int]:
+        time.sleep(0.01 * (index % 5))
+        with log.open("a") as file:
+            file.write(f"{index}\n")
+        return index, os.getpid()
+
+    results = shared_map(work, [(k,) for k in range(40)])
+    assert [index for index, _ in results] == list(range(40))
+    assert sorted(map(int, log.read_text().split())) == list(range(40))
+    assert len({pid for _, pid in results}) == 2
 
 
 def test_in_turn_where_no_side_process_may_run(monkeypatch):
