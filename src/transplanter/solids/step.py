@@ -61,13 +61,35 @@ def _smooth_face(outline: np.ndarray, within: float):
 
 
 def _edge(curve):
-    """A build123d Edge of a scipy B-spline of the plane (a line where it has two coefficients)."""
+    """A build123d Edge of a scipy B-spline of the plane (a line where it has two coefficients): what
+    ``Edge.make_line`` / ``Edge.make_bspline`` make (knots within build123d's ``TOLERANCE`` one knot of their summed
+    multiplicity), built in OpenCASCADE directly; build123d takes each pole through a ``Vector`` of its own."""
     import build123d as bd
+    from build123d.geometry import TOLERANCE
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
+    from OCP.Geom import Geom_BSplineCurve
+    from OCP.gp import gp_Pnt
+    from OCP.collections import Array1_double, Array1_gp_Pnt, Array1_int
 
-    poles = [(float(x), float(y), 0.0) for x, y in curve.c]
+    poles = [gp_Pnt(x, y, 0.0) for x, y in np.asarray(curve.c, float).tolist()]
     if len(poles) == 2:
-        return bd.Edge.make_line(*poles)
-    return bd.Edge.make_bspline(poles, curve.t.tolist(), int(curve.k))
+        return bd.Edge(BRepBuilderAPI_MakeEdge(*poles).Edge())
+    knots, multiplicities = [], []
+    for knot in curve.t.tolist():
+        if knots and abs(knot - knots[-1]) <= TOLERANCE:
+            multiplicities[-1] += 1
+        else:
+            knots.append(knot)
+            multiplicities.append(1)
+    pole_array = Array1_gp_Pnt(1, len(poles))
+    for index, pole in enumerate(poles, start=1):
+        pole_array.SetValue(index, pole)
+    knot_array, multiplicity_array = Array1_double(1, len(knots)), Array1_int(1, len(knots))
+    for index, (knot, multiplicity) in enumerate(zip(knots, multiplicities, strict=True), start=1):
+        knot_array.SetValue(index, knot)
+        multiplicity_array.SetValue(index, multiplicity)
+    spline = Geom_BSplineCurve(pole_array, knot_array, multiplicity_array, int(curve.k), False)
+    return bd.Edge(BRepBuilderAPI_MakeEdge(spline).Edge())
 
 
 def _keyed_hole(bore: KeyedBore):
