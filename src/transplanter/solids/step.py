@@ -57,9 +57,10 @@ def _smooth_face(outline: np.ndarray, within: float):
     """The face bounded by the outline's smooth runs (``solids.smooth_outline``), every point within ``within``: the
     plane face OpenCASCADE makes on their wire (turned to hold the wire inside, whichever way the outline runs).
 
-    Not ``build123d.Face(wire)``, whose ShapeFix_Face looks for self-intersections among the hundreds of edges of a
-    gear (0.15-0.3 s a gear) and whose ShapeFix_Shape of the wire finds nothing to fix on runs that meet end to end
-    at the outline's own vertices: the face and the solid's STEP file are the same byte for byte."""
+    ``build123d.Face(wire)`` less its plane check and its ShapeFix_Face, which looks for self-intersections among the
+    hundreds of edges of a gear (0.15-0.3 s a gear) and finds nothing to fix on runs that meet end to end at the
+    outline's own vertices: the solid's STEP file is the same byte for byte. Its ShapeFix_Shape of the wire stays
+    (without it the edges' curves on the plane differ in their last digits)."""
     import build123d as bd
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
     from OCP.ShapeFix import ShapeFix_Shape
