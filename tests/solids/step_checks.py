@@ -18,6 +18,8 @@ from transplanter.solids.step import cad_installed, write_step
 
 #: Vertices of the sampled lines whose neighbouring segments ``distance_to_lines`` measures, per point.
 NEAREST = 8
+#: Points ``distance_to_lines`` measures at a time.
+BLOCK = 4096
 #: Set to 1 to skip the STEP tests in an environment without the optional extra transplanter[cad].
 WITHOUT_CAD = "TRANSPLANTER_WITHOUT_CAD"
 
@@ -51,15 +53,34 @@ def check_solid(solid, outline: np.ndarray, area: float, height: float, holes: i
     The volume is the top face's area times the height, the faces at both ends of equal area: OpenCASCADE's own
     volume integrates each face at a fixed number of Gauss points, 0.9 % off on a gear's side faces of hundreds of
     knot spans, where the area of a plane face, integrated to a given accuracy, is exact."""
-    faces = solid.faces().sort_by(kernel().Axis.Z)
-    top, bottom = face_area(faces[-1]), face_area(faces[0])
+    bottom_face, top_face = end_faces(solid)
+    top, bottom = face_area(top_face), face_area(bottom_face)
     assert bottom == pytest.approx(top, rel=1e-9)
     assert top * height == pytest.approx(area * height, rel=1e-3)
     box = solid.bounding_box()
     assert np.allclose([box.min.X, box.min.Y, box.max.X, box.max.Y], [*outline.min(axis=0), *outline.max(axis=0)],
                        rtol=0, atol=within)
     assert abs(box.size.Z - height) < within
-    assert len(faces[-1].inner_wires()) == holes
+    assert len(top_face.inner_wires()) == holes
+
+
+def end_faces(solid):
+    """The solid's bottom and top face: of its faces in a plane across Z (there are two), the lowest and the highest
+    plane. Found by each face's plane, not by its centre of mass, which OpenCASCADE integrates over every edge of a
+    gear's outline."""
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
+    from OCP.GeomAbs import GeomAbs_Plane
+
+    across = []
+    for face in solid.faces():
+        surface = BRepAdaptor_Surface(face.wrapped)
+        if surface.GetType() == GeomAbs_Plane:
+            plane = surface.Plane()
+            if abs(abs(plane.Axis().Direction().Z()) - 1) < 1e-12:
+                across.append((plane.Location().Z(), face))
+    assert len(across) == 2, f"{len(across)} faces across Z"
+    (_, bottom), (_, top) = sorted(across, key=lambda height_face: height_face[0])
+    return bottom, top
 
 
 def keyed_hole_area(bore: KeyedBore) -> float:
@@ -84,7 +105,7 @@ def edge_samples(solid, spacing: float) -> list[np.ndarray]:
     solids' curves take the arc length of their points for parameter) by ``curve_samples``."""
     from OCP.BRepAdaptor import BRepAdaptor_Curve
 
-    top = solid.faces().sort_by(kernel().Axis.Z)[-1]
+    top = end_faces(solid)[1]
     return [curve_samples(BRepAdaptor_Curve(edge.wrapped), max(2, int(np.ceil(edge.length / spacing)) + 1))
             for edge in top.outer_wire().edges()]
 
@@ -113,20 +134,36 @@ def curve_samples(curve, count: int) -> np.ndarray:
 def distance_to_lines(points: np.ndarray, lines: list[np.ndarray], spacing: float) -> np.ndarray:
     """Each point's distance (mm) to the nearest of the open polylines ``lines`` (each (M, 2)), their segments cut
     to at most ``spacing`` mm: the least distance to the segments on either side of its ``NEAREST`` nearest
-    vertices (exact for a point nearer a line than ``spacing``, where lines meet at a corner too)."""
+    vertices (exact for a point nearer a line than ``spacing``, where lines meet at a corner too).
+
+    Each segment's start and run are taken once per vertex (a line's last vertex starts none: its run is zero and
+    its distance left out) and the points measured ``BLOCK`` at a time, so the (points, 2 ``NEAREST``) arrays stay
+    small."""
     dense = [_cut(line, spacing) for line in lines]
     vertices = np.vstack(dense)
-    line_end = np.cumsum([len(line) for line in dense]) - 1
+    x, y = vertices[:, 0].copy(), vertices[:, 1].copy()
+    dx, dy = np.diff(x, append=x[-1]), np.diff(y, append=y[-1])  # segment i: vertex i -> i + 1
+    ends = np.cumsum([len(line) for line in dense]) - 1
+    dx[ends] = dy[ends] = 0.0
+    run = dx * dx + dy * dy
+    run[ends] = 1.0
+    left_out = np.zeros(len(vertices))
+    left_out[ends] = np.inf
     nearest = cKDTree(vertices).query(points, k=NEAREST)[1]
-    first = np.hstack([nearest - 1, nearest])       # (N, 2 NEAREST): the segments first -> first + 1
-    segment = (first >= 0) & ~np.isin(first, line_end)
-    first[~segment] = 0
-    (x, y), (px, py) = vertices.T, points.T[:, :, None]
-    ax, ay = x[first] - px, y[first] - py            # from the point to each segment's start, and along it
-    dx, dy = x[first + 1] - x[first], y[first + 1] - y[first]
-    along = np.clip(-(ax * dx + ay * dy) / (dx * dx + dy * dy), 0, 1)
-    squared = np.where(segment, (ax + along * dx) ** 2 + (ay + along * dy) ** 2, np.inf)
-    return np.sqrt(np.minimum(squared.min(axis=1), ((points - vertices[nearest[:, 0]]) ** 2).sum(axis=1)))
+    squared = np.empty(len(points))
+    for start in range(0, len(points), BLOCK):
+        near, block = nearest[start:start + BLOCK], points[start:start + BLOCK]
+        first = np.hstack([near - 1, near])     # (n, 2 NEAREST): the segments first -> first + 1
+        before_start = first < 0
+        first[before_start] = 0
+        ax, ay = x[first] - block[:, :1], y[first] - block[:, 1:]  # from the point to each segment's start
+        sx, sy = dx[first], dy[first]
+        along = np.clip(-(ax * sx + ay * sy) / run[first], 0, 1)
+        to_segment = (ax + along * sx) ** 2 + (ay + along * sy) ** 2 + left_out[first]
+        to_segment[before_start] = np.inf
+        squared[start:start + BLOCK] = np.minimum(to_segment.min(axis=1),
+                                                  ((block - vertices[near[:, 0]]) ** 2).sum(axis=1))
+    return np.sqrt(squared)
 
 
 def _cut(line: np.ndarray, spacing: float) -> np.ndarray:
