@@ -31,6 +31,7 @@ import shapely
 
 from transplanter.gears.pair import GearPairDesign, driven_angle
 from transplanter.geometry.outline_thinning import thinned
+from transplanter.geometry.planar import counterclockwise
 from transplanter.geometry.poses import rotate_about
 
 ORIGIN = (0.0, 0.0)
@@ -50,12 +51,6 @@ CAP_MODULES = 0.25
 RADIAL_NORMAL = 0.3
 #: Largest overlap, contact gap and transmission error (as arc on the driven pitch curve) allowed, in modules.
 OVERLAP_MODULES, GAP_MODULES, ERROR_MODULES = 0.005, 0.01, 0.005
-
-
-def _counterclockwise(outline: np.ndarray) -> np.ndarray:
-    x, y = outline.T
-    area = np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)
-    return outline if area > 0 else outline[::-1]
 
 
 class _SegmentGrid:
@@ -118,7 +113,7 @@ class _Outline:
     vertices to measure (thinned to ``spacing``) sorted by polar angle."""
 
     def __init__(self, outline: np.ndarray, spacing: float, simplify: float, cap: float):
-        points = _counterclockwise(np.asarray(outline, float))
+        points = counterclockwise(np.asarray(outline, float))
         simple = thinned(points, simplify)
         tangent = np.roll(simple, -1, axis=0) - simple
         self.normals = np.c_[tangent[:, 1], -tangent[:, 0]] / np.linalg.norm(tangent, axis=1, keepdims=True)

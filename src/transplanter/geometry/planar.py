@@ -1,6 +1,7 @@
 """Plane vectors, in numpy (x, y on the last axis, broadcasting) and as CasADi 2-element columns:
 the unit vector at an angle, a counterclockwise rotation and the scalar cross product (radians); a
-periodic value's remainder, cheaper than numpy's; and a stand-in for the polar angle, cheaper than np.arctan2."""
+periodic value's remainder, cheaper than numpy's; a stand-in for the polar angle, cheaper than np.arctan2; and a
+closed outline run counterclockwise."""
 from __future__ import annotations
 
 import casadi as ca
@@ -27,6 +28,14 @@ def diamond_angle(x, y) -> np.ndarray:
     np.arctan2 takes tens of nanoseconds a point. NaN at the origin."""
     side = y / (np.abs(x) + np.abs(y))
     return np.where(x < 0, 2 - side, side)
+
+
+def counterclockwise(outline: np.ndarray) -> np.ndarray:
+    """The closed outline (N, 2; its last point joined to its first) running counterclockwise (positive area):
+    itself, or its points reversed."""
+    x, y = outline[:, 0], outline[:, 1]
+    area = np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)
+    return outline if area > 0 else outline[::-1]
 
 
 def unit(angle) -> np.ndarray:

@@ -27,6 +27,7 @@ import numpy as np
 
 from transplanter.drawing.gear_sheet import GearDrawing
 from transplanter.drawing.plate_sheet import PlatePart
+from transplanter.geometry.planar import counterclockwise
 from transplanter.shafts.keyed_bore import KeyedBore
 from transplanter.solids.smooth_outline import smooth_runs
 
@@ -50,12 +51,13 @@ DISC_WITHIN_EXTENT = 1e-5
 def _face(outline: np.ndarray):
     import build123d as bd
 
-    return bd.make_face(bd.Polyline(*map(tuple, np.asarray(outline, float).tolist()), close=True))
+    return bd.make_face(bd.Polyline(*map(tuple, counterclockwise(np.asarray(outline, float)).tolist()), close=True))
 
 
 def _smooth_face(outline: np.ndarray, within: float):
     """The face bounded by the outline's smooth runs (``solids.smooth_outline``), every point within ``within``: the
-    plane face OpenCASCADE makes on their wire (turned to hold the wire inside, whichever way the outline runs).
+    plane face OpenCASCADE makes on their wire, run counterclockwise so that the face looks up +Z and the part is
+    extruded from z = 0 up (a clockwise wire turns the face over: the part lay below z = 0).
 
     ``build123d.Face(wire)`` less its plane check and its ShapeFix_Face, which looks for self-intersections among the
     hundreds of edges of a gear (0.15-0.3 s a gear) and finds nothing to fix on runs that meet end to end at the
@@ -67,7 +69,7 @@ def _smooth_face(outline: np.ndarray, within: float):
     from OCP.ShapeFix import ShapeFix_Shape  # type: ignore[import-untyped]
     from OCP.TopoDS import TopoDS  # type: ignore[import-untyped]
 
-    fix = ShapeFix_Shape(bd.Wire([_edge(curve) for curve in smooth_runs(outline, within)]).wrapped)
+    fix = ShapeFix_Shape(bd.Wire([_edge(curve) for curve in smooth_runs(counterclockwise(outline), within)]).wrapped)
     fix.Perform()
     maker = BRepBuilderAPI_MakeFace(TopoDS.Wire(fix.Shape()), True)
     if not maker.IsDone():
