@@ -63,11 +63,10 @@ def _smooth_face(outline: np.ndarray, within: float):
     hundreds of edges of a gear (0.15-0.3 s a gear) and finds nothing to fix on runs that meet end to end at the
     outline's own vertices: the solid's STEP file is the same byte for byte. Its ShapeFix_Shape of the wire stays
     (without it the edges' curves on the plane differ in their last digits)."""
-    # OCP, the OpenCASCADE binding build123d stands on, ships no type information
     import build123d as bd
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace  # type: ignore[import-untyped]
-    from OCP.ShapeFix import ShapeFix_Shape  # type: ignore[import-untyped]
-    from OCP.TopoDS import TopoDS  # type: ignore[import-untyped]
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
+    from OCP.ShapeFix import ShapeFix_Shape
+    from OCP.TopoDS import TopoDS
 
     fix = ShapeFix_Shape(bd.Wire([_edge(curve) for curve in smooth_runs(counterclockwise(outline), within)]).wrapped)
     fix.Perform()
@@ -83,10 +82,10 @@ def _edge(curve):
     multiplicity), built in OpenCASCADE directly; build123d takes each pole through a ``Vector`` of its own."""
     import build123d as bd
     from build123d.geometry import TOLERANCE
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge  # type: ignore[import-untyped]
-    from OCP.collections import Array1_double, Array1_gp_Pnt, Array1_int  # type: ignore[import-untyped]
-    from OCP.Geom import Geom_BSplineCurve  # type: ignore[import-untyped]
-    from OCP.gp import gp_Pnt  # type: ignore[import-untyped]
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
+    from OCP.collections import Array1_double, Array1_gp_Pnt, Array1_int
+    from OCP.Geom import Geom_BSplineCurve
+    from OCP.gp import gp_Pnt
 
     poles = [gp_Pnt(x, y, 0.0) for x, y in np.asarray(curve.c, float).tolist()]
     if len(poles) == 2:
