@@ -83,6 +83,42 @@ def pickup_full_result():
     return _reverse_example(PICKUP, tolerance=True)
 
 
+def rice_idler_text() -> str:
+    """The rice hoe's file turned into the rice-transplanter paper's train: one idler between identical sun and
+    planet (``train.topology = "sun-idler-planet"``, ``train.split = "identical_sun_planet"``)."""
+    return RICE.read_text().replace('topology = "sun-intermediate-planet"', 'topology = "sun-idler-planet"').replace(
+        'split = "sqrt"', 'split = "identical_sun_planet"')
+
+
+@pytest.fixture(scope="session")
+def rice_idler_command(tmp_path_factory):
+    """``transplanter reverse FILE --json --no-tolerance`` on ``rice_idler_text`` (written to problem.toml), run in
+    this process once per test process for the command's test of it and the paper's (its train misses the path:
+    one synthesis of seconds, which both read): the exit code, stdout, stderr and the result the command
+    synthesised."""
+    import contextlib
+    import io
+    import types
+
+    from transplanter import reverse
+    from transplanter.cli import main
+    from transplanter.reverse.synthesis import synthesize
+
+    path = tmp_path_factory.mktemp("rice_idler") / "problem.toml"
+    path.write_text(rice_idler_text())
+    results = []
+
+    def kept(problem, tolerance=True):
+        results.append(synthesize(problem, tolerance=tolerance))
+        return results[-1]
+    out, err = io.StringIO(), io.StringIO()
+    with pytest.MonkeyPatch.context() as patch, contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        patch.setattr(reverse, "synthesize", kept)
+        code = main(["reverse", str(path), "--json", "--no-tolerance"])
+    (result,) = results
+    return types.SimpleNamespace(code=code, out=out.getvalue(), err=err.getvalue(), result=result)
+
+
 #: The session's result of each reverse example file, without and with the tolerance analysis.
 REVERSE_EXAMPLES = {RICE: ("rice_result", "rice_full_result"), PICKUP: ("pickup_result", "pickup_full_result")}
 
@@ -159,7 +195,8 @@ def example_result_drawings_copied(monkeypatch, example_result, example_result_d
     monkeypatch.setattr(output_files, "write_drawings", copied)
 
 #: The session's shared results (and the fixtures named after them): a file that names one is a reader.
-SHARED_RESULTS = ("example_result", "rice_result", "rice_full_result", "pickup_result", "pickup_full_result")
+SHARED_RESULTS = ("example_result", "rice_result", "rice_full_result", "pickup_result", "pickup_full_result",
+                  "rice_idler_command")
 
 
 def pytest_xdist_make_scheduler(config, log):

@@ -8,7 +8,8 @@ import pytest
 from transplanter.cli import main
 
 ROOT = Path(__file__).resolve().parents[2]
-RICE = (ROOT / "examples" / "rice_hoe_reverse.toml").read_text()
+RICE_FILE = ROOT / "examples" / "rice_hoe_reverse.toml"
+RICE = RICE_FILE.read_text()
 
 
 def _points(points) -> str:
@@ -30,9 +31,11 @@ def _run(tmp_path, text, *flags):
     return main(["reverse", str(path), *flags])
 
 
-def test_json_report_has_the_design_fields_and_the_figures(tmp_path, capsys):
-    """Without the tolerance analysis (its report and figures: tests/reverse/test_tolerance_model.py)."""
-    assert _run(tmp_path, RICE, "--json", "--no-step", "--no-tolerance", "--out", str(tmp_path / "out")) == 0
+def test_json_report_has_the_design_fields_and_the_figures(tmp_path, capsys, rice_result_from_synthesize):
+    """Without the tolerance analysis (its report and figures: tests/reverse/test_tolerance_model.py). The train
+    is the session's ``rice_result``, the example file's as this command synthesises it."""
+    out = tmp_path / "out"
+    assert main(["reverse", str(RICE_FILE), "--json", "--no-step", "--no-tolerance", "--out", str(out)]) == 0
     report = json.loads(capsys.readouterr().out)
     for field in ("monotonic", "violations", "carrier_length", "arm_length", "ratio_range", "gear_closure_errors",
                   "roundtrip_max_error_mm", "branch_segments", "branch_switches_u", "gears"):
@@ -112,14 +115,13 @@ def test_center_distances_that_cannot_place_the_planet(tmp_path, capsys):
     assert "expected each at least 0.001 of the carrier length" in capsys.readouterr().err
 
 
-def test_idler_train_report_says_how_far_it_misses(tmp_path, capsys):
-    text = RICE.replace('topology = "sun-intermediate-planet"', 'topology = "sun-idler-planet"').replace(
-        'split = "sqrt"', 'split = "identical_sun_planet"')
-    assert _run(tmp_path, text, "--json", "--no-tolerance") == 1     # a failed check, the report says which
-    captured = capsys.readouterr()
-    report = json.loads(captured.out)
+def test_idler_train_report_says_how_far_it_misses(rice_idler_command):
+    """The command on the rice hoe turned into the paper's idler train (``rice_idler_command``: run once for this
+    and the paper's test in test_reverse_design.py, which reads its train)."""
+    assert rice_idler_command.code == 1                                # a failed check, the report says which
+    report = json.loads(rice_idler_command.out)
     assert report["status"] == "FAILED" and "misses the path by up to" in report["failures"][0]
-    assert len(captured.err.strip().splitlines()) == 1
+    assert len(rice_idler_command.err.strip().splitlines()) == 1
     assert report["idler_iteration"]["settled"] is False
     assert report["roundtrip_max_error_mm"] > 1.0
     assert len(report["gear_closure_errors"]) == 2 and max(map(abs, report["gear_closure_errors"])) < 1e-9
