@@ -9,10 +9,10 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 #: import name -> distribution that provides it (Pillow is a dependency of matplotlib, distributed of dask's
-#: extra)
-PROVIDED_BY = {"PIL": "matplotlib", "distributed": "dask"}
+#: extra, OCP, the OpenCASCADE binding, of build123d)
+PROVIDED_BY = {"PIL": "matplotlib", "distributed": "dask", "OCP": "build123d"}
 #: Modules the package imports only where an optional extra is installed (and says so when it is not).
-OPTIONAL = {"distributed", "build123d"}
+OPTIONAL = {"distributed", "build123d", "OCP"}
 
 
 def _imported_top_level_modules(folder: Path = ROOT / "src/transplanter", exclude: Path | None = None) -> set[str]:
@@ -33,7 +33,8 @@ def test_every_imported_third_party_module_is_a_runtime_dependency():
     declared = {entry.split(">")[0].split("=")[0].split("<")[0].strip().lower() for entry in project["dependencies"]}
     third_party = _imported_top_level_modules() - set(sys.stdlib_module_names) - {"transplanter", "__future__"}
     cad = {entry.split(">")[0].strip().lower() for entry in project["optional-dependencies"]["cad"]}
-    outside_solids = cad & _imported_top_level_modules(exclude=ROOT / "src/transplanter/solids")
+    outside_solids = {name for name in _imported_top_level_modules(exclude=ROOT / "src/transplanter/solids")
+                      if PROVIDED_BY.get(name, name).lower() in cad}
     assert not outside_solids, f"the optional extra [cad] imported outside solids/: {sorted(outside_solids)}"
     extras = {entry.split("[")[0].split(">")[0].strip().lower()
               for name, entries in project["optional-dependencies"].items() if name != "dev" for entry in entries}
