@@ -40,9 +40,10 @@ def test_the_side_process_takes_the_first_calls_and_this_one_the_last(two_cores)
 
 @pytest.mark.skipif(not side_process.FORKS, reason="a side process is forked on Linux only")
 def test_two_calls_take_one_process_each(two_cores):
-    """Neither process holds a call it has not started: with two calls (0.3 s each) and 0.1 s of its own work here,
-    the side process takes the first and this one the second, not both queued for the side."""
-    results, _ = share_calls(lambda index: (time.sleep(0.3), index, os.getpid())[1:], [(0,), (1,)],
+    """Neither process holds a call it has not started: with two calls (0.5 s each) and 0.1 s of its own work here,
+    the side process takes the first and this one the second, not both queued for the side. (The side process has
+    until this one has made the second call to start, even on a loaded machine.)"""
+    results, _ = share_calls(lambda index: (time.sleep(0.5), index, os.getpid())[1:], [(0,), (1,)],
                              lambda: time.sleep(0.1))
     assert results[0][0] == 0 and results[1] == (1, os.getpid()) and results[0][1] != os.getpid()
 
