@@ -55,7 +55,7 @@ def test_every_call_runs_once(two_cores, tmp_path):
     log = tmp_path / "calls.log"
 
     def work(index: int) -> tuple[int, int]:
-        time.sleep(0.01 * (index % 5))
+        time.sleep(0.02 * (index % 5))
         with log.open("a") as file:
             file.write(f"{index}\n")
         return index, os.getpid()
