@@ -41,6 +41,9 @@ FORKS = sys.platform.startswith("linux")
 #: Whether a side process may be forked here: ``in_this_process()`` turns it off for the calls within it.
 _may_fork: ContextVar[bool] = ContextVar("may_fork", default=True)
 
+#: The signals that stop a run (Ctrl-C, and SIGTERM from a scheduler or ``SideProcess.stop``).
+_STOPPING = {signal.SIGINT, signal.SIGTERM}
+
 #: One warning raised in the side process: message, category, file name, line number.
 Warned = tuple[Warning | str, type[Warning], str, int]
 
@@ -79,8 +82,15 @@ class SideProcess:
                                          initargs=(work,))     # a forked child inherits initargs, nothing pickled
 
     def submit(self, *call: Any) -> Future:
-        """``work(*call)`` in the side process: the Future to pass to ``outcome``."""
-        return self._pool.submit(_run_work, *call)
+        """``work(*call)`` in the side process: the Future to pass to ``outcome``. The first forks the process, with
+        Ctrl-C and SIGTERM held until ``_install`` has set its own handling of them: a signal that came before (a
+        ``stop`` right after the start) ran this process's handler there, which printed its traceback or, raised
+        just after the fork, took the copy back into this process's code (a test run waited for ever on it)."""
+        held = signal.pthread_sigmask(signal.SIG_BLOCK, _STOPPING)
+        try:
+            return self._pool.submit(_run_work, *call)
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, held)
 
     def close(self) -> None:
         """Wait for the submitted calls, then end the process."""
@@ -186,11 +196,13 @@ def _twin_there(work: Callable[[Twin], Any], there: Connection, here: Connection
 
 
 def _install(work: Callable[..., Any]) -> None:
-    """In the side process: its work, and its signals (Ctrl-C left to the parent, SIGTERM ending it at once)."""
+    """In the side process: its work, and its signals (Ctrl-C left to the parent, SIGTERM ending it at once), then
+    let through (held since the fork: ``SideProcess.submit``)."""
     global _work
     _work = work
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, _STOPPING)
 
 
 def _run_work(*call: Any) -> tuple[Any, list[Warned], str]:
