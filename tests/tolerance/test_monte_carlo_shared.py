@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
+import time
 
 import numpy as np
 import pytest
@@ -22,7 +23,10 @@ def test_shared_chunks_are_the_chunks_closed_here(monkeypatch, tmp_path):
     closed_by.mkdir()
 
     def sampled(dimensions: np.ndarray) -> np.ndarray:
+        """The model's motion, its process noted; 20 ms a chunk, so the side process has started (in far less) before
+        this one, which takes chunks from the back until none is left, could have closed all forty."""
         (closed_by / str(os.getpid())).touch()
+        time.sleep(0.02)
         return model.sampled(dimensions)
 
     shared_model = dataclasses.replace(model, sampled=sampled)
