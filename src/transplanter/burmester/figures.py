@@ -71,6 +71,7 @@ def figure_drawers(result: Synthesis) -> dict[str, FigureDrawer]:
     require_result(result, Synthesis, "burmester")
     return {"burmester": partial(draw_synthesis, result)}
 
+
 def draw_figures(result: Synthesis) -> dict[str, Figure]:
     """The figures of a synthesis by file stem: ``{"burmester": Figure}``.
 

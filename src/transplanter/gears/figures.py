@@ -93,6 +93,7 @@ def figure_drawers(result: GearResult) -> dict[str, FigureDrawer]:
         drawers["gear_cusps"] = partial(draw_cusps, result, result.teeth)
     return drawers
 
+
 def draw_figures(result: GearResult) -> dict[str, Figure]:
     """The figures of a gear pair by file stem: ``gear_mesh``, ``gear_kinematics``, ``gear_curvature``.
 

@@ -56,6 +56,7 @@ def figure_drawers(result: PickupResult) -> dict[str, FigureDrawer]:
     require_result(result, PickupResult, "pickup")
     return {"pickup_path": partial(draw_path, result), "pickup_speed": partial(draw_speed, result)}
 
+
 def draw_figures(result: PickupResult) -> dict[str, Figure]:
     """``pickup_path`` and ``pickup_speed`` by file stem."""
     return drawn(figure_drawers(result))

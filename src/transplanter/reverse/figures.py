@@ -114,6 +114,7 @@ def figure_drawers(result: ReverseResult) -> dict[str, FigureDrawer]:
         drawers.update(result.tolerance.figure_drawers())
     return drawers
 
+
 def draw_figures(result: ReverseResult) -> dict[str, Figure]:
     """The figures of a reverse design by file stem: ``path``, ``motion``, ``gears`` when it has a train, and with
     a tolerance analysis ``tolerance_trajectory``, ``tolerance_band`` and ``tolerance_contributions``.
