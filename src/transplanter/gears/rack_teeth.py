@@ -28,7 +28,7 @@ from scipy.spatial import cKDTree
 
 from transplanter._generated.cusp import variable_involute
 from transplanter.generated import numpy_twin
-from transplanter.geometry.planar import modulo
+from transplanter.geometry.planar import modulo, twice_signed_area
 from transplanter.geometry.self_crossings import without_loops
 
 _VARIABLE_INVOLUTE = numpy_twin(variable_involute)
@@ -199,8 +199,7 @@ class PitchTable:
 
 def orientation(points: np.ndarray) -> float:
     """+1 for a closed polyline around the origin running counterclockwise (positive area), else -1."""
-    area = np.sum(points[:-1, 0] * np.diff(points[:, 1]) - points[:-1, 1] * np.diff(points[:, 0]))
-    return 1.0 if area > 0 else -1.0
+    return 1.0 if twice_signed_area(points) > 0 else -1.0
 
 
 def pitch_table(points: np.ndarray, arc: np.ndarray, tangents: np.ndarray) -> PitchTable:

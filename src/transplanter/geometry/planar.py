@@ -30,12 +30,16 @@ def diamond_angle(x, y) -> np.ndarray:
     return np.where(x < 0, 2 - side, side)
 
 
-def counterclockwise(outline: np.ndarray) -> np.ndarray:
-    """The closed outline (N, 2; its last point joined to its first) running counterclockwise (positive area):
-    itself, or its points reversed."""
+def twice_signed_area(outline: np.ndarray) -> float:
+    """Twice the area a closed outline (N, 2; its last point joined to its first, or a repeat of it) encloses,
+    positive where it runs counterclockwise (the shoelace sum)."""
     x, y = outline[:, 0], outline[:, 1]
-    area = np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)
-    return outline if area > 0 else outline[::-1]
+    return float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+
+
+def counterclockwise(outline: np.ndarray) -> np.ndarray:
+    """The closed outline (N, 2) running counterclockwise (positive area): itself, or its points reversed."""
+    return outline if twice_signed_area(outline) > 0 else outline[::-1]
 
 
 def unit(angle) -> np.ndarray:
